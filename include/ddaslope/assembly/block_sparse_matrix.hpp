@@ -1,0 +1,48 @@
+#pragma once
+// Symmetric matrix of 6×6 blocks stored as the upper triangle in compressed columns (CSC),
+// the layout CHOLMOD reads without a copy. The pattern is fixed between setPattern calls.
+#include <utility>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "ddaslope/core/types.hpp"
+
+namespace ddaslope::assembly {
+
+class BlockSparseMatrix {
+ public:
+  /// nBlocks block rows/columns; couplings: unordered block pairs (any order, duplicates allowed).
+  void setPattern(int nBlocks, std::vector<std::pair<int, int>> couplings);
+  /// True if this pattern equals the current one (so the symbolic factorisation can be kept).
+  bool hasPattern(int nBlocks, const std::vector<std::pair<int, int>>& sortedUniqueCouplings) const;
+  static std::vector<std::pair<int, int>> normalise(std::vector<std::pair<int, int>> couplings);
+
+  void setZero();
+  void addDiagonal(int b, const Mat6& k);
+  /// Adds K_rc, the block coupling row block r to column block c (r ≠ c).
+  void addCoupling(int r, int c, const Mat6& krc);
+  Eigen::VectorXd multiply(const Eigen::VectorXd& x) const;
+
+  int size() const { return 6 * nBlocks_; }
+  int nonZeros() const { return static_cast<int>(values_.size()); }
+  const std::vector<int>& columnPointers() const { return colPtr_; }
+  const std::vector<int>& rowIndices() const { return rowIdx_; }
+  std::vector<double>& values() { return values_; }
+  const std::vector<double>& values() const { return values_; }
+  /// Bumped each time the pattern changes.
+  long patternVersion() const { return patternVersion_; }
+
+ private:
+  int slot(int r, int c) const;  ///< position of row block r in column block c's list (r < c)
+
+  int nBlocks_ = 0;
+  std::vector<std::pair<int, int>> couplings_;   ///< sorted (r < c)
+  std::vector<std::vector<int>> columnRows_;     ///< per column block: row blocks r < c, sorted
+  std::vector<int> blockBase_;                   ///< first value index of each column block
+  std::vector<int> colPtr_, rowIdx_;
+  std::vector<double> values_;
+  long patternVersion_ = 0;
+};
+
+}  // namespace ddaslope::assembly

@@ -1,0 +1,30 @@
+#pragma once
+// Linearised contact kinematics (Shi 1988, §2.5–2.6): pure functions of the geometry.
+#include <Eigen/Core>
+
+#include "ddaslope/contact/contact.hpp"
+#include "ddaslope/model/block.hpp"
+
+namespace ddaslope::assembly {
+
+using Vec12 = Eigen::Matrix<double, 12, 1>;
+
+/// Penetration and shear of a vertex-to-edge contact as linear functions of [D_i; D_j]
+/// (i: the vertex's block, j: the edge's block), evaluated on the geometry at the step start.
+struct ContactKinematics {
+  Vec12 normal = Vec12::Zero();     ///< d penetration / d[D_i; D_j]
+  double penetration0 = 0;          ///< penetration before the step (m), > 0 overlapping
+  Vec12 shearLocked = Vec12::Zero();///< d shear / d[D] relative to the lock anchor
+  double shearLocked0 = 0;          ///< shear spring elongation before the step (m)
+  Vec12 shearStep = Vec12::Zero();  ///< d slip / d[D] relative to the start-of-step projection
+  Vec2 tangent{0, 0};               ///< unit edge direction
+  double penetration(const Vec12& d) const { return penetration0 + normal.dot(d); }
+  double shearFromAnchor(const Vec12& d) const { return shearLocked0 + shearLocked.dot(d); }
+  double slip(const Vec12& d) const { return shearStep.dot(d); }
+};
+
+/// Δ = det[1 x1 y1; 1 x2 y2; 1 x3 y3] / l with the second-order term dropped (Shi eq. 2.52).
+ContactKinematics linearise(const model::Block& vertexBlock, const model::Block& edgeBlock,
+                            const contact::Contact& c);
+
+}  // namespace ddaslope::assembly

@@ -1,0 +1,23 @@
+#pragma once
+// The persistent contact set: contacts matched by key across steps keep state and history.
+#include <vector>
+
+#include "ddaslope/contact/contact.hpp"
+
+namespace ddaslope::contact {
+
+class ContactSet {
+ public:
+  /// Replaces the contacts by this step's candidates (sorted by key). A candidate whose key
+  /// was in contact last step inherits its state, bond and shear anchor; one whose vertex moved
+  /// to another edge of the same block inherits state and bond with a fresh anchor.
+  void update(std::vector<ContactCandidate> candidates, const std::vector<int>& jointOfCandidate);
+  bool contains(const ContactKey& key) const;
+  std::vector<Contact>& contacts() { return contacts_; }
+  const std::vector<Contact>& contacts() const { return contacts_; }
+
+ private:
+  std::vector<Contact> contacts_;  ///< sorted by key
+};
+
+}  // namespace ddaslope::contact

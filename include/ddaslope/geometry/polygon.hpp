@@ -1,0 +1,40 @@
+#pragma once
+// Pure polygon geometry: moments by simplex integration, orientation, simplicity.
+#include <vector>
+
+#include "ddaslope/core/types.hpp"
+
+namespace ddaslope::geometry {
+
+/// Area moments of a polygon. Second moments are taken about the centroid, so the
+/// first moments vanish (Shi 1988, simplex integration over a triangle fan: exact).
+struct PolygonMoments {
+  double area = 0;   ///< S = ∫ dA (m²), positive for counter-clockwise vertices
+  Vec2 centroid{0, 0};
+  double sxx = 0;    ///< ∫ (x − x0)² dA
+  double syy = 0;    ///< ∫ (y − y0)² dA
+  double sxy = 0;    ///< ∫ (x − x0)(y − y0) dA
+};
+
+struct Aabb {
+  Vec2 lo{0, 0};
+  Vec2 hi{0, 0};
+};
+
+/// Signed area: positive for counter-clockwise order.
+double signedArea(const std::vector<Vec2>& pts);
+/// Moments of a counter-clockwise polygon (area positive).
+PolygonMoments computeMoments(const std::vector<Vec2>& pts);
+/// True when no two non-adjacent edges touch and no two consecutive vertices coincide.
+bool isSimple(const std::vector<Vec2>& pts);
+/// Reverses the order if needed so that the signed area is positive.
+void orientCounterClockwise(std::vector<Vec2>& pts);
+/// Point in polygon (boundary counts as inside within tol).
+bool containsPoint(const std::vector<Vec2>& pts, const Vec2& p, double tol);
+Aabb boundingBox(const std::vector<Vec2>& pts);
+/// Distance from p to segment ab and the parameter t ∈ [0,1] of the closest point.
+double distanceToSegment(const Vec2& p, const Vec2& a, const Vec2& b, double* t);
+/// True when segments ab and cd share a point.
+bool segmentsIntersect(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& d);
+
+}  // namespace ddaslope::geometry

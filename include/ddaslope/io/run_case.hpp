@@ -1,0 +1,55 @@
+#pragma once
+// Runs a scene and records what users read: the monitor trace, history.csv, summary.json.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "ddaslope/model/scene.hpp"
+#include "ddaslope/solver/simulation.hpp"
+
+namespace ddaslope::io {
+
+struct MonitorSample {
+  double ux = 0, uy = 0, vx = 0, vy = 0;
+};
+
+/// Time series of all monitors, one row per accepted step (and t = 0).
+struct Trace {
+  std::vector<std::string> monitorIds;
+  std::vector<solver::StepRecord> steps;
+  std::vector<std::vector<MonitorSample>> samples;  ///< [row][monitor]
+  int monitorIndex(const std::string& id) const;
+};
+
+struct ExpectationResult {
+  model::Expectation expectation;
+  double actual = 0;
+  bool passed = false;
+  std::string describe() const;
+};
+
+struct RunOutcome {
+  bool completed = false;
+  std::string failure;  ///< non-convergence message when not completed
+  Trace trace;
+  solver::RunStatistics statistics;
+  double wallTime = 0;
+  std::vector<ExpectationResult> expectations;
+};
+
+struct RunOptions {
+  std::optional<std::string> outputDir;  ///< write history.csv and summary.json here
+  std::string casePath;                  ///< named in summary.json
+  bool progress = false;                 ///< progress line on stderr
+};
+
+/// Runs to the scene's duration. Non-convergence is returned, not thrown; the partial history is
+/// then written as history.partial.csv and summary.json says "non_convergence".
+RunOutcome runScene(const model::Scene& scene, const RunOptions& options);
+
+/// Value of an expectation's quantity on a trace (interpolated in time; max over run if no time).
+double measure(const Trace& trace, const model::Expectation& e);
+std::vector<ExpectationResult> evaluateExpectations(const Trace& trace,
+                                                    const std::vector<model::Expectation>& ex);
+
+}  // namespace ddaslope::io

@@ -1,0 +1,53 @@
+#pragma once
+// Numerical settings of an analysis. Each field: unit, range, and what it trades.
+#include <string>
+
+namespace ddaslope::model {
+
+enum class AnalysisMode { Dynamic, Static };
+enum class PlaneMode { Strain, Stress };
+
+struct AnalysisSettings {
+  /// Simulated time (s), > 0.
+  double duration = 1.0;
+  /// Nominal time step Δt (s), > 0. Smaller: more accurate impacts and less numerical
+  /// dissipation (Newmark γ = 1), more steps. Steps are cut automatically when needed.
+  double timeStep = 1e-3;
+  /// dynamic: velocities carried between steps; static: velocities reset each step (Shi's
+  /// quasi-static mode, a heavily damped path to equilibrium).
+  AnalysisMode mode = AnalysisMode::Dynamic;
+  /// Plane strain (benchmarks' default) or plane stress for the block elasticity.
+  PlaneMode plane = PlaneMode::Strain;
+  /// Normal contact penalty p (N/m per metre of thickness). 0 = automatic: penaltyFactor × max E.
+  /// Stiffer: less interpenetration and settling, worse conditioning and more open-close work.
+  double penalty = 0;
+  /// Automatic penalty as a multiple of the largest Young's modulus (Shi recommends 10–100).
+  double penaltyFactor = 40;
+  /// Shear spring stiffness as a fraction of the normal penalty (Shi: 1/2.5).
+  double shearPenaltyRatio = 0.4;
+  /// g2: largest vertex displacement allowed in one step as a fraction of w0 (half the model
+  /// size). Also sets the contact search distance 2.5·g2·w0. Smaller: finer contact resolution,
+  /// more cut steps; larger: faster, coarser.
+  double maxDisplacementRatio = 0.005;
+  /// Open-close iterations allowed per step before the step is cut (≥ 1).
+  int openCloseMaxIterations = 30;
+  /// Relative change of friction forces below which a sliding contact counts as converged.
+  double frictionTolerance = 1e-4;
+  /// Successive Δt cuts allowed for one step before the analysis reports non-convergence.
+  int maxStepCuts = 12;
+  /// Factor applied to Δt when a step is cut (0 < f < 1).
+  double stepCutFactor = 0.3;
+  /// Bring the scene to gravity equilibrium before t = 0 with every initial contact held
+  /// (no sliding, no opening). Avoids the penalty springs' start-up overshoot that breaks
+  /// joints the static problem would keep (dda-method.md §6). Costs a few static solves.
+  bool initialEquilibrium = true;
+  /// Largest number of static solves spent on the initial equilibrium.
+  int equilibriumMaxSteps = 200;
+  /// Two edges of different blocks within this angle (degrees) are an edge-to-edge contact.
+  double edgeParallelToleranceDeg = 1.0;
+  /// Initial gaps up to this fraction of w0 count as touching: the contact starts closed,
+  /// bonded, and its spring's zero is at the initial gap.
+  double initialContactTolerance = 1e-6;
+};
+
+}  // namespace ddaslope::model

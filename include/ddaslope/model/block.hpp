@@ -1,0 +1,33 @@
+#pragma once
+// A DDA block: a simple polygon with six unknowns about its centroid (Shi 1988).
+#include <string>
+#include <vector>
+
+#include "ddaslope/core/types.hpp"
+#include "ddaslope/geometry/polygon.hpp"
+
+namespace ddaslope::model {
+
+/// T(x, y) of Shi (1988): displacement of point p of a block with centroid c is T · D.
+Mat26 displacementMatrix(const Vec2& centroid, const Vec2& p);
+/// New position of p after displacement D, with the rigid rotation applied exactly
+/// (cos r0, sin r0) so that rotating blocks do not grow (dda-method.md §3).
+Vec2 displacedPoint(const Vec2& centroid, const Vec2& p, const Vec6& d);
+
+struct Block {
+  std::string id;
+  int material = 0;
+  bool fixed = false;
+  std::vector<Vec2> vertices;           ///< current, counter-clockwise
+  geometry::PolygonMoments moments;     ///< current
+  Vec6 velocity = Vec6::Zero();         ///< dD/dt at the end of the last step
+  Vec3 stress = Vec3::Zero();           ///< σx, σy, τxy accumulated (Pa)
+
+  Mat26 tAt(const Vec2& p) const { return displacementMatrix(moments.centroid, p); }
+  /// Moves the vertices by D (exact rotation) and recomputes the moments.
+  void applyDisplacement(const Vec6& d);
+  /// Largest vertex displacement |T D| over the block's vertices (linearised).
+  double maxVertexDisplacement(const Vec6& d) const;
+};
+
+}  // namespace ddaslope::model

@@ -1,0 +1,72 @@
+#pragma once
+// Everything an analysis needs: blocks, materials, joints, loads, monitors, settings.
+#include <map>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "ddaslope/model/analysis_settings.hpp"
+#include "ddaslope/model/block.hpp"
+#include "ddaslope/model/materials.hpp"
+
+namespace ddaslope::model {
+
+/// A point carried by a block (monitor, load point, fixed point): it moves with the block.
+struct BlockPoint {
+  int block = 0;
+  Vec2 initial{0, 0};
+  Vec2 current{0, 0};
+};
+
+struct Monitor {
+  std::string id;
+  BlockPoint point;
+};
+
+struct PointLoad {
+  BlockPoint point;
+  Vec2 force{0, 0};  ///< N per metre of thickness
+};
+
+struct FixedPoint {
+  BlockPoint point;  ///< held at point.initial by a penalty spring
+};
+
+/// An expected value a shipped case carries with it (checked by the test suite and `run`).
+struct Expectation {
+  std::string monitor;
+  std::string quantity;  ///< ux, uy, vx, vy, displacement (|u|), speed (|v|)
+  std::optional<double> time;  ///< at this time; absent: the maximum over the run
+  std::optional<double> value;
+  double relativeTolerance = 0;
+  double absoluteTolerance = 0;
+  std::optional<double> atMost;
+  std::optional<double> atLeast;
+  std::string source;
+};
+
+struct Scene {
+  std::string description;
+  Vec2 gravity{0, -9.81};
+  std::vector<Material> materials;
+  std::vector<JointProperties> joints;
+  int defaultJoint = 0;
+  /// Joint per unordered block pair (lower index first); others use defaultJoint.
+  std::map<std::pair<int, int>, int> pairJoints;
+  std::vector<Block> blocks;
+  std::vector<Monitor> monitors;
+  std::vector<PointLoad> pointLoads;
+  std::vector<FixedPoint> fixedPoints;
+  std::vector<Expectation> expectations;
+  AnalysisSettings settings;
+
+  int jointBetween(int a, int b) const;
+  /// Half the larger side of the model's bounding box: Shi's w0.
+  double modelHalfSize() const;
+  /// Normal penalty in use (explicit, or factor × max E).
+  double normalPenalty() const;
+  int blockIndex(const std::string& id) const;  ///< −1 when absent
+};
+
+}  // namespace ddaslope::model

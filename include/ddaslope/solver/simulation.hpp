@@ -1,0 +1,111 @@
+#pragma once
+// The DDA forward model. One step reads top-down (STYLE.md):
+// broad phase → contacts → (assemble → factorise → solve → judge states)* → accept or cut Δt
+// → update geometry → commit contacts.
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "ddaslope/assembly/block_sparse_matrix.hpp"
+#include "ddaslope/assembly/contact_terms.hpp"
+#include "ddaslope/contact/contact_law.hpp"
+#include "ddaslope/contact/contact_set.hpp"
+#include "ddaslope/model/scene.hpp"
+#include "ddaslope/solver/sparse_cholesky.hpp"
+#include "ddaslope/solver/time_step.hpp"
+
+namespace ddaslope::solver {
+
+/// Wall time (s) spent in each phase, summed over the run.
+struct PhaseTimes {
+  double broadPhase = 0, contacts = 0, assembly = 0, factorisation = 0, solve = 0,
+         stateChecks = 0, update = 0;
+};
+
+struct StepRecord {
+  double time = 0;     ///< simulated time after the step (s)
+  double dt = 0;       ///< Δt of the accepted attempt (s)
+  int iterations = 0;  ///< open-close iterations of the accepted attempt
+  int cuts = 0;        ///< Δt cuts before the step was accepted
+};
+
+struct RunStatistics {
+  int steps = 0;
+  int cuts = 0;
+  long iterations = 0;
+  int equilibriumSteps = 0;
+  double equilibriumResidual = 0;  ///< last equilibrium step's largest vertex move / w0
+  bool equilibriumConverged = true;  ///< stage 1 (contacts held) reached rest
+  bool relaxationConverged = true;   ///< stage 2 (real contact law) reached rest and was kept
+  int symbolicAnalyses = 0;
+  int maxContacts = 0;
+  double maxPenetration = 0;       ///< largest penetration of a closed contact (m)
+  PhaseTimes times;
+};
+
+class Simulation {
+ public:
+  explicit Simulation(model::Scene scene);
+
+  /// Brings the scene to rest under its static loads before t = 0 (dda-method.md §6), in two
+  /// stages of static solves: (1) every initial contact held, so gravity is applied without the
+  /// springs' dynamic overshoot; (2) the real contact law, so contacts whose share of the load
+  /// exceeds their strength (the heel of a block on a slope) slip quasi-statically and hand it
+  /// to their neighbours. If stage 2 finds no rest (the scene is failing), the stage-1 state is
+  /// kept and the analysis starts from it. Blocks not resting on a fixed block are held still.
+  void bringToEquilibrium();
+  /// One accepted step. Throws NonConvergenceError once maxStepCuts cuts have failed.
+  StepRecord advance();
+  bool finished() const;
+
+  const model::Scene& scene() const { return scene_; }
+  double time() const { return time_; }
+  double modelHalfSize() const { return w0_; }
+  double searchDistance() const { return searchDistance_; }
+  const RunStatistics& statistics() const { return stats_; }
+  const contact::ContactSet& contacts() const { return contacts_; }
+  /// Velocity of monitor m's point (m/s).
+  Vec2 monitorVelocity(int m) const;
+
+ private:
+  enum class Regime { Analysis, HeldEquilibrium, Relaxation };
+  struct Attempt {
+    bool converged = false;
+    std::string failure;
+    int iterations = 0;
+    Eigen::VectorXd d;  ///< solution, 6 per active block
+    std::vector<contact::Contact> contacts;
+  };
+
+  void detectContacts(bool initial);
+  void markActiveBlocks(const std::vector<bool>& held);
+  /// Static steps in `regime` until the largest vertex move per step is below 1e-10 w0.
+  bool settle(Regime regime, double& dt);
+  Attempt tryStep(double dt, Regime regime);
+  void assembleBlockTerms(double dt, Regime regime, std::vector<Mat6>& k, std::vector<Vec6>& f) const;
+  void commit(const Attempt& a, double dt);
+  contact::ContactStrength strengthOf(const contact::Contact& c) const;
+  double edgeLength(const contact::Contact& c) const;
+
+  model::Scene scene_;
+  double w0_ = 1;
+  double searchDistance_ = 0;
+  double penalty_ = 0;
+  double time_ = 0;
+  std::vector<int> active_;  ///< dof block index per block, −1 when fixed or held
+  int nActive_ = 0;
+  contact::ContactSet contacts_;
+  std::vector<assembly::ContactKinematics> kinematics_;
+  assembly::BlockSparseMatrix matrix_;
+  SparseCholesky cholesky_;
+  StepSizeController stepSize_;
+  std::vector<Eigen::Matrix3d> elasticity_;
+  RunStatistics stats_;
+};
+
+/// Runs a scene from equilibrium to its duration; `observe` sees t = 0 and every step.
+using StepObserver = std::function<void(const Simulation&, const StepRecord&)>;
+void runAnalysis(Simulation& sim, const StepObserver& observe);
+
+}  // namespace ddaslope::solver

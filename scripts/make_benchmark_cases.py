@@ -1,0 +1,120 @@
+#!/usr/bin/env python3
+"""Writes the block-on-incline benchmark cases of ../shared/reference/benchmarks.md (A1-A4, A6)
+into cases/. The inclined geometry is computed here so the JSON carries exact coordinates.
+Run: python3 scripts/make_benchmark_cases.py"""
+import json, math, os
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+CASES = os.path.join(HERE, "..", "cases")
+
+
+def r(v):
+    return round(v, 12)
+
+
+def incline_case(alpha_deg, b, h, s0, length, rho, g, phi_deg, c=0.0, young=5e9):
+    """Fixed ramp whose top is the slope line through the origin, and a b x h block resting on it
+    with its lower (downslope) corner at distance s0 along the slope."""
+    a = math.radians(alpha_deg)
+    u = (math.cos(a), math.sin(a))     # up the slope
+    n = (-math.sin(a), math.cos(a))    # out of the slope
+    base = [[0.0, -2.0], [r(length * u[0]), -2.0], [r(length * u[0]), r(length * u[1])], [0.0, 0.0]]
+    p = lambda s, t: [r(s * u[0] + t * n[0]), r(s * u[1] + t * n[1])]
+    block = [p(s0, 0), p(s0 + b, 0), p(s0 + b, h), p(s0, h)]
+    centre = p(s0 + b / 2, h / 2)
+    return {
+        "gravity": [0, -g],
+        "materials": {"rock": {"density": rho, "young_modulus": young, "poisson_ratio": 0.25}},
+        "joints": {"interface": {"friction_angle": phi_deg, "cohesion": c, "tensile_strength": 0}},
+        "default_joint": "interface",
+        "blocks": [
+            {"id": "ramp", "material": "rock", "fixed": True, "vertices": base},
+            {"id": "block", "material": "rock", "vertices": block},
+        ],
+        "monitors": [{"id": "centre", "block": "block", "point": centre}],
+    }, p
+
+
+def write(name, case):
+    with open(os.path.join(CASES, name), "w") as f:
+        json.dump(case, f, indent=2)
+        f.write("\n")
+
+
+def sliding(name, alpha, b, h, rho, g, phi, source):
+    case, _ = incline_case(alpha, b, h, s0=15.0, length=30.0, rho=rho, g=g, phi_deg=phi)
+    a = g * (math.sin(math.radians(alpha)) - math.cos(math.radians(alpha)) * math.tan(math.radians(phi)))
+    case = {"description": f"{source}: block {b} x {h} m sliding on a {alpha} degree plane, phi = {phi} degrees, "
+                           f"c = 0. Closed form a = g (sin a - cos a tan phi) = {a:.6f} m/s^2, d = a t^2 / 2.",
+            **case,
+            "analysis": {"duration": 2.0, "time_step": 0.001},
+            "expected": [
+                {"monitor": "centre", "quantity": "displacement", "time": 1.0, "value": r(a / 2),
+                 "relative_tolerance": 0.005, "source": f"{source}: d(1 s) = a/2"},
+                {"monitor": "centre", "quantity": "displacement", "time": 2.0, "value": r(2 * a),
+                 "relative_tolerance": 0.005, "source": f"{source}: d(2 s) = 2a"},
+                {"monitor": "centre", "quantity": "speed", "time": 1.0, "value": r(a),
+                 "relative_tolerance": 0.005, "source": f"{source}: v(1 s) = a"},
+            ]}
+    write(name, case)
+
+
+def main():
+    # A1: free fall above a fixed ground that sets the model size (w0).
+    write("free_fall.json", {
+        "description": "A1 free fall: a 1 x 1 m block released 10 m above the ground, g = 9.81. "
+                       "y(t) = g t^2/2; Newmark beta = 1/2, gamma = 1 integrates constant acceleration exactly.",
+        "gravity": [0, -9.81],
+        "materials": {"rock": {"density": 2600, "young_modulus": 5e9, "poisson_ratio": 0.25}},
+        "joints": {"bedding": {"friction_angle": 30, "cohesion": 0, "tensile_strength": 0}},
+        "default_joint": "bedding",
+        "blocks": [
+            {"id": "ground", "material": "rock", "fixed": True, "vertices": [[-10, -2], [10, -2], [10, 0], [-10, 0]]},
+            {"id": "falling", "material": "rock", "vertices": [[-0.5, 10], [0.5, 10], [0.5, 11], [-0.5, 11]]},
+        ],
+        "monitors": [{"id": "m1", "block": "falling", "point": [0, 10.5]}],
+        "analysis": {"duration": 1.0, "time_step": 0.001},
+        "expected": [
+            {"monitor": "m1", "quantity": "uy", "time": 1.0, "value": -4.905, "relative_tolerance": 1e-9,
+             "source": "A1: y(1 s) = g/2"},
+            {"monitor": "m1", "quantity": "vy", "time": 1.0, "value": -9.81, "relative_tolerance": 1e-9,
+             "source": "A1: v(1 s) = g"},
+        ]})
+    sliding("sliding_block_40deg.json", 40, 10, 5, 2000, 10, 20, "A2 (Itasca 3DEC sliding-block geometry)")
+    sliding("sliding_block_30deg.json", 30, 2, 1, 2600, 9.81, 20, "A4")
+
+    case, _ = incline_case(40, 10, 10, s0=10.0, length=30.0, rho=2000, g=10, phi_deg=40.1)
+    write("stable_block_40deg.json", {
+        "description": "A3 (3DEC stable case): block 10 x 10 m on a 40 degree plane with phi = 40.1 degrees. "
+                       "No sliding: only the elastic settling of the contact springs, below 1e-3 b = 0.01 m.",
+        **case,
+        "analysis": {"duration": 2.0, "time_step": 0.001},
+        "expected": [{"monitor": "centre", "quantity": "displacement", "at_most": 0.01,
+                      "source": "A3: displacement < 1e-3 b"}]})
+
+    # A6: toppling. Rigid rotation about the downslope corner: torque W (b cos a - h sin a)/2,
+    # I = m (b^2 + h^2)/3, so the initial angular acceleration is known in closed form.
+    alpha, b, h, g = 30.0, 10.0, 25.0, 9.81
+    case, p = incline_case(alpha, b, h, s0=5.0, length=40.0, rho=2600, g=g, phi_deg=40)
+    a = math.radians(alpha)
+    ang_acc = 1.5 * g * (h * math.sin(a) - b * math.cos(a)) / (b * b + h * h)
+    t = 0.5
+    top = math.hypot(b, h) * 0.5 * ang_acc * t * t  # small-angle: corner moves r * theta
+    case["monitors"] = [{"id": "top", "block": "block", "point": p(5.0 + b, h)},
+                        {"id": "toe", "block": "block", "point": p(5.0, 0)}]
+    write("toppling_block.json", {
+        "description": "A6 toppling: block b = 10, h = 25 m on a 30 degree plane, phi = 40 degrees. "
+                       "b/h = 0.4 < tan 30 = 0.577: it topples about its downslope corner without sliding. "
+                       f"Initial angular acceleration 1.5 g (h sin a - b cos a)/(b^2 + h^2) = {ang_acc:.6f} rad/s^2.",
+        **case,
+        "analysis": {"duration": 1.0, "time_step": 0.001},
+        "expected": [
+            {"monitor": "top", "quantity": "displacement", "time": t, "value": r(top), "relative_tolerance": 0.03,
+             "source": "A6: rigid rotation about the toe, corner displacement r theta with theta = alpha t^2/2"},
+            {"monitor": "toe", "quantity": "displacement", "at_most": 0.01,
+             "source": "A6: the pivot does not slide (phi = 40 > alpha = 30)"},
+        ]})
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,140 @@
+#include "ddaslope/contact/narrow_phase.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "ddaslope/geometry/polygon.hpp"
+
+namespace ddaslope::contact {
+namespace {
+
+struct Poly {
+  int block;
+  const std::vector<Vec2>& p;
+  int n() const { return static_cast<int>(p.size()); }
+  const Vec2& at(int k) const { return p[(k % n() + n()) % n()]; }
+  bool convex(int k) const { return cross(at(k) - at(k - 1), at(k + 1) - at(k)) > 0; }
+};
+
+/// How well the line of edge e (of poly E) separates the corner at vertex v of poly V:
+/// the smallest outward component of the corner's two unit edge directions.
+double clearance(const Poly& V, int v, const Poly& E, int e) {
+  const Vec2 a = E.at(e), b = E.at(e + 1);
+  const Vec2 d = (b - a).normalized();
+  const Vec2 nOut(d.y(), -d.x());
+  const Vec2 p = V.at(v);
+  const double u1 = (V.at(v - 1) - p).normalized().dot(nOut);
+  const double u2 = (V.at(v + 1) - p).normalized().dot(nOut);
+  return std::min(u1, u2);
+}
+
+ContactCandidate makeCandidate(const Poly& V, int v, const Poly& E, int e, double parallelTol) {
+  ContactCandidate c;
+  c.key = {V.block, v, E.block, e};
+  const Vec2 a = E.at(e), b = E.at(e + 1), p = V.at(v);
+  const double len = (b - a).norm();
+  const Vec2 d = (b - a) / len;
+  c.gap = cross(d, p - a) * -1.0;  // outward normal is (dy, −dx): gap = (p − a)·n
+  c.ratio = (p - a).dot(d) / len;
+  // Edge-to-edge: one of the corner's edges lies against edge e, antiparallel (both CCW).
+  for (int k : {v - 1, v}) {
+    const Vec2 q0 = V.at(k), q1 = V.at(k + 1);
+    const Vec2 dq = (q1 - q0).normalized();
+    if (dq.dot(d) >= 0 || std::abs(cross(dq, d)) > std::sin(parallelTol)) continue;
+    const double s0 = (q0 - a).dot(d), s1 = (q1 - a).dot(d);
+    const double overlap = std::min(std::max(s0, s1), len) - std::max(std::min(s0, s1), 0.0);
+    if (overlap > 1e-9 * len && overlap > c.overlap) {
+      c.overlap = overlap;
+      c.pairedEdge = (k % V.n() + V.n()) % V.n();
+    }
+  }
+  return c;
+}
+
+void vertexOnEdges(const Poly& V, const Poly& E, const NarrowPhaseSettings& s,
+                   std::vector<ContactCandidate>& out) {
+  const double minClearance = -std::sin(s.parallelTolerance);
+  for (int v = 0; v < V.n(); ++v) {
+    if (!V.convex(v)) continue;  // a reflex vertex cannot touch an edge from outside
+    const Vec2& p = V.at(v);
+    for (int e = 0; e < E.n(); ++e) {
+      const Vec2 a = E.at(e), b = E.at(e + 1);
+      double t;
+      if (geometry::distanceToSegment(p, a, b, &t) > s.searchDistance) continue;
+      // Near an end of the edge: the vertex-to-vertex rule decides.
+      if ((p - a).norm() < s.searchDistance || (p - b).norm() < s.searchDistance) continue;
+      if (clearance(V, v, E, e) < minClearance) continue;
+      ContactCandidate c = makeCandidate(V, v, E, e, s.parallelTolerance);
+      if (c.gap < -s.searchDistance) continue;  // behind the edge: not this edge's contact
+      out.push_back(c);
+    }
+  }
+}
+
+struct Option {
+  const Poly* vertexPoly;
+  int v;
+  const Poly* edgePoly;
+  int e;
+  double clearance;
+};
+
+void vertexToVertex(const Poly& A, const Poly& B, const NarrowPhaseSettings& s,
+                    const std::function<bool(const ContactKey&)>& known,
+                    std::vector<ContactCandidate>& out) {
+  const double minClearance = -std::sin(s.parallelTolerance);
+  for (int p = 0; p < A.n(); ++p) {
+    for (int q = 0; q < B.n(); ++q) {
+      if ((A.at(p) - B.at(q)).norm() >= s.searchDistance) continue;
+      const bool pConvex = A.convex(p), qConvex = B.convex(q);
+      if (!pConvex && !qConvex) continue;
+      std::vector<Option> options;
+      if (pConvex)
+        for (int e : {q - 1, q}) {
+          const int ee = (e + B.n()) % B.n();
+          options.push_back({&A, p, &B, ee, clearance(A, p, B, ee)});
+        }
+      if (qConvex)
+        for (int e : {p - 1, p}) {
+          const int ee = (e + A.n()) % A.n();
+          options.push_back({&B, q, &A, ee, clearance(B, q, A, ee)});
+        }
+      std::erase_if(options, [&](const Option& o) { return o.clearance < minClearance; });
+      if (options.empty()) continue;
+      auto emit = [&](const Option& o) {
+        out.push_back(makeCandidate(*o.vertexPoly, o.v, *o.edgePoly, o.e, s.parallelTolerance));
+      };
+      if (!qConvex || !pConvex) {
+        // A convex corner in a reflex corner touches both of its edges.
+        for (const Option& o : options) emit(o);
+        continue;
+      }
+      // Two convex corners: one contact, on the entrance edge that best separates them.
+      // Near-ties keep last step's contact so that its state and history persist.
+      const Option* best = &options.front();
+      for (const Option& o : options)
+        if (o.clearance > best->clearance) best = &o;
+      for (const Option& o : options) {
+        const ContactKey k{o.vertexPoly->block, o.v, o.edgePoly->block, o.e};
+        if (o.clearance >= best->clearance - 1e-3 && known(k)) {
+          best = &o;
+          break;
+        }
+      }
+      emit(*best);
+    }
+  }
+}
+
+}  // namespace
+
+void findContacts(int a, const std::vector<Vec2>& pa, int b, const std::vector<Vec2>& pb,
+                  const NarrowPhaseSettings& s, const std::function<bool(const ContactKey&)>& known,
+                  std::vector<ContactCandidate>& out) {
+  const Poly A{a, pa}, B{b, pb};
+  vertexOnEdges(A, B, s, out);
+  vertexOnEdges(B, A, s, out);
+  vertexToVertex(A, B, s, known, out);
+}
+
+}  // namespace ddaslope::contact

@@ -1,0 +1,129 @@
+#include "ddaslope/geometry/polygon.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace ddaslope::geometry {
+
+double signedArea(const std::vector<Vec2>& pts) {
+  // Shoelace about the first vertex: avoids cancellation for far-from-origin coordinates.
+  const Vec2 o = pts.front();
+  double twice = 0;
+  for (size_t k = 1; k + 1 < pts.size(); ++k) twice += cross(pts[k] - o, pts[k + 1] - o);
+  return 0.5 * twice;
+}
+
+PolygonMoments computeMoments(const std::vector<Vec2>& pts) {
+  PolygonMoments m;
+  const Vec2 o = pts.front();
+  // Pass 1: area and centroid from the triangle fan about the first vertex.
+  double twiceArea = 0;
+  Vec2 firstMoment(0, 0);
+  for (size_t k = 1; k + 1 < pts.size(); ++k) {
+    const Vec2 a = pts[k] - o, b = pts[k + 1] - o;
+    const double c = cross(a, b);
+    twiceArea += c;
+    firstMoment += c * (a + b) / 3.0;  // triangle (0, a, b): area c/2, centroid (a+b)/3
+  }
+  m.area = 0.5 * twiceArea;
+  m.centroid = o + firstMoment / twiceArea;
+  // Pass 2: second moments of each edge triangle about the centroid (exact for linear fields):
+  // ∫ x² over triangle (0,a,b) = (c/12)(ax² + ax bx + bx²), ∫ xy = (c/24)(2ax ay + ax by + bx ay + 2bx by).
+  for (size_t k = 0; k < pts.size(); ++k) {
+    const Vec2 a = pts[k] - m.centroid, b = pts[(k + 1) % pts.size()] - m.centroid;
+    const double c = cross(a, b);
+    m.sxx += c * (a.x() * a.x() + a.x() * b.x() + b.x() * b.x()) / 12.0;
+    m.syy += c * (a.y() * a.y() + a.y() * b.y() + b.y() * b.y()) / 12.0;
+    m.sxy += c * (2 * a.x() * a.y() + a.x() * b.y() + b.x() * a.y() + 2 * b.x() * b.y()) / 24.0;
+  }
+  return m;
+}
+
+static int orientationSign(const Vec2& a, const Vec2& b, const Vec2& c, double tol) {
+  const double v = cross(b - a, c - a);
+  return v > tol ? 1 : (v < -tol ? -1 : 0);
+}
+
+static bool onSegment(const Vec2& a, const Vec2& b, const Vec2& p, double tol) {
+  return p.x() >= std::min(a.x(), b.x()) - tol && p.x() <= std::max(a.x(), b.x()) + tol &&
+         p.y() >= std::min(a.y(), b.y()) - tol && p.y() <= std::max(a.y(), b.y()) + tol;
+}
+
+bool segmentsIntersect(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& d) {
+  const double scale = std::max({(b - a).norm(), (d - c).norm(), 1e-300});
+  const double tol = 1e-12 * scale * scale;
+  const int o1 = orientationSign(a, b, c, tol), o2 = orientationSign(a, b, d, tol);
+  const int o3 = orientationSign(c, d, a, tol), o4 = orientationSign(c, d, b, tol);
+  if (o1 != o2 && o3 != o4) return true;
+  const double lt = 1e-12 * scale;
+  if (o1 == 0 && onSegment(a, b, c, lt)) return true;
+  if (o2 == 0 && onSegment(a, b, d, lt)) return true;
+  if (o3 == 0 && onSegment(c, d, a, lt)) return true;
+  if (o4 == 0 && onSegment(c, d, b, lt)) return true;
+  return false;
+}
+
+bool isSimple(const std::vector<Vec2>& pts) {
+  const size_t n = pts.size();
+  if (n < 3) return false;
+  const Aabb box = boundingBox(pts);
+  const double size = std::max((box.hi - box.lo).maxCoeff(), 1e-300);
+  for (size_t i = 0; i < n; ++i)
+    if ((pts[(i + 1) % n] - pts[i]).norm() <= 1e-12 * size) return false;
+  for (size_t i = 0; i < n; ++i) {
+    for (size_t j = i + 1; j < n; ++j) {
+      const bool adjacent = (j == i + 1) || (i == 0 && j == n - 1);
+      if (adjacent) continue;
+      if (segmentsIntersect(pts[i], pts[(i + 1) % n], pts[j], pts[(j + 1) % n])) return false;
+    }
+  }
+  // Adjacent edges folding back on each other (a spike) also make a degenerate polygon.
+  for (size_t i = 0; i < n; ++i) {
+    const Vec2 a = pts[(i + n - 1) % n], b = pts[i], c = pts[(i + 1) % n];
+    const Vec2 u = (a - b).normalized(), v = (c - b).normalized();
+    if (std::abs(cross(u, v)) < 1e-12 && u.dot(v) > 0) return false;
+  }
+  return true;
+}
+
+void orientCounterClockwise(std::vector<Vec2>& pts) {
+  if (signedArea(pts) < 0) std::reverse(pts.begin(), pts.end());
+}
+
+bool containsPoint(const std::vector<Vec2>& pts, const Vec2& p, double tol) {
+  const size_t n = pts.size();
+  for (size_t i = 0; i < n; ++i) {
+    double t;
+    if (distanceToSegment(p, pts[i], pts[(i + 1) % n], &t) <= tol) return true;
+  }
+  bool inside = false;  // crossing number
+  for (size_t i = 0, j = n - 1; i < n; j = i++) {
+    const Vec2& a = pts[i];
+    const Vec2& b = pts[j];
+    if ((a.y() > p.y()) != (b.y() > p.y())) {
+      const double x = a.x() + (p.y() - a.y()) * (b.x() - a.x()) / (b.y() - a.y());
+      if (p.x() < x) inside = !inside;
+    }
+  }
+  return inside;
+}
+
+Aabb boundingBox(const std::vector<Vec2>& pts) {
+  Aabb box{pts.front(), pts.front()};
+  for (const Vec2& p : pts) {
+    box.lo = box.lo.cwiseMin(p);
+    box.hi = box.hi.cwiseMax(p);
+  }
+  return box;
+}
+
+double distanceToSegment(const Vec2& p, const Vec2& a, const Vec2& b, double* t) {
+  const Vec2 ab = b - a;
+  const double len2 = ab.squaredNorm();
+  double s = len2 > 0 ? (p - a).dot(ab) / len2 : 0.0;
+  s = std::clamp(s, 0.0, 1.0);
+  if (t) *t = s;
+  return (p - (a + s * ab)).norm();
+}
+
+}  // namespace ddaslope::geometry

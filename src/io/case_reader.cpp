@@ -1,0 +1,374 @@
+#include "ddaslope/io/case_reader.hpp"
+
+#include <cmath>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "ddaslope/core/errors.hpp"
+#include "ddaslope/geometry/polygon.hpp"
+
+namespace ddaslope::io {
+namespace {
+
+using nlohmann::json;
+
+std::string typeName(const json& j) {
+  if (j.is_number()) return "a number";
+  if (j.is_string()) return "a string \"" + j.get<std::string>() + "\"";
+  if (j.is_boolean()) return "a boolean";
+  if (j.is_array()) return "an array of " + std::to_string(j.size());
+  if (j.is_object()) return "an object";
+  return "null";
+}
+
+/// Reads one JSON document with paths in every error message.
+class Reader {
+ public:
+  explicit Reader(std::string file) : file_(std::move(file)) {}
+
+  [[noreturn]] void fail(const std::string& path, const std::string& msg) const {
+    throw InputError(file_, path, msg);
+  }
+  void object(const json& j, const std::string& path) const {
+    if (!j.is_object()) fail(path, "expected an object, found " + typeName(j));
+  }
+  void onlyKeys(const json& j, const std::string& path, const std::set<std::string>& allowed) const {
+    object(j, path);
+    for (const auto& [k, v] : j.items()) {
+      if (allowed.count(k)) continue;
+      std::string list;
+      for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
+      fail(join(path, k), "unknown key '" + k + "' (allowed here: " + list + ")");
+    }
+  }
+  static std::string join(const std::string& path, const std::string& key) {
+    return path.empty() ? key : path + "." + key;
+  }
+  static std::string index(const std::string& path, size_t i) {
+    return path + "[" + std::to_string(i) + "]";
+  }
+  const json& required(const json& j, const std::string& path, const std::string& key) const {
+    if (!j.contains(key)) fail(join(path, key), "required key is missing");
+    return j.at(key);
+  }
+  double number(const json& j, const std::string& path) const {
+    if (!j.is_number()) fail(path, "expected a number, found " + typeName(j));
+    const double v = j.get<double>();
+    if (!std::isfinite(v)) fail(path, "expected a finite number");
+    return v;
+  }
+  /// Number in [lo, hi] (open ends where the flags say so).
+  double numberIn(const json& j, const std::string& path, double lo, double hi, bool loOpen,
+                  bool hiOpen, const std::string& what) const {
+    const double v = number(j, path);
+    const bool ok = (loOpen ? v > lo : v >= lo) && (hiOpen ? v < hi : v <= hi);
+    if (!ok) {
+      std::ostringstream m;
+      m << "expected " << what << ", found " << v;
+      fail(path, m.str());
+    }
+    return v;
+  }
+  double optionalIn(const json& j, const std::string& path, const std::string& key, double def,
+                    double lo, double hi, bool loOpen, bool hiOpen, const std::string& what) const {
+    if (!j.contains(key)) return def;
+    return numberIn(j.at(key), join(path, key), lo, hi, loOpen, hiOpen, what);
+  }
+  int integerIn(const json& j, const std::string& path, const std::string& key, int def, int lo,
+                int hi) const {
+    if (!j.contains(key)) return def;
+    const json& v = j.at(key);
+    if (!v.is_number_integer()) fail(join(path, key), "expected an integer, found " + typeName(v));
+    const long long x = v.get<long long>();
+    if (x < lo || x > hi)
+      fail(join(path, key), "expected an integer in [" + std::to_string(lo) + ", " +
+                                std::to_string(hi) + "], found " + std::to_string(x));
+    return static_cast<int>(x);
+  }
+  bool boolean(const json& j, const std::string& path, const std::string& key, bool def) const {
+    if (!j.contains(key)) return def;
+    if (!j.at(key).is_boolean()) fail(join(path, key), "expected true or false, found " + typeName(j.at(key)));
+    return j.at(key).get<bool>();
+  }
+  std::string string(const json& j, const std::string& path) const {
+    if (!j.is_string()) fail(path, "expected a string, found " + typeName(j));
+    return j.get<std::string>();
+  }
+  std::string choice(const json& j, const std::string& path, const std::string& key,
+                     const std::string& def, const std::set<std::string>& options) const {
+    if (!j.contains(key)) return def;
+    const std::string v = string(j.at(key), join(path, key));
+    if (!options.count(v)) {
+      std::string list;
+      for (const auto& o : options) list += (list.empty() ? "" : ", ") + o;
+      fail(join(path, key), "expected one of " + list + ", found \"" + v + "\"");
+    }
+    return v;
+  }
+  Vec2 point(const json& j, const std::string& path) const {
+    if (!j.is_array() || j.size() != 2) fail(path, "expected a point [x, y], found " + typeName(j));
+    return {number(j[0], index(path, 0)), number(j[1], index(path, 1))};
+  }
+
+ private:
+  std::string file_;
+};
+
+void readMaterials(const Reader& r, const json& doc, model::Scene& s, std::map<std::string, int>& ids) {
+  const json& mats = r.required(doc, "", "materials");
+  r.object(mats, "materials");
+  if (mats.empty()) r.fail("materials", "expected at least one material");
+  for (const auto& [name, m] : mats.items()) {
+    const std::string p = "materials." + name;
+    r.onlyKeys(m, p, {"density", "young_modulus", "poisson_ratio"});
+    model::Material mat;
+    mat.name = name;
+    mat.density = r.numberIn(r.required(m, p, "density"), p + ".density", 0, 1e6, true, false,
+                             "a density > 0 kg/m³");
+    mat.youngModulus = r.numberIn(r.required(m, p, "young_modulus"), p + ".young_modulus", 0, 1e15,
+                                  true, false, "a Young's modulus > 0 Pa");
+    mat.poissonRatio = r.numberIn(r.required(m, p, "poisson_ratio"), p + ".poisson_ratio", 0, 0.5,
+                                  false, true, "a Poisson's ratio in [0, 0.5)");
+    ids[name] = static_cast<int>(s.materials.size());
+    s.materials.push_back(mat);
+  }
+}
+
+void readJoints(const Reader& r, const json& doc, model::Scene& s, std::map<std::string, int>& ids) {
+  const json& joints = r.required(doc, "", "joints");
+  r.object(joints, "joints");
+  if (joints.empty()) r.fail("joints", "expected at least one joint");
+  for (const auto& [name, jn] : joints.items()) {
+    const std::string p = "joints." + name;
+    r.onlyKeys(jn, p, {"friction_angle", "cohesion", "tensile_strength"});
+    model::JointProperties jp;
+    jp.name = name;
+    jp.frictionAngle = degToRad(r.numberIn(r.required(jn, p, "friction_angle"), p + ".friction_angle",
+                                           0, 90, false, true, "a friction angle in [0, 90) degrees"));
+    jp.cohesion = r.optionalIn(jn, p, "cohesion", 0, 0, 1e12, false, false, "a cohesion ≥ 0 Pa");
+    jp.tensileStrength = r.optionalIn(jn, p, "tensile_strength", 0, 0, 1e12, false, false,
+                                      "a tensile strength ≥ 0 Pa");
+    ids[name] = static_cast<int>(s.joints.size());
+    s.joints.push_back(jp);
+  }
+  if (doc.contains("default_joint")) {
+    const std::string name = r.string(doc.at("default_joint"), "default_joint");
+    if (!ids.count(name)) r.fail("default_joint", "unknown joint \"" + name + "\" (not in joints)");
+    s.defaultJoint = ids.at(name);
+  } else if (s.joints.size() > 1) {
+    r.fail("default_joint", "required key is missing (the case has several joints)");
+  }
+}
+
+void readBlocks(const Reader& r, const json& doc, model::Scene& s,
+                const std::map<std::string, int>& materialIds) {
+  const json& blocks = r.required(doc, "", "blocks");
+  if (!blocks.is_array() || blocks.empty()) r.fail("blocks", "expected a non-empty array of blocks, found " + typeName(blocks));
+  std::set<std::string> seen;
+  for (size_t b = 0; b < blocks.size(); ++b) {
+    const std::string p = Reader::index("blocks", b);
+    const json& jb = blocks[b];
+    r.onlyKeys(jb, p, {"id", "material", "fixed", "vertices", "velocity", "angular_velocity"});
+    model::Block blk;
+    blk.id = r.string(r.required(jb, p, "id"), p + ".id");
+    if (!seen.insert(blk.id).second) r.fail(p + ".id", "duplicate block id \"" + blk.id + "\"");
+    const std::string mat = r.string(r.required(jb, p, "material"), p + ".material");
+    if (!materialIds.count(mat)) r.fail(p + ".material", "unknown material \"" + mat + "\" (not in materials)");
+    blk.material = materialIds.at(mat);
+    blk.fixed = r.boolean(jb, p, "fixed", false);
+    const json& verts = r.required(jb, p, "vertices");
+    if (!verts.is_array() || verts.size() < 3)
+      r.fail(p + ".vertices", "expected an array of at least 3 points, found " + typeName(verts));
+    for (size_t k = 0; k < verts.size(); ++k) blk.vertices.push_back(r.point(verts[k], Reader::index(p + ".vertices", k)));
+    if (!geometry::isSimple(blk.vertices))
+      r.fail(p + ".vertices", "expected a simple polygon, found one that is self-intersecting, folded or has repeated vertices");
+    const geometry::Aabb box = geometry::boundingBox(blk.vertices);
+    const double size = (box.hi - box.lo).maxCoeff();
+    if (std::abs(geometry::signedArea(blk.vertices)) <= 1e-9 * size * size)
+      r.fail(p + ".vertices", "expected a polygon with non-zero area, found a degenerate one");
+    geometry::orientCounterClockwise(blk.vertices);
+    blk.moments = geometry::computeMoments(blk.vertices);
+    if (jb.contains("velocity")) {
+      const Vec2 v = r.point(jb.at("velocity"), p + ".velocity");
+      blk.velocity[0] = v.x();
+      blk.velocity[1] = v.y();
+    }
+    if (jb.contains("angular_velocity")) blk.velocity[2] = r.number(jb.at("angular_velocity"), p + ".angular_velocity");
+    if (blk.fixed && !blk.velocity.isZero()) r.fail(p + ".velocity", "a fixed block cannot have an initial velocity");
+    s.blocks.push_back(blk);
+  }
+}
+
+/// A point on a named block, checked to lie inside it.
+model::BlockPoint blockPoint(const Reader& r, const json& j, const std::string& p, const model::Scene& s) {
+  const std::string id = r.string(r.required(j, p, "block"), p + ".block");
+  const int b = s.blockIndex(id);
+  if (b < 0) r.fail(p + ".block", "unknown block \"" + id + "\"");
+  model::BlockPoint bp;
+  bp.block = b;
+  bp.initial = bp.current = r.point(r.required(j, p, "point"), p + ".point");
+  const geometry::Aabb box = geometry::boundingBox(s.blocks[b].vertices);
+  if (!geometry::containsPoint(s.blocks[b].vertices, bp.initial, 1e-9 * (box.hi - box.lo).maxCoeff()))
+    r.fail(p + ".point", "point lies outside block \"" + id + "\"");
+  return bp;
+}
+
+void readPointsAndLoads(const Reader& r, const json& doc, model::Scene& s) {
+  const auto list = [&](const char* key) -> const json* {
+    if (!doc.contains(key)) return nullptr;
+    if (!doc.at(key).is_array()) r.fail(key, "expected an array, found " + typeName(doc.at(key)));
+    return &doc.at(key);
+  };
+  if (const json* mons = list("monitors")) {
+    std::set<std::string> seen;
+    for (size_t i = 0; i < mons->size(); ++i) {
+      const std::string p = Reader::index("monitors", i);
+      r.onlyKeys((*mons)[i], p, {"id", "block", "point"});
+      model::Monitor m;
+      m.id = r.string(r.required((*mons)[i], p, "id"), p + ".id");
+      if (!seen.insert(m.id).second) r.fail(p + ".id", "duplicate monitor id \"" + m.id + "\"");
+      m.point = blockPoint(r, (*mons)[i], p, s);
+      s.monitors.push_back(m);
+    }
+  }
+  if (const json* loads = list("point_loads")) {
+    for (size_t i = 0; i < loads->size(); ++i) {
+      const std::string p = Reader::index("point_loads", i);
+      r.onlyKeys((*loads)[i], p, {"block", "point", "force"});
+      model::PointLoad l;
+      l.point = blockPoint(r, (*loads)[i], p, s);
+      l.force = r.point(r.required((*loads)[i], p, "force"), p + ".force");
+      s.pointLoads.push_back(l);
+    }
+  }
+  if (const json* fps = list("fixed_points")) {
+    for (size_t i = 0; i < fps->size(); ++i) {
+      const std::string p = Reader::index("fixed_points", i);
+      r.onlyKeys((*fps)[i], p, {"block", "point"});
+      s.fixedPoints.push_back({blockPoint(r, (*fps)[i], p, s)});
+    }
+  }
+}
+
+void readJointPairs(const Reader& r, const json& doc, model::Scene& s, const std::map<std::string, int>& jointIds) {
+  if (!doc.contains("joint_pairs")) return;
+  const json& pairs = doc.at("joint_pairs");
+  if (!pairs.is_array()) r.fail("joint_pairs", "expected an array, found " + typeName(pairs));
+  for (size_t i = 0; i < pairs.size(); ++i) {
+    const std::string p = Reader::index("joint_pairs", i);
+    r.onlyKeys(pairs[i], p, {"blocks", "joint"});
+    const json& bl = r.required(pairs[i], p, "blocks");
+    if (!bl.is_array() || bl.size() != 2) r.fail(p + ".blocks", "expected two block ids, found " + typeName(bl));
+    int ids[2];
+    for (int k = 0; k < 2; ++k) {
+      const std::string id = r.string(bl[k], Reader::index(p + ".blocks", k));
+      ids[k] = s.blockIndex(id);
+      if (ids[k] < 0) r.fail(Reader::index(p + ".blocks", k), "unknown block \"" + id + "\"");
+    }
+    if (ids[0] == ids[1]) r.fail(p + ".blocks", "expected two different blocks");
+    const std::string jn = r.string(r.required(pairs[i], p, "joint"), p + ".joint");
+    if (!jointIds.count(jn)) r.fail(p + ".joint", "unknown joint \"" + jn + "\" (not in joints)");
+    s.pairJoints[{std::min(ids[0], ids[1]), std::max(ids[0], ids[1])}] = jointIds.at(jn);
+  }
+}
+
+void readAnalysis(const Reader& r, const json& doc, model::Scene& s) {
+  const json& a = r.required(doc, "", "analysis");
+  const std::string p = "analysis";
+  r.onlyKeys(a, p, {"duration", "time_step", "mode", "plane", "penalty", "penalty_factor",
+                    "shear_penalty_ratio", "max_displacement_ratio", "open_close_max_iterations",
+                    "friction_tolerance", "max_step_cuts", "step_cut_factor", "initial_equilibrium",
+                    "equilibrium_max_steps", "edge_parallel_tolerance", "initial_contact_tolerance"});
+  model::AnalysisSettings& st = s.settings;
+  st.duration = r.numberIn(r.required(a, p, "duration"), p + ".duration", 0, 1e9, true, false, "a duration > 0 s");
+  st.timeStep = r.numberIn(r.required(a, p, "time_step"), p + ".time_step", 0, 1e6, true, false, "a time step > 0 s");
+  st.mode = r.choice(a, p, "mode", "dynamic", {"dynamic", "static"}) == "static" ? model::AnalysisMode::Static
+                                                                                 : model::AnalysisMode::Dynamic;
+  st.plane = r.choice(a, p, "plane", "strain", {"strain", "stress"}) == "stress" ? model::PlaneMode::Stress
+                                                                              : model::PlaneMode::Strain;
+  st.penalty = r.optionalIn(a, p, "penalty", 0, 0, 1e18, false, false, "a penalty ≥ 0 N/m (0: automatic)");
+  st.penaltyFactor = r.optionalIn(a, p, "penalty_factor", st.penaltyFactor, 0, 1e6, true, false, "a factor > 0");
+  st.shearPenaltyRatio = r.optionalIn(a, p, "shear_penalty_ratio", st.shearPenaltyRatio, 0, 10, true, false, "a ratio > 0");
+  st.maxDisplacementRatio = r.optionalIn(a, p, "max_displacement_ratio", st.maxDisplacementRatio, 0, 0.1,
+                                         true, false, "a ratio in (0, 0.1]");
+  st.openCloseMaxIterations = r.integerIn(a, p, "open_close_max_iterations", st.openCloseMaxIterations, 1, 1000);
+  st.frictionTolerance = r.optionalIn(a, p, "friction_tolerance", st.frictionTolerance, 0, 1, true, false, "a tolerance in (0, 1]");
+  st.maxStepCuts = r.integerIn(a, p, "max_step_cuts", st.maxStepCuts, 0, 100);
+  st.stepCutFactor = r.optionalIn(a, p, "step_cut_factor", st.stepCutFactor, 0, 1, true, true, "a factor in (0, 1)");
+  st.initialEquilibrium = r.boolean(a, p, "initial_equilibrium", st.initialEquilibrium);
+  st.equilibriumMaxSteps = r.integerIn(a, p, "equilibrium_max_steps", st.equilibriumMaxSteps, 1, 100000);
+  st.edgeParallelToleranceDeg = r.optionalIn(a, p, "edge_parallel_tolerance", st.edgeParallelToleranceDeg, 0, 10,
+                                             true, false, "an angle in (0, 10] degrees");
+  st.initialContactTolerance = r.optionalIn(a, p, "initial_contact_tolerance", st.initialContactTolerance, 0,
+                                            1e-2, false, false, "a ratio in [0, 0.01]");
+}
+
+void readExpectations(const Reader& r, const json& doc, model::Scene& s) {
+  if (!doc.contains("expected")) return;
+  const json& ex = doc.at("expected");
+  if (!ex.is_array()) r.fail("expected", "expected an array, found " + typeName(ex));
+  for (size_t i = 0; i < ex.size(); ++i) {
+    const std::string p = Reader::index("expected", i);
+    const json& e = ex[i];
+    r.onlyKeys(e, p, {"monitor", "quantity", "time", "value", "relative_tolerance", "absolute_tolerance",
+                      "at_most", "at_least", "source"});
+    model::Expectation x;
+    x.monitor = r.string(r.required(e, p, "monitor"), p + ".monitor");
+    bool found = false;
+    for (const auto& m : s.monitors) found |= m.id == x.monitor;
+    if (!found) r.fail(p + ".monitor", "unknown monitor \"" + x.monitor + "\"");
+    x.quantity = r.choice(e, p, "quantity", "", {"ux", "uy", "vx", "vy", "displacement", "speed"});
+    if (x.quantity.empty()) r.fail(p + ".quantity", "required key is missing");
+    if (e.contains("time")) x.time = r.numberIn(e.at("time"), p + ".time", 0, s.settings.duration, false, false,
+                                                "a time within the analysis duration");
+    if (e.contains("value")) x.value = r.number(e.at("value"), p + ".value");
+    x.relativeTolerance = r.optionalIn(e, p, "relative_tolerance", 0, 0, 1, false, false, "a tolerance in [0, 1]");
+    x.absoluteTolerance = r.optionalIn(e, p, "absolute_tolerance", 0, 0, 1e12, false, false, "a tolerance ≥ 0");
+    if (e.contains("at_most")) x.atMost = r.number(e.at("at_most"), p + ".at_most");
+    if (e.contains("at_least")) x.atLeast = r.number(e.at("at_least"), p + ".at_least");
+    if (!x.value && !x.atMost && !x.atLeast) r.fail(p, "expected one of value, at_most, at_least");
+    if (x.value && x.relativeTolerance == 0 && x.absoluteTolerance == 0)
+      r.fail(p, "a value needs relative_tolerance or absolute_tolerance");
+    if (e.contains("source")) x.source = r.string(e.at("source"), p + ".source");
+    s.expectations.push_back(x);
+  }
+}
+
+}  // namespace
+
+model::Scene parseCase(const std::string& text, const std::string& file) {
+  const Reader r(file);
+  json doc;
+  try {
+    doc = json::parse(text);
+  } catch (const json::parse_error& e) {
+    r.fail("", std::string("invalid JSON: ") + e.what());
+  }
+  r.onlyKeys(doc, "", {"description", "gravity", "materials", "joints", "default_joint", "joint_pairs",
+                       "blocks", "monitors", "point_loads", "fixed_points", "analysis", "expected"});
+  model::Scene s;
+  if (doc.contains("description")) s.description = r.string(doc.at("description"), "description");
+  if (doc.contains("gravity")) s.gravity = r.point(doc.at("gravity"), "gravity");
+  std::map<std::string, int> materialIds, jointIds;
+  readMaterials(r, doc, s, materialIds);
+  readJoints(r, doc, s, jointIds);
+  readBlocks(r, doc, s, materialIds);
+  readJointPairs(r, doc, s, jointIds);
+  readPointsAndLoads(r, doc, s);
+  readAnalysis(r, doc, s);
+  readExpectations(r, doc, s);
+  return s;
+}
+
+model::Scene readCase(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path, "", "cannot open the file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return parseCase(text.str(), path);
+}
+
+}  // namespace ddaslope::io

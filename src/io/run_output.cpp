@@ -1,0 +1,159 @@
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+
+#include <nlohmann/json.hpp>
+
+#include "ddaslope/core/errors.hpp"
+#include "ddaslope/io/run_case.hpp"
+
+namespace ddaslope::io {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string fmt(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.12g", v);
+  return buf;
+}
+
+MonitorSample sampleOf(const solver::Simulation& sim, int m) {
+  const model::Monitor& mon = sim.scene().monitors[m];
+  const Vec2 u = mon.point.current - mon.point.initial;
+  const Vec2 v = sim.monitorVelocity(m);
+  return {u.x(), u.y(), v.x(), v.y()};
+}
+
+/// history.csv is written under a temporary name and renamed only when the run completed.
+class HistoryWriter {
+ public:
+  HistoryWriter(const fs::path& dir, const std::vector<std::string>& monitors) : dir_(dir) {
+    fs::create_directories(dir);
+    fs::remove(dir / "history.csv");
+    fs::remove(dir / "history.partial.csv");
+    fs::remove(dir / "summary.json");
+    out_.open(dir / "history.partial.csv");
+    if (!out_) throw InputError((dir / "history.csv").string(), "", "cannot write the output file");
+    out_ << "time,dt,iterations";
+    for (const auto& id : monitors) out_ << ',' << id << "_ux," << id << "_uy," << id << "_vx," << id << "_vy";
+    out_ << '\n';
+  }
+  void row(const solver::StepRecord& r, const std::vector<MonitorSample>& s) {
+    out_ << fmt(r.time) << ',' << fmt(r.dt) << ',' << r.iterations;
+    for (const auto& m : s) out_ << ',' << fmt(m.ux) << ',' << fmt(m.uy) << ',' << fmt(m.vx) << ',' << fmt(m.vy);
+    out_ << '\n';
+  }
+  void finish(bool completed) {
+    out_.close();
+    if (completed) fs::rename(dir_ / "history.partial.csv", dir_ / "history.csv");
+  }
+
+ private:
+  fs::path dir_;
+  std::ofstream out_;
+};
+
+void writeSummary(const fs::path& dir, const model::Scene& scene, const RunOptions& opt, const RunOutcome& o) {
+  using nlohmann::ordered_json;
+  ordered_json j;
+  j["case"] = opt.casePath;
+  j["description"] = scene.description;
+  j["status"] = o.completed ? "completed" : "non_convergence";
+  if (!o.completed) j["failure"] = o.failure;
+  const solver::RunStatistics& st = o.statistics;
+  j["time"] = o.trace.steps.empty() ? 0.0 : o.trace.steps.back().time;
+  j["steps"] = st.steps;
+  j["time_step_cuts"] = st.cuts;
+  j["open_close_iterations"] = st.iterations;
+  j["wall_time_s"] = o.wallTime;
+  j["equilibrium"] = {{"steps", st.equilibriumSteps},
+                      {"residual", st.equilibriumResidual},
+                      {"converged", st.equilibriumConverged},
+                      {"relaxed", st.relaxationConverged}};
+  j["max_contacts"] = st.maxContacts;
+  j["max_penetration_m"] = st.maxPenetration;
+  j["symbolic_analyses"] = st.symbolicAnalyses;
+  j["phase_times_s"] = {{"broad_phase", st.times.broadPhase}, {"contacts", st.times.contacts},
+                        {"assembly", st.times.assembly},      {"factorisation", st.times.factorisation},
+                        {"solve", st.times.solve},            {"state_checks", st.times.stateChecks},
+                        {"update", st.times.update}};
+  ordered_json mons = ordered_json::object();
+  if (!o.trace.samples.empty())
+    for (size_t m = 0; m < o.trace.monitorIds.size(); ++m) {
+      const MonitorSample& s = o.trace.samples.back()[m];
+      mons[o.trace.monitorIds[m]] = {{"ux", s.ux}, {"uy", s.uy}, {"vx", s.vx}, {"vy", s.vy}};
+    }
+  j["monitors"] = mons;
+  ordered_json ex = ordered_json::array();
+  for (const auto& r : o.expectations)
+    ex.push_back({{"monitor", r.expectation.monitor}, {"quantity", r.expectation.quantity},
+                  {"actual", r.actual}, {"passed", r.passed}, {"text", r.describe()}});
+  j["expected"] = ex;
+  const model::AnalysisSettings& s = scene.settings;
+  j["settings"] = {{"duration", s.duration},
+                   {"time_step", s.timeStep},
+                   {"mode", s.mode == model::AnalysisMode::Dynamic ? "dynamic" : "static"},
+                   {"plane", s.plane == model::PlaneMode::Strain ? "strain" : "stress"},
+                   {"penalty", scene.normalPenalty()},
+                   {"shear_penalty_ratio", s.shearPenaltyRatio},
+                   {"max_displacement_ratio", s.maxDisplacementRatio},
+                   {"open_close_max_iterations", s.openCloseMaxIterations},
+                   {"friction_tolerance", s.frictionTolerance},
+                   {"max_step_cuts", s.maxStepCuts},
+                   {"step_cut_factor", s.stepCutFactor},
+                   {"initial_equilibrium", s.initialEquilibrium},
+                   {"edge_parallel_tolerance", s.edgeParallelToleranceDeg},
+                   {"initial_contact_tolerance", s.initialContactTolerance}};
+  const fs::path tmp = dir / "summary.json.tmp";
+  {
+    std::ofstream out(tmp);
+    out << j.dump(2) << '\n';
+  }
+  fs::rename(tmp, dir / "summary.json");
+}
+
+}  // namespace
+
+RunOutcome runScene(const model::Scene& scene, const RunOptions& opt) {
+  const auto start = std::chrono::steady_clock::now();
+  RunOutcome o;
+  for (const auto& m : scene.monitors) o.trace.monitorIds.push_back(m.id);
+  std::optional<HistoryWriter> history;
+  if (opt.outputDir) history.emplace(*opt.outputDir, o.trace.monitorIds);
+  solver::Simulation sim(scene);
+  const double duration = scene.settings.duration;
+  double lastShown = -1;
+  const auto observe = [&](const solver::Simulation& s, const solver::StepRecord& r) {
+    std::vector<MonitorSample> row;
+    for (size_t m = 0; m < s.scene().monitors.size(); ++m) row.push_back(sampleOf(s, static_cast<int>(m)));
+    if (history) history->row(r, row);
+    o.trace.steps.push_back(r);
+    o.trace.samples.push_back(std::move(row));
+    if (opt.progress && (r.time - lastShown >= duration / 100 || r.time >= duration)) {
+      lastShown = r.time;
+      std::fprintf(stderr, "\r  t = %.4g / %.4g s  steps %d  cuts %d", r.time, duration, s.statistics().steps,
+                   s.statistics().cuts);
+      if (r.time >= duration) std::fprintf(stderr, "\n");
+    }
+  };
+  try {
+    solver::runAnalysis(sim, observe);
+    o.completed = true;
+  } catch (const NonConvergenceError& e) {
+    o.failure = e.what();
+    if (opt.progress) std::fprintf(stderr, "\n");
+  }
+  o.statistics = sim.statistics();
+  o.wallTime = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (o.completed) o.expectations = evaluateExpectations(o.trace, scene.expectations);
+  if (history) {
+    history->finish(o.completed);
+    writeSummary(*opt.outputDir, scene, opt, o);
+  }
+  return o;
+}
+
+}  // namespace ddaslope::io

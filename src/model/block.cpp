@@ -1,0 +1,36 @@
+#include "ddaslope/model/block.hpp"
+
+#include <cmath>
+
+namespace ddaslope::model {
+
+Mat26 displacementMatrix(const Vec2& c, const Vec2& p) {
+  const double x = p.x() - c.x(), y = p.y() - c.y();
+  Mat26 t;
+  t << 1, 0, -y, x, 0, y / 2,
+       0, 1, x, 0, y, x / 2;
+  return t;
+}
+
+Vec2 displacedPoint(const Vec2& c, const Vec2& p, const Vec6& d) {
+  const double x = p.x() - c.x(), y = p.y() - c.y();
+  const double cr = std::cos(d[2]), sr = std::sin(d[2]);
+  // Rigid part rotated exactly; strain part linear as in T.
+  const double ux = d[0] + (cr - 1) * x - sr * y + d[3] * x + d[5] * y / 2;
+  const double uy = d[1] + sr * x + (cr - 1) * y + d[4] * y + d[5] * x / 2;
+  return {p.x() + ux, p.y() + uy};
+}
+
+void Block::applyDisplacement(const Vec6& d) {
+  const Vec2 c = moments.centroid;
+  for (Vec2& v : vertices) v = displacedPoint(c, v, d);
+  moments = geometry::computeMoments(vertices);
+}
+
+double Block::maxVertexDisplacement(const Vec6& d) const {
+  double worst = 0;
+  for (const Vec2& v : vertices) worst = std::max(worst, (tAt(v) * d).norm());
+  return worst;
+}
+
+}  // namespace ddaslope::model

@@ -1,0 +1,430 @@
+#include "ddaslope/solver/simulation.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <sstream>
+
+#include "ddaslope/assembly/block_terms.hpp"
+#include "ddaslope/contact/broad_phase.hpp"
+#include "ddaslope/contact/contact_law.hpp"
+#include "ddaslope/contact/narrow_phase.hpp"
+#include "ddaslope/core/errors.hpp"
+
+namespace ddaslope::solver {
+
+using assembly::ContactKinematics;
+using assembly::Vec12;
+using contact::Contact;
+using contact::ContactState;
+
+namespace {
+
+class Stopwatch {
+ public:
+  double lap() {
+    const auto now = std::chrono::steady_clock::now();
+    const double s = std::chrono::duration<double>(now - last_).count();
+    last_ = now;
+    return s;
+  }
+
+ private:
+  std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
+};
+
+}  // namespace
+
+Simulation::Simulation(model::Scene scene)
+    : scene_(std::move(scene)),
+      stepSize_(scene_.settings.timeStep, scene_.settings.stepCutFactor) {
+  w0_ = scene_.modelHalfSize();
+  searchDistance_ = 2.5 * scene_.settings.maxDisplacementRatio * w0_;
+  penalty_ = scene_.normalPenalty();
+  for (const model::Material& m : scene_.materials)
+    elasticity_.push_back(assembly::elasticityMatrix(m.youngModulus, m.poissonRatio, scene_.settings.plane));
+  markActiveBlocks({});
+  detectContacts(true);
+}
+
+void Simulation::markActiveBlocks(const std::vector<bool>& held) {
+  active_.assign(scene_.blocks.size(), -1);
+  nActive_ = 0;
+  for (size_t b = 0; b < scene_.blocks.size(); ++b)
+    if (!scene_.blocks[b].fixed && (held.empty() || !held[b])) active_[b] = nActive_++;
+}
+
+void Simulation::detectContacts(bool initial) {
+  Stopwatch sw;
+  std::vector<geometry::Aabb> boxes;
+  std::vector<bool> fixed;
+  for (const model::Block& b : scene_.blocks) {
+    boxes.push_back(geometry::boundingBox(b.vertices));
+    fixed.push_back(b.fixed);
+  }
+  const auto pairs = contact::findCandidatePairs(boxes, fixed, searchDistance_);
+  stats_.times.broadPhase += sw.lap();
+
+  const contact::NarrowPhaseSettings nps{searchDistance_,
+                                         degToRad(scene_.settings.edgeParallelToleranceDeg)};
+  const auto known = [this](const contact::ContactKey& k) { return contacts_.contains(k); };
+  std::vector<contact::ContactCandidate> candidates;
+  for (const contact::BlockPair& p : pairs)
+    contact::findContacts(p.a, scene_.blocks[p.a].vertices, p.b, scene_.blocks[p.b].vertices, nps,
+                          known, candidates);
+  std::vector<int> joints;
+  joints.reserve(candidates.size());
+  for (const auto& c : candidates) joints.push_back(scene_.jointBetween(c.key.vertexBlock, c.key.edgeBlock));
+  contacts_.update(std::move(candidates), joints);
+
+  if (initial) {
+    // Contacts touching at the start are closed and intact (bonded); the spring's zero is at
+    // the initial gap, so that coordinates rounded in the case file do not preload it.
+    const double tol = scene_.settings.initialContactTolerance * w0_;
+    for (Contact& c : contacts_.contacts()) {
+      if (c.geometry.gap > tol) continue;
+      c.state = ContactState::Locked;
+      c.bonded = true;
+      c.lockRatio = c.geometry.ratio;
+      c.normalOffset = c.geometry.gap >= -tol ? c.geometry.gap : 0.0;
+    }
+  }
+  kinematics_.clear();
+  for (const Contact& c : contacts_.contacts())
+    kinematics_.push_back(assembly::linearise(scene_.blocks[c.key().vertexBlock],
+                                              scene_.blocks[c.key().edgeBlock], c));
+  stats_.maxContacts = std::max(stats_.maxContacts, static_cast<int>(contacts_.contacts().size()));
+  stats_.times.contacts += sw.lap();
+}
+
+double Simulation::edgeLength(const Contact& c) const {
+  const auto& v = scene_.blocks[c.key().edgeBlock].vertices;
+  return (v[(c.key().edge + 1) % v.size()] - v[c.key().edge]).norm();
+}
+
+contact::ContactStrength Simulation::strengthOf(const Contact& c) const {
+  const model::JointProperties& j = scene_.joints[c.joint];
+  // Original DDA: each vertex-to-edge half of an edge-to-edge contact carries c·L/2.
+  const double share = c.geometry.overlap / 2;
+  return {std::tan(j.frictionAngle), j.cohesion * share, j.tensileStrength * share};
+}
+
+void Simulation::assembleBlockTerms(double dt, Regime regime, std::vector<Mat6>& k,
+                                    std::vector<Vec6>& f) const {
+  k.assign(nActive_, Mat6::Zero());
+  f.assign(nActive_, Vec6::Zero());
+  const bool carryVelocity =
+      regime == Regime::Analysis && scene_.settings.mode == model::AnalysisMode::Dynamic;
+  for (size_t b = 0; b < scene_.blocks.size(); ++b) {
+    const int i = active_[b];
+    if (i < 0) continue;
+    const model::Block& blk = scene_.blocks[b];
+    const model::Material& mat = scene_.materials[blk.material];
+    const Mat6 mass = mat.density * assembly::unitMassMatrix(blk.moments);
+    // Newmark β = 1/2, γ = 1 (Shi): K += 2M/Δt², F += 2M V/Δt.
+    k[i] = assembly::elasticStiffness(blk.moments.area, elasticity_[blk.material]) + (2 / (dt * dt)) * mass;
+    f[i] = assembly::bodyForce(blk.moments.area, mat.density * scene_.gravity) +
+           assembly::initialStressForce(blk.moments.area, blk.stress);
+    if (carryVelocity) f[i] += (2 / dt) * mass * blk.velocity;
+  }
+  for (const model::PointLoad& l : scene_.pointLoads) {
+    const int i = active_[l.point.block];
+    if (i >= 0) f[i] += assembly::pointForce(scene_.blocks[l.point.block].moments.centroid, l.point.current, l.force);
+  }
+  for (const model::FixedPoint& fp : scene_.fixedPoints) {
+    const int i = active_[fp.point.block];
+    if (i < 0) continue;
+    const Mat26 t = scene_.blocks[fp.point.block].tAt(fp.point.current);
+    k[i] += penalty_ * t.transpose() * t;
+    f[i] += penalty_ * t.transpose() * (fp.point.initial - fp.point.current);
+  }
+}
+
+Simulation::Attempt Simulation::tryStep(double dt, Regime regime) {
+  Stopwatch sw;
+  Attempt a;
+  a.contacts = contacts_.contacts();
+  std::vector<ContactKinematics> kin = kinematics_;
+  const double ps = penalty_ * scene_.settings.shearPenaltyRatio;
+
+  std::vector<std::pair<int, int>> couplings;
+  for (const Contact& c : a.contacts) {
+    const int i = active_[c.key().vertexBlock], j = active_[c.key().edgeBlock];
+    if (i >= 0 && j >= 0) couplings.emplace_back(i, j);
+  }
+  couplings = assembly::BlockSparseMatrix::normalise(std::move(couplings));
+  if (!matrix_.hasPattern(nActive_, couplings)) matrix_.setPattern(nActive_, couplings);
+
+  std::vector<Mat6> blockK;
+  std::vector<Vec6> blockF;
+  assembleBlockTerms(dt, regime, blockK, blockF);
+  stats_.times.assembly += sw.lap();
+
+  const auto ends = [&](const Contact& c) {
+    return std::pair{active_[c.key().vertexBlock], active_[c.key().edgeBlock]};
+  };
+  const auto addSpring = [&](const Contact& c, double k, const Vec12& v) {
+    const auto [i, j] = ends(c);
+    if (i >= 0) matrix_.addDiagonal(i, k * v.head<6>() * v.head<6>().transpose());
+    if (j >= 0) matrix_.addDiagonal(j, k * v.tail<6>() * v.tail<6>().transpose());
+    if (i >= 0 && j >= 0) matrix_.addCoupling(i, j, k * v.head<6>() * v.tail<6>().transpose());
+  };
+  Eigen::VectorXd rhs(6 * nActive_);
+  const auto addForce = [&](const Contact& c, double s, const Vec12& v) {
+    const auto [i, j] = ends(c);
+    if (i >= 0) rhs.segment<6>(6 * i) += s * v.head<6>();
+    if (j >= 0) rhs.segment<6>(6 * j) += s * v.tail<6>();
+  };
+  const auto gather = [&](const Contact& c) {
+    const auto [i, j] = ends(c);
+    Vec12 d = Vec12::Zero();
+    if (i >= 0) d.head<6>() = a.d.segment<6>(6 * i);
+    if (j >= 0) d.tail<6>() = a.d.segment<6>(6 * j);
+    return d;
+  };
+
+  bool stiffnessChanged = true;
+  const int maxIterations = std::max(1, scene_.settings.openCloseMaxIterations);
+  for (a.iterations = 1; a.iterations <= maxIterations; ++a.iterations) {
+    sw.lap();
+    if (stiffnessChanged) {
+      matrix_.setZero();
+      for (int i = 0; i < nActive_; ++i) matrix_.addDiagonal(i, blockK[i]);
+      for (size_t q = 0; q < a.contacts.size(); ++q) {
+        const Contact& c = a.contacts[q];
+        if (!c.closed()) continue;
+        addSpring(c, penalty_, kin[q].normal);
+        if (c.state == ContactState::Locked) addSpring(c, ps, kin[q].shearLocked);
+      }
+    }
+    for (int i = 0; i < nActive_; ++i) rhs.segment<6>(6 * i) = blockF[i];
+    for (size_t q = 0; q < a.contacts.size(); ++q) {
+      const Contact& c = a.contacts[q];
+      if (!c.closed()) continue;
+      addForce(c, -penalty_ * kin[q].penetration0, kin[q].normal);
+      if (c.state == ContactState::Locked) {
+        addForce(c, -ps * kin[q].shearLocked0, kin[q].shearLocked);
+      } else {
+        // Friction N tanφ opposite to the slip, as a pair of point loads: K stays symmetric.
+        const double friction = std::tan(scene_.joints[c.joint].frictionAngle) * std::max(0.0, c.normalForce);
+        addForce(c, -c.slideDirection * friction, kin[q].shearStep);
+      }
+    }
+    stats_.times.assembly += sw.lap();
+    if (stiffnessChanged && nActive_ > 0 && !cholesky_.factorise(matrix_)) {
+      stats_.times.factorisation += sw.lap();
+      a.failure = "global matrix not positive definite";
+      return a;
+    }
+    stats_.times.factorisation += sw.lap();
+    if (nActive_ > 0) cholesky_.solve(rhs, a.d); else a.d.resize(0);
+    stats_.times.solve += sw.lap();
+    if (!a.d.allFinite()) {
+      a.failure = "solution not finite";
+      return a;
+    }
+
+    // Judge every contact against the new solution.
+    bool stateChanged = false, bondChanged = false;
+    double frictionDrift = 0, forceScale = 0;
+    for (size_t q = 0; q < a.contacts.size(); ++q) {
+      Contact& c = a.contacts[q];
+      const Vec12 d = gather(c);
+      contact::ContactResponse r;
+      r.normalForce = penalty_ * kin[q].penetration(d);
+      r.lockedShear = ps * kin[q].shearFromAnchor(d);
+      r.slip = kin[q].slip(d);
+      const contact::ContactJudgement j =
+          regime == Regime::HeldEquilibrium
+              ? contact::judgeHeldContact(c.state, c.bonded, r)
+              : contact::judgeVertexContact(c.state, c.slideDirection, c.bonded, r, strengthOf(c));
+      if (c.state == ContactState::Sliding && j.state == ContactState::Sliding)
+        frictionDrift = std::max(frictionDrift, std::abs(r.normalForce - c.normalForce));
+      if (j.state != ContactState::Open) forceScale = std::max(forceScale, std::abs(r.normalForce));
+      if (j.state != c.state || j.direction != c.slideDirection) stateChanged = true;
+      if (j.bonded != c.bonded) bondChanged = true;
+      if (j.state == ContactState::Locked && c.state != ContactState::Locked) {
+        // The locked spring starts at the step-start position; a contact that sticks after
+        // sliding keeps the friction force it carried (force continuity), or the load it drops
+        // would jump onto its neighbours and break them.
+        c.lockRatio = c.geometry.ratio;
+        if (c.state == ContactState::Sliding) {
+          const double friction = std::tan(scene_.joints[c.joint].frictionAngle) * std::max(0.0, c.normalForce);
+          c.lockRatio -= c.slideDirection * friction / (ps * edgeLength(c));
+        }
+        kin[q] = assembly::linearise(scene_.blocks[c.key().vertexBlock], scene_.blocks[c.key().edgeBlock], c);
+      }
+      c.state = j.state;
+      c.slideDirection = j.direction;
+      c.bonded = j.bonded;
+      c.normalForce = r.normalForce;
+      c.shearForce = c.state == ContactState::Locked ? r.lockedShear : 0.0;
+    }
+    stats_.times.stateChecks += sw.lap();
+    stiffnessChanged = stateChanged;
+    const bool frictionSettled = frictionDrift <= scene_.settings.frictionTolerance * forceScale;
+    if (!stateChanged && !bondChanged && frictionSettled) {
+      a.converged = true;
+      break;
+    }
+  }
+  if (!a.converged) {
+    a.iterations = maxIterations;
+    a.failure = "open-close iteration did not converge in " + std::to_string(maxIterations) + " iterations";
+    return a;
+  }
+  double worst = 0;
+  for (size_t b = 0; b < scene_.blocks.size(); ++b)
+    if (active_[b] >= 0)
+      worst = std::max(worst, scene_.blocks[b].maxVertexDisplacement(a.d.segment<6>(6 * active_[b])));
+  const double limit = scene_.settings.maxDisplacementRatio * w0_;
+  if (worst > limit) {
+    a.converged = false;
+    std::ostringstream msg;
+    msg << "largest vertex displacement " << worst << " m exceeds g2·w0 = " << limit << " m";
+    a.failure = msg.str();
+  }
+  return a;
+}
+
+void Simulation::commit(const Attempt& a, double dt) {
+  Stopwatch sw;
+  const bool dynamic = scene_.settings.mode == model::AnalysisMode::Dynamic;
+  const auto movePoint = [&](model::BlockPoint& p) {
+    const int i = active_[p.block];
+    if (i >= 0)
+      p.current = model::displacedPoint(scene_.blocks[p.block].moments.centroid, p.current, a.d.segment<6>(6 * i));
+  };
+  for (auto& m : scene_.monitors) movePoint(m.point);
+  for (auto& l : scene_.pointLoads) movePoint(l.point);
+  for (auto& f : scene_.fixedPoints) movePoint(f.point);
+  for (size_t b = 0; b < scene_.blocks.size(); ++b) {
+    const int i = active_[b];
+    if (i < 0) continue;
+    model::Block& blk = scene_.blocks[b];
+    const Vec6 d = a.d.segment<6>(6 * i);
+    // V_{n+1} = 2D/Δt − V_n (Newmark γ = 1); static steps start from rest.
+    blk.velocity = 2 * d / dt - (dynamic ? blk.velocity : Vec6::Zero());
+    blk.stress += elasticity_[blk.material] * d.tail<3>();
+    blk.applyDisplacement(d);
+  }
+  contacts_.contacts() = a.contacts;
+  for (const Contact& c : a.contacts)
+    if (c.closed()) stats_.maxPenetration = std::max(stats_.maxPenetration, c.normalForce / penalty_);
+  stats_.times.update += sw.lap();
+}
+
+bool Simulation::settle(Regime regime, double& dt) {
+  const double tolerance = 1e-10;
+  for (int s = 0; s < scene_.settings.equilibriumMaxSteps; ++s) {
+    detectContacts(false);
+    Attempt a = tryStep(dt, regime);
+    for (int cut = 0; !a.converged && cut < scene_.settings.maxStepCuts; ++cut) {
+      dt *= scene_.settings.stepCutFactor;
+      a = tryStep(dt, regime);
+    }
+    if (!a.converged) return false;
+    commit(a, dt);
+    ++stats_.equilibriumSteps;
+    double worst = 0;
+    for (size_t b = 0; b < scene_.blocks.size(); ++b)
+      if (active_[b] >= 0)
+        worst = std::max(worst, scene_.blocks[b].maxVertexDisplacement(a.d.segment<6>(6 * active_[b])));
+    stats_.equilibriumResidual = worst / w0_;
+    if (stats_.equilibriumResidual < tolerance) return true;
+  }
+  return false;
+}
+
+void Simulation::bringToEquilibrium() {
+  if (!scene_.settings.initialEquilibrium) return;
+  // Only blocks resting on a fixed block through closed contacts take part; others are held.
+  const size_t n = scene_.blocks.size();
+  std::vector<bool> reached(n, false);
+  std::vector<int> frontier;
+  for (size_t b = 0; b < n; ++b)
+    if (scene_.blocks[b].fixed) {
+      reached[b] = true;
+      frontier.push_back(static_cast<int>(b));
+    }
+  while (!frontier.empty()) {
+    const int b = frontier.back();
+    frontier.pop_back();
+    for (const Contact& c : contacts_.contacts()) {
+      if (!c.closed()) continue;
+      const int u = c.key().vertexBlock, v = c.key().edgeBlock;
+      const int other = u == b ? v : (v == b ? u : -1);
+      if (other >= 0 && !reached[other]) {
+        reached[other] = true;
+        frontier.push_back(other);
+      }
+    }
+  }
+  std::vector<bool> held(n);
+  for (size_t b = 0; b < n; ++b) held[b] = !reached[b];
+  markActiveBlocks(held);
+  if (nActive_ > 0) {
+    // Static steps whose inertia term is 1e-3 of the contact stiffness: a regularisation that
+    // makes each step remove ~99.9 % of the out-of-balance displacement.
+    double maxMass = 0;
+    for (const model::Block& b : scene_.blocks)
+      if (!b.fixed) maxMass = std::max(maxMass, scene_.materials[b.material].density * b.moments.area);
+    double dt = std::sqrt(2000 * maxMass / penalty_);
+    stats_.equilibriumConverged = settle(Regime::HeldEquilibrium, dt);
+    const model::Scene heldScene = scene_;
+    const contact::ContactSet heldContacts = contacts_;
+    stats_.relaxationConverged = settle(Regime::Relaxation, dt);
+    if (!stats_.relaxationConverged) {
+      scene_ = heldScene;
+      contacts_ = heldContacts;
+    }
+  }
+  for (model::Block& b : scene_.blocks) b.velocity.setZero();
+  markActiveBlocks({});
+  detectContacts(false);
+}
+
+bool Simulation::finished() const {
+  return time_ >= scene_.settings.duration * (1 - 1e-12);
+}
+
+StepRecord Simulation::advance() {
+  detectContacts(false);
+  const double remaining = scene_.settings.duration - time_;
+  double dt = stepSize_.proposal(remaining);
+  const double first = dt;
+  std::string failure;
+  for (int cuts = 0; cuts <= scene_.settings.maxStepCuts; ++cuts) {
+    Attempt a = tryStep(dt, Regime::Analysis);
+    if (a.converged) {
+      commit(a, dt);
+      time_ = (dt == remaining) ? scene_.settings.duration : time_ + dt;
+      stepSize_.accepted(dt, cuts > 0);
+      ++stats_.steps;
+      stats_.cuts += cuts;
+      stats_.iterations += a.iterations;
+      stats_.symbolicAnalyses = cholesky_.symbolicAnalyses();
+      return {time_, dt, a.iterations, cuts};
+    }
+    failure = a.failure;
+    dt = stepSize_.cut(dt);
+  }
+  std::ostringstream msg;
+  msg << "step at t = " << time_ << " s not accepted after " << scene_.settings.maxStepCuts
+      << " time-step cuts (Δt tried from " << first << " s down to " << dt / scene_.settings.stepCutFactor
+      << " s); last failure: " << failure;
+  throw NonConvergenceError(msg.str());
+}
+
+Vec2 Simulation::monitorVelocity(int m) const {
+  const model::Monitor& mon = scene_.monitors[m];
+  const model::Block& b = scene_.blocks[mon.point.block];
+  return b.tAt(mon.point.current) * b.velocity;
+}
+
+void runAnalysis(Simulation& sim, const StepObserver& observe) {
+  sim.bringToEquilibrium();
+  observe(sim, StepRecord{});
+  while (!sim.finished()) observe(sim, sim.advance());
+}
+
+}  // namespace ddaslope::solver
