@@ -359,6 +359,8 @@ void Simulation::bringToEquilibrium() {
       }
     }
   }
+  std::vector<Vec6> initialVelocity;
+  for (const model::Block& b : scene_.blocks) initialVelocity.push_back(b.velocity);
   std::vector<bool> held(n);
   for (size_t b = 0; b < n; ++b) held[b] = !reached[b];
   markActiveBlocks(held);
@@ -378,7 +380,7 @@ void Simulation::bringToEquilibrium() {
       contacts_ = heldContacts;
     }
   }
-  for (model::Block& b : scene_.blocks) b.velocity.setZero();
+  for (size_t b = 0; b < n; ++b) scene_.blocks[b].velocity = initialVelocity[b];
   markActiveBlocks({});
   detectContacts(false);
 }

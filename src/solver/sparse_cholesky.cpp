@@ -18,6 +18,9 @@ struct SparseCholesky::Impl {
     cholmod_start(&common);
     common.print = 0;
     common.error_handler = nullptr;
+    // Supernodal LLᵀ: a simplicial LDLᵀ would factorise an indefinite matrix silently, and a
+    // lost positive definiteness is a failure the step control must see.
+    common.supernodal = CHOLMOD_SUPERNODAL;
   }
   ~Impl() {
     if (factor) cholmod_free_factor(&factor, &common);

@@ -1,0 +1,201 @@
+// Bad input: a clear error naming the file and the JSON path; exit 2 from the CLI.
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "ddaslope/core/errors.hpp"
+#include "ddaslope/io/case_reader.hpp"
+
+using namespace ddaslope;
+using nlohmann::json;
+namespace fs = std::filesystem;
+
+namespace {
+
+// The minimal form of issue #2, which must always be accepted.
+const char* kMinimal = R"({
+  "description": "block sliding on a 30 degree plane",
+  "gravity": [0, -9.81],
+  "materials": {"rock": {"density": 2600, "young_modulus": 5e9, "poisson_ratio": 0.25}},
+  "joints": {"bedding": {"friction_angle": 20, "cohesion": 0, "tensile_strength": 0}},
+  "default_joint": "bedding",
+  "blocks": [
+    {"id": "base", "material": "rock", "fixed": true, "vertices": [[0,0],[20,0],[20,1],[0,1]]},
+    {"id": "slider", "material": "rock", "vertices": [[2,1],[4,1],[4,2],[2,2]]}
+  ],
+  "monitors": [{"id": "m1", "block": "slider", "point": [3, 1.5]}],
+  "analysis": {"duration": 1.0, "time_step": 0.001}
+})";
+
+/// Expects parseCase to fail with this JSON path and a message containing `what`.
+void expectError(const json& doc, const std::string& path, const std::string& what) {
+  try {
+    io::parseCase(doc.dump(), "case.json");
+    ADD_FAILURE() << "accepted bad input; expected an error at " << path;
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.file(), "case.json");
+    EXPECT_EQ(e.jsonPath(), path) << e.what();
+    EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << e.what();
+  }
+}
+
+json minimal() { return json::parse(kMinimal); }
+
+int runCli(const std::string& args, std::string* stderrText) {
+  const fs::path err = fs::temp_directory_path() / ("ddaslope_err_" + std::to_string(::getpid()));
+  const std::string cmd = std::string(DDASLOPE_CLI) + " " + args + " >/dev/null 2>" + err.string();
+  const int status = std::system(cmd.c_str());
+  std::ifstream in(err);
+  stderrText->assign(std::istreambuf_iterator<char>(in), {});
+  fs::remove(err);
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+std::string writeTemp(const std::string& name, const std::string& text) {
+  const fs::path p = fs::temp_directory_path() / (std::to_string(::getpid()) + "_" + name);
+  std::ofstream(p) << text;
+  return p.string();
+}
+
+}  // namespace
+
+TEST(CaseReader, MinimalFormIsAccepted) {
+  const model::Scene s = io::parseCase(kMinimal, "case.json");
+  EXPECT_EQ(s.blocks.size(), 2u);
+  EXPECT_TRUE(s.blocks[0].fixed);
+  EXPECT_NEAR(s.joints[0].frictionAngle, 20 * M_PI / 180, 1e-15);  // degrees in, radians inside
+  EXPECT_EQ(s.settings.mode, model::AnalysisMode::Dynamic);
+}
+
+TEST(CaseReader, InvalidJson) {
+  try {
+    io::parseCase("{\"blocks\": [", "broken.json");
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("broken.json"), std::string::npos);
+    EXPECT_NE(std::string(e.what()).find("invalid JSON"), std::string::npos);
+  }
+}
+
+TEST(CaseReader, MissingFile) {
+  try {
+    io::readCase("/nonexistent/case.json");
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.file(), "/nonexistent/case.json");
+    EXPECT_NE(std::string(e.what()).find("cannot open"), std::string::npos);
+  }
+}
+
+TEST(CaseReader, UnknownKeys) {
+  json d = minimal();
+  d["analysis"]["timestep"] = 0.01;
+  expectError(d, "analysis.timestep", "unknown key 'timestep'");
+  d = minimal();
+  d["blocks"][1]["colour"] = "red";
+  expectError(d, "blocks[1].colour", "unknown key");
+  d = minimal();
+  d["extra"] = 1;
+  expectError(d, "extra", "unknown key");
+}
+
+TEST(CaseReader, BadPolygons) {
+  json d = minimal();
+  d["blocks"][1]["vertices"] = json::parse("[[2,1],[4,2],[4,1],[2,2]]");  // bow tie
+  expectError(d, "blocks[1].vertices", "self-intersecting");
+  d["blocks"][1]["vertices"] = json::parse("[[2,1],[3,1],[4,1]]");  // collinear: zero area
+  expectError(d, "blocks[1].vertices", "");
+  d["blocks"][1]["vertices"] = json::parse("[[2,1],[3,1]]");
+  expectError(d, "blocks[1].vertices", "at least 3 points");
+}
+
+TEST(CaseReader, UnknownReferences) {
+  json d = minimal();
+  d["blocks"][1]["material"] = "granite";
+  expectError(d, "blocks[1].material", "unknown material \"granite\"");
+  d = minimal();
+  d["default_joint"] = "fault";
+  expectError(d, "default_joint", "unknown joint \"fault\"");
+  d = minimal();
+  d["monitors"][0]["block"] = "nowhere";
+  expectError(d, "monitors[0].block", "unknown block");
+}
+
+TEST(CaseReader, OutOfRangeValues) {
+  json d = minimal();
+  d["materials"]["rock"]["density"] = -2600;
+  expectError(d, "materials.rock.density", "found -2600");
+  d = minimal();
+  d["joints"]["bedding"]["friction_angle"] = 90;
+  expectError(d, "joints.bedding.friction_angle", "[0, 90)");
+  d = minimal();
+  d["analysis"]["time_step"] = 0;
+  expectError(d, "analysis.time_step", "> 0");
+  d = minimal();
+  d["analysis"]["time_step"] = -0.001;
+  expectError(d, "analysis.time_step", "> 0");
+  d = minimal();
+  d["materials"]["rock"]["density"] = "heavy";
+  expectError(d, "materials.rock.density", "expected a number, found a string");
+}
+
+TEST(CaseReader, MonitorOutsideItsBlock) {
+  json d = minimal();
+  d["monitors"][0]["point"] = json::parse("[10, 1.5]");
+  expectError(d, "monitors[0].point", "outside block \"slider\"");
+}
+
+TEST(Cli, BadInputExitsWithTwoAndNamesFileAndPath) {
+  json d = minimal();
+  d["materials"]["rock"]["density"] = -1;
+  const std::string path = writeTemp("bad.json", d.dump());
+  std::string err;
+  EXPECT_EQ(runCli("run " + path + " --out /tmp/ddaslope_never", &err), 2);
+  EXPECT_NE(err.find(path), std::string::npos) << err;
+  EXPECT_NE(err.find("materials.rock.density"), std::string::npos) << err;
+  EXPECT_FALSE(fs::exists("/tmp/ddaslope_never/history.csv"));
+  EXPECT_EQ(runCli("check /nonexistent.json", &err), 2);
+  EXPECT_NE(err.find("/nonexistent.json"), std::string::npos) << err;
+  fs::remove(path);
+}
+
+TEST(Cli, MinimalCaseRunsAndWritesHistoryAndSummary) {
+  const std::string path = writeTemp("minimal.json", kMinimal);
+  const fs::path out = fs::temp_directory_path() / ("ddaslope_min_" + std::to_string(::getpid()));
+  std::string err;
+  EXPECT_EQ(runCli("run " + path + " --out " + out.string(), &err), 0) << err;
+  std::ifstream h(out / "history.csv");
+  std::string header;
+  std::getline(h, header);
+  EXPECT_EQ(header, "time,dt,iterations,m1_ux,m1_uy,m1_vx,m1_vy");
+  const json summary = json::parse(std::ifstream(out / "summary.json"));
+  EXPECT_EQ(summary["status"], "completed");
+  EXPECT_EQ(summary["steps"], 1000);
+  fs::remove_all(out);
+  fs::remove(path);
+}
+
+// Non-convergence is reported (exit 3), the partial history is not named like a complete one,
+// and summary.json says what failed.
+TEST(Cli, NonConvergenceExitsWithThree) {
+  json d = json::parse(kMinimal);
+  d["blocks"][1]["velocity"] = json::array({0, -50});  // 5 cm per step: above g2·w0 = 0.05·…
+  d["analysis"]["max_displacement_ratio"] = 1e-4;
+  d["analysis"]["max_step_cuts"] = 0;
+  const std::string path = writeTemp("fails.json", d.dump());
+  const fs::path out = fs::temp_directory_path() / ("ddaslope_nc_" + std::to_string(::getpid()));
+  std::string err;
+  EXPECT_EQ(runCli("run " + path + " --out " + out.string(), &err), 3) << err;
+  EXPECT_NE(err.find("non-convergence"), std::string::npos) << err;
+  EXPECT_FALSE(fs::exists(out / "history.csv"));
+  EXPECT_TRUE(fs::exists(out / "history.partial.csv"));
+  const json summary = json::parse(std::ifstream(out / "summary.json"));
+  EXPECT_EQ(summary["status"], "non_convergence");
+  fs::remove_all(out);
+  fs::remove(path);
+}
