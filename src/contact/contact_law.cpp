@@ -11,26 +11,27 @@ double shearStrength(bool bonded, double normalForce, const ContactStrength& s) 
 }
 
 ContactJudgement judgeVertexContact(ContactState state, int direction, bool bonded,
-                                    const ContactResponse& r, const ContactStrength& s) {
+                                    const ContactResponse& r, const ContactStrength& s,
+                                    const StateTolerance& tol) {
   if (state == ContactState::Open) {
-    if (r.normalForce > 0) return {ContactState::Locked, 0, bonded};
+    if (r.normalForce > tol.force) return {ContactState::Locked, 0, bonded};
     return {ContactState::Open, 0, bonded};
   }
   const double tensionCapacity = bonded ? s.tensileForce : 0.0;
-  if (r.normalForce < -tensionCapacity) return {ContactState::Open, 0, false};
+  if (r.normalForce < -tensionCapacity - tol.force) return {ContactState::Open, 0, false};
   if (state == ContactState::Locked) {
-    if (std::abs(r.lockedShear) > shearStrength(bonded, r.normalForce, s))
+    if (std::abs(r.lockedShear) > shearStrength(bonded, r.normalForce, s) + tol.force)
       return {ContactState::Sliding, r.lockedShear > 0 ? 1 : -1, false};
     return {ContactState::Locked, 0, bonded};
   }
   // Sliding: friction opposite to `direction`; a reversed slip means friction has stopped it.
-  if (r.slip * direction < 0) return {ContactState::Locked, 0, false};
+  if (r.slip * direction < -tol.slip) return {ContactState::Locked, 0, false};
   return {ContactState::Sliding, direction, false};
 }
 
-ContactJudgement judgeHeldContact(ContactState state, bool bonded, const ContactResponse& r) {
-  if (state == ContactState::Open && r.normalForce <= 0) return {ContactState::Open, 0, bonded};
+ContactJudgement judgeHeldContact(ContactState state, bool bonded, const ContactResponse& r,
+                                  const StateTolerance& tol) {
+  if (state == ContactState::Open && r.normalForce <= tol.force) return {ContactState::Open, 0, bonded};
   return {ContactState::Locked, 0, bonded};
 }
-
 }  // namespace ddaslope::contact

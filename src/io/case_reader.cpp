@@ -281,7 +281,8 @@ void readAnalysis(const Reader& r, const json& doc, model::Scene& s) {
   r.onlyKeys(a, p, {"duration", "time_step", "mode", "plane", "penalty", "penalty_factor",
                     "shear_penalty_ratio", "max_displacement_ratio", "open_close_max_iterations",
                     "friction_tolerance", "max_step_cuts", "step_cut_factor", "initial_equilibrium",
-                    "equilibrium_max_steps", "edge_parallel_tolerance", "initial_contact_tolerance"});
+                    "equilibrium_max_steps", "edge_parallel_tolerance", "initial_contact_tolerance",
+                    "contact_state_tolerance"});
   model::AnalysisSettings& st = s.settings;
   st.duration = r.numberIn(r.required(a, p, "duration"), p + ".duration", 0, 1e9, true, false, "a duration > 0 s");
   st.timeStep = r.numberIn(r.required(a, p, "time_step"), p + ".time_step", 0, 1e6, true, false, "a time step > 0 s");
@@ -302,6 +303,8 @@ void readAnalysis(const Reader& r, const json& doc, model::Scene& s) {
   st.equilibriumMaxSteps = r.integerIn(a, p, "equilibrium_max_steps", st.equilibriumMaxSteps, 1, 100000);
   st.edgeParallelToleranceDeg = r.optionalIn(a, p, "edge_parallel_tolerance", st.edgeParallelToleranceDeg, 0, 10,
                                              true, false, "an angle in (0, 10] degrees");
+  st.contactStateTolerance = r.optionalIn(a, p, "contact_state_tolerance", st.contactStateTolerance, 0, 1e-4,
+                                          false, false, "a ratio in [0, 1e-4]");
   st.initialContactTolerance = r.optionalIn(a, p, "initial_contact_tolerance", st.initialContactTolerance, 0,
                                             1e-2, false, false, "a ratio in [0, 0.01]");
 }

@@ -106,7 +106,8 @@ void writeSummary(const fs::path& dir, const model::Scene& scene, const RunOptio
                    {"step_cut_factor", s.stepCutFactor},
                    {"initial_equilibrium", s.initialEquilibrium},
                    {"edge_parallel_tolerance", s.edgeParallelToleranceDeg},
-                   {"initial_contact_tolerance", s.initialContactTolerance}};
+                   {"initial_contact_tolerance", s.initialContactTolerance},
+                   {"contact_state_tolerance", s.contactStateTolerance}};
   const fs::path tmp = dir / "summary.json.tmp";
   {
     std::ofstream out(tmp);

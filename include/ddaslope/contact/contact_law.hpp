@@ -11,6 +11,13 @@ struct ContactStrength {
   double tensileForce = 0;    ///< N/m, acts only while bonded
 };
 
+/// Round-off guard: a state changes only when its criterion is exceeded by this margin, so
+/// contacts carrying no load (N at round-off level) do not flip state on noise every iteration.
+struct StateTolerance {
+  double force = 0;  ///< N/m (penalty × displacement tolerance)
+  double slip = 0;   ///< m
+};
+
 /// What the latest solve says about a contact.
 struct ContactResponse {
   double normalForce = 0;   ///< p·penetration (N/m), compression > 0
@@ -34,10 +41,12 @@ double shearStrength(bool bonded, double normalForce, const ContactStrength& s);
 /// strength; sliding → locked when the slip reverses against the friction. Sliding or opening
 /// breaks the bond for good.
 ContactJudgement judgeVertexContact(ContactState state, int direction, bool bonded,
-                                    const ContactResponse& r, const ContactStrength& s);
+                                    const ContactResponse& r, const ContactStrength& s,
+                                    const StateTolerance& tol = {});
 
 /// Rule used while bringing the scene to equilibrium: strengths held, so a closed contact
 /// stays locked whatever its forces; an open one closes (locked) when the vertex penetrates.
-ContactJudgement judgeHeldContact(ContactState state, bool bonded, const ContactResponse& r);
+ContactJudgement judgeHeldContact(ContactState state, bool bonded, const ContactResponse& r,
+                                  const StateTolerance& tol = {});
 
 }  // namespace ddaslope::contact

@@ -33,6 +33,10 @@ struct AnalysisSettings {
   int openCloseMaxIterations = 30;
   /// Relative change of friction forces below which a sliding contact counts as converged.
   double frictionTolerance = 1e-4;
+  /// Round-off guard on contact states, as a fraction of w0: a contact changes state only when
+  /// its criterion is passed by this displacement (or penalty × it in force). Larger: fewer
+  /// open-close iterations on unloaded contacts, a slightly blunter strength threshold.
+  double contactStateTolerance = 1e-11;
   /// Successive Δt cuts allowed for one step before the analysis reports non-convergence.
   int maxStepCuts = 12;
   /// Factor applied to Δt when a step is cut (0 < f < 1).

@@ -35,7 +35,7 @@ struct RunStatistics {
   int cuts = 0;
   long iterations = 0;
   int equilibriumSteps = 0;
-  double equilibriumResidual = 0;  ///< last equilibrium step's largest vertex move / w0
+  double equilibriumResidual = 0;  ///< last equilibrium step's implied acceleration 2|D|/Δt², in g
   bool equilibriumConverged = true;  ///< stage 1 (contacts held) reached rest
   bool relaxationConverged = true;   ///< stage 2 (real contact law) reached rest and was kept
   int symbolicAnalyses = 0;
@@ -80,7 +80,8 @@ class Simulation {
 
   void detectContacts(bool initial);
   void markActiveBlocks(const std::vector<bool>& held);
-  /// Static steps in `regime` until the largest vertex move per step is below 1e-10 w0.
+  /// Static steps in `regime` until at rest (implied acceleration < 1e-6 g); false if the scene
+  /// travels more than g2·w0 (failing) or the step budget runs out.
   bool settle(Regime regime, double& dt);
   Attempt tryStep(double dt, Regime regime);
   void assembleBlockTerms(double dt, Regime regime, std::vector<Mat6>& k, std::vector<Vec6>& f) const;
