@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <sstream>
 #include <string>
@@ -73,9 +74,11 @@ int main(int argc, char** argv) {
     }
   }
   std::printf("blocks,contacts,unknowns,equilibrium_ms,step_ms,broad_phase_ms,contacts_ms,assembly_ms,"
-              "factorisation_ms,solve_ms,state_checks_ms,update_ms,iterations_per_step,cuts\n");
+              "factorisation_ms,solve_ms,state_checks_ms,update_ms,iterations_per_step,factorisations_per_step,"
+              "cg_iterations_per_step,cuts\n");
   for (int n : sizes) {
     solver::Simulation sim(makeWall(n));
+    if (std::getenv("DDASLOPE_BENCH_VERBOSE")) sim.setLog([](const std::string& l) { std::fprintf(stderr, "%s\n", l.c_str()); });
     auto t0 = std::chrono::steady_clock::now();
     sim.bringToEquilibrium();
     const double eq = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -85,12 +88,14 @@ int main(int argc, char** argv) {
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     const solver::RunStatistics& a = sim.statistics();
     const auto d = [&](double solver::PhaseTimes::*f) { return ms(a.times.*f - before.times.*f, steps); };
-    std::printf("%d,%zu,%d,%.1f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.2f,%d\n", n,
+    std::printf("%d,%zu,%d,%.1f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.2f,%.2f,%.2f,%d\n", n,
                 sim.contacts().contacts().size(), 6 * n, 1e3 * eq, ms(wall, steps),
                 d(&solver::PhaseTimes::broadPhase), d(&solver::PhaseTimes::contacts),
                 d(&solver::PhaseTimes::assembly), d(&solver::PhaseTimes::factorisation),
                 d(&solver::PhaseTimes::solve), d(&solver::PhaseTimes::stateChecks),
                 d(&solver::PhaseTimes::update), double(a.iterations - before.iterations) / steps,
+                double(a.factorisations - before.factorisations) / steps,
+                double(a.cgIterations - before.cgIterations) / steps,
                 a.cuts - before.cuts);
     std::fflush(stdout);
   }

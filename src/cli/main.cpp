@@ -27,13 +27,15 @@ void applyOverrides(ddaslope::model::Scene& scene, const Overrides& o) {
   if (o.duration > 0) scene.settings.duration = o.duration;
 }
 
-int runCommand(const std::string& casePath, const std::string& outDir, const Overrides& o, bool quiet) {
+int runCommand(const std::string& casePath, const std::string& outDir, const Overrides& o, bool quiet,
+               bool verbose) {
   ddaslope::model::Scene scene = ddaslope::io::readCase(casePath);
   applyOverrides(scene, o);
   ddaslope::io::RunOptions opt;
   opt.outputDir = outDir;
   opt.casePath = casePath;
-  opt.progress = !quiet && isatty(STDERR_FILENO);
+  opt.progress = !quiet && !verbose && isatty(STDERR_FILENO);
+  opt.verbose = verbose;
   const ddaslope::io::RunOutcome r = ddaslope::io::runScene(scene, opt);
   if (!r.completed) {
     std::cerr << "ddaslope: " << casePath << ": non-convergence: " << r.failure << "\n"
@@ -69,7 +71,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   std::string casePath, outDir = "out";
   Overrides overrides;
-  bool quiet = false;
+  bool quiet = false, verbose = false;
 
   CLI::App* run = app.add_subcommand("run", "run a case and write history.csv and summary.json");
   run->add_option("case", casePath, "case file (JSON)")->required();
@@ -77,6 +79,7 @@ int main(int argc, char** argv) {
   run->add_option("--time-step", overrides.timeStep, "override analysis.time_step (s)");
   run->add_option("--duration", overrides.duration, "override analysis.duration (s)");
   run->add_flag("--quiet", quiet, "no progress on stderr");
+  run->add_flag("--verbose", verbose, "log equilibrium steps and time-step cuts on stderr");
 
   CLI::App* check = app.add_subcommand("check", "validate a case file without running it");
   check->add_option("case", casePath, "case file (JSON)")->required();
@@ -87,7 +90,7 @@ int main(int argc, char** argv) {
     return app.exit(e) == 0 ? kExitOk : kExitBadInput;
   }
   try {
-    if (run->parsed()) return runCommand(casePath, outDir, overrides, quiet);
+    if (run->parsed()) return runCommand(casePath, outDir, overrides, quiet, verbose);
     if (check->parsed()) return checkCommand(casePath);
   } catch (const ddaslope::InputError& e) {
     std::cerr << "ddaslope: error: " << e.what() << "\n";

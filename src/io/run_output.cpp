@@ -68,6 +68,10 @@ void writeSummary(const fs::path& dir, const model::Scene& scene, const RunOptio
   j["steps"] = st.steps;
   j["time_step_cuts"] = st.cuts;
   j["open_close_iterations"] = st.iterations;
+  j["steps_with_frozen_contacts"] = st.frozenSteps;
+  j["factorisations"] = st.factorisations;
+  j["linear_solves"] = st.linearSolves;
+  j["cg_iterations"] = st.cgIterations;
   j["wall_time_s"] = o.wallTime;
   j["equilibrium"] = {{"steps", st.equilibriumSteps},
                       {"residual", st.equilibriumResidual},
@@ -125,6 +129,7 @@ RunOutcome runScene(const model::Scene& scene, const RunOptions& opt) {
   std::optional<HistoryWriter> history;
   if (opt.outputDir) history.emplace(*opt.outputDir, o.trace.monitorIds);
   solver::Simulation sim(scene);
+  if (opt.verbose) sim.setLog([](const std::string& line) { std::fprintf(stderr, "  %s\n", line.c_str()); });
   const double duration = scene.settings.duration;
   double lastShown = -1;
   const auto observe = [&](const solver::Simulation& s, const solver::StepRecord& r) {

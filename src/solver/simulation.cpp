@@ -139,7 +139,7 @@ void Simulation::assembleBlockTerms(double dt, Regime regime, std::vector<Mat6>&
   }
 }
 
-Simulation::Attempt Simulation::tryStep(double dt, Regime regime) {
+Simulation::Attempt Simulation::tryStep(double dt, Regime regime, bool freezeCycling) {
   Stopwatch sw;
   Attempt a;
   a.contacts = contacts_.contacts();
@@ -182,6 +182,11 @@ Simulation::Attempt Simulation::tryStep(double dt, Regime regime) {
     return d;
   };
 
+  // Last resort against cycling (load passed back and forth between coupled contacts): when
+  // allowed, a contact that changed state kFlipsBeforeFreeze times in this step keeps its state
+  // for the rest of it; an open one may still close. Steps accepted so are counted.
+  constexpr int kFlipsBeforeFreeze = 4;
+  std::vector<int> flips(a.contacts.size(), 0);
   const double noise = scene_.settings.contactStateTolerance * w0_;
   const contact::StateTolerance stateTolerance{penalty_ * noise, noise};
   bool stiffnessChanged = true;
@@ -212,14 +217,17 @@ Simulation::Attempt Simulation::tryStep(double dt, Regime regime) {
       }
     }
     stats_.times.assembly += sw.lap();
-    if (stiffnessChanged && nActive_ > 0 && !cholesky_.factorise(matrix_)) {
-      stats_.times.factorisation += sw.lap();
+    if (stiffnessChanged) linearSolver_.matrixChanged();
+    const long factorisationsBefore = linearSolver_.stats().factorisations;
+    const bool solved = nActive_ == 0 || linearSolver_.solve(matrix_, rhs, a.d);
+    // Time in a refactorising solve counts as factorisation, the rest as solve.
+    (linearSolver_.stats().factorisations > factorisationsBefore ? stats_.times.factorisation
+                                                                 : stats_.times.solve) += sw.lap();
+    if (!solved) {
       a.failure = "global matrix not positive definite";
       return a;
     }
-    stats_.times.factorisation += sw.lap();
-    if (nActive_ > 0) cholesky_.solve(rhs, a.d); else a.d.resize(0);
-    stats_.times.solve += sw.lap();
+    if (nActive_ == 0) a.d.resize(0);
     if (!a.d.allFinite()) {
       a.failure = "solution not finite";
       return a;
@@ -235,10 +243,19 @@ Simulation::Attempt Simulation::tryStep(double dt, Regime regime) {
       r.normalForce = penalty_ * kin[q].penetration(d);
       r.lockedShear = ps * kin[q].shearFromAnchor(d);
       r.slip = kin[q].slip(d);
-      const contact::ContactJudgement j =
+      contact::ContactJudgement j =
           regime == Regime::HeldEquilibrium
               ? contact::judgeHeldContact(c.state, c.bonded, r, stateTolerance)
               : contact::judgeVertexContact(c.state, c.slideDirection, c.bonded, r, strengthOf(c), stateTolerance);
+      if (j.state != c.state || j.direction != c.slideDirection) {
+        const bool closing = c.state == ContactState::Open;
+        if (freezeCycling && flips[q] >= kFlipsBeforeFreeze && !closing) {
+          j = {c.state, c.slideDirection, j.bonded && c.bonded};
+          a.frozeContacts = true;
+        } else {
+          ++flips[q];
+        }
+      }
       if (c.state == ContactState::Sliding && j.state == ContactState::Sliding)
         frictionDrift = std::max(frictionDrift, std::abs(r.normalForce - c.normalForce));
       if (j.state != ContactState::Open) forceScale = std::max(forceScale, std::abs(r.normalForce));
@@ -310,26 +327,30 @@ void Simulation::commit(const Attempt& a, double dt) {
     blk.applyDisplacement(d);
   }
   contacts_.contacts() = a.contacts;
+  stats_.symbolicAnalyses = linearSolver_.symbolicAnalyses();
+  stats_.factorisations = linearSolver_.stats().factorisations;
+  stats_.linearSolves = linearSolver_.stats().solves;
+  stats_.cgIterations = linearSolver_.stats().cgIterations;
   for (const Contact& c : a.contacts)
     if (c.closed()) stats_.maxPenetration = std::max(stats_.maxPenetration, c.normalForce / penalty_);
   stats_.times.update += sw.lap();
 }
 
-bool Simulation::settle(Regime regime, double& dt) {
+bool Simulation::settle(Regime regime, double& dt, double largestDt) {
   // At rest when the acceleration a static step implies, 2|D|/Δt², is below 1e-6 g: a measure
   // of the out-of-balance force that does not depend on the Δt the step control ended up with.
   const double restAcceleration = 1e-6 * std::max(scene_.gravity.norm(), 1e-3);
   // A scene that moves this far while settling is failing, not settling.
   const double failingTravel = scene_.settings.maxDisplacementRatio * w0_;
   double travel = 0;
-  const double largestDt = dt;
   for (int s = 0; s < scene_.settings.equilibriumMaxSteps; ++s) {
     detectContacts(false);
-    Attempt a = tryStep(dt, regime);
+    Attempt a = tryStep(dt, regime, true);
     bool cut = false;
     for (int k = 0; !a.converged && k < scene_.settings.maxStepCuts; ++k) {
+      if (log_) log_("equilibrium Δt " + std::to_string(dt) + " s cut: " + a.failure);
       dt *= scene_.settings.stepCutFactor;
-      a = tryStep(dt, regime);
+      a = tryStep(dt, regime, true);
       cut = true;
     }
     if (!a.converged) return false;
@@ -341,6 +362,13 @@ bool Simulation::settle(Regime regime, double& dt) {
         worst = std::max(worst, scene_.blocks[b].maxVertexDisplacement(a.d.segment<6>(6 * active_[b])));
     stats_.equilibriumResidual = 2 * worst / (dt * dt) / std::max(scene_.gravity.norm(), 1e-3);
     travel += worst;
+    if (log_) {
+      std::ostringstream m;
+      m << (regime == Regime::HeldEquilibrium ? "equilibrium (contacts held)" : "equilibrium (relaxation)")
+        << " step " << s + 1 << ": Δt " << dt << " s, " << a.iterations << " open-close iterations, "
+        << "out-of-balance " << stats_.equilibriumResidual << " g, travel " << travel << " m";
+      log_(m.str());
+    }
     if (2 * worst / (dt * dt) < restAcceleration) return true;
     if (travel > failingTravel) return false;
     // A cut Δt makes the static step a slow dynamic relaxation: grow it back once it passes.
@@ -386,10 +414,13 @@ void Simulation::bringToEquilibrium() {
     for (const model::Block& b : scene_.blocks)
       if (!b.fixed) maxMass = std::max(maxMass, scene_.materials[b.material].density * b.moments.area);
     double dt = std::sqrt(2e8 * maxMass / penalty_);
-    stats_.equilibriumConverged = settle(Regime::HeldEquilibrium, dt);
+    stats_.equilibriumConverged = settle(Regime::HeldEquilibrium, dt, dt);
     const model::Scene heldScene = scene_;
     const contact::ContactSet heldContacts = contacts_;
-    stats_.relaxationConverged = settle(Regime::Relaxation, dt);
+    // Releasing every held contact at once in one huge static step rarely converges: start the
+    // relaxation at the analysis Δt and let it grow.
+    double relaxDt = std::min(dt, scene_.settings.timeStep);
+    stats_.relaxationConverged = settle(Regime::Relaxation, relaxDt, dt);
     if (!stats_.relaxationConverged) {
       scene_ = heldScene;
       contacts_ = heldContacts;
@@ -411,18 +442,20 @@ StepRecord Simulation::advance() {
   const double first = dt;
   std::string failure;
   for (int cuts = 0; cuts <= scene_.settings.maxStepCuts; ++cuts) {
-    Attempt a = tryStep(dt, Regime::Analysis);
+    Attempt a = tryStep(dt, Regime::Analysis, cuts >= 2);
     if (a.converged) {
+      if (a.frozeContacts) ++stats_.frozenSteps;
       commit(a, dt);
       time_ = (dt == remaining) ? scene_.settings.duration : time_ + dt;
       stepSize_.accepted(dt, cuts > 0);
       ++stats_.steps;
       stats_.cuts += cuts;
       stats_.iterations += a.iterations;
-      stats_.symbolicAnalyses = cholesky_.symbolicAnalyses();
+
       return {time_, dt, a.iterations, cuts};
     }
     failure = a.failure;
+    if (log_) log_("t = " + std::to_string(time_) + " s: Δt " + std::to_string(dt) + " s cut: " + a.failure);
     dt = stepSize_.cut(dt);
   }
   std::ostringstream msg;

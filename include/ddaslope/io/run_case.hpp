@@ -41,6 +41,7 @@ struct RunOptions {
   std::optional<std::string> outputDir;  ///< write history.csv and summary.json here
   std::string casePath;                  ///< named in summary.json
   bool progress = false;                 ///< progress line on stderr
+  bool verbose = false;                  ///< equilibrium steps and Δt cuts on stderr
 };
 
 /// Runs to the scene's duration. Non-convergence is returned, not thrown; the partial history is

@@ -12,7 +12,7 @@
 #include "ddaslope/contact/contact_law.hpp"
 #include "ddaslope/contact/contact_set.hpp"
 #include "ddaslope/model/scene.hpp"
-#include "ddaslope/solver/sparse_cholesky.hpp"
+#include "ddaslope/solver/linear_solver.hpp"
 #include "ddaslope/solver/time_step.hpp"
 
 namespace ddaslope::solver {
@@ -34,11 +34,15 @@ struct RunStatistics {
   int steps = 0;
   int cuts = 0;
   long iterations = 0;
+  int frozenSteps = 0;             ///< steps accepted with cycling contacts frozen (after 2 cuts)
   int equilibriumSteps = 0;
   double equilibriumResidual = 0;  ///< last equilibrium step's implied acceleration 2|D|/Δt², in g
   bool equilibriumConverged = true;  ///< stage 1 (contacts held) reached rest
   bool relaxationConverged = true;   ///< stage 2 (real contact law) reached rest and was kept
   int symbolicAnalyses = 0;
+  long factorisations = 0;         ///< numeric Cholesky factorisations
+  long linearSolves = 0;           ///< systems solved (one per open-close iteration)
+  long cgIterations = 0;           ///< conjugate-gradient iterations on a reused factor
   int maxContacts = 0;
   double maxPenetration = 0;       ///< largest penetration of a closed contact (m)
   PhaseTimes times;
@@ -67,6 +71,8 @@ class Simulation {
   const contact::ContactSet& contacts() const { return contacts_; }
   /// Velocity of monitor m's point (m/s).
   Vec2 monitorVelocity(int m) const;
+  /// Receives one line per equilibrium step and per Δt cut (diagnostics; off by default).
+  void setLog(std::function<void(const std::string&)> log) { log_ = std::move(log); }
 
  private:
   enum class Regime { Analysis, HeldEquilibrium, Relaxation };
@@ -74,6 +80,7 @@ class Simulation {
     bool converged = false;
     std::string failure;
     int iterations = 0;
+    bool frozeContacts = false;  ///< converged only because cycling contacts were frozen
     Eigen::VectorXd d;  ///< solution, 6 per active block
     std::vector<contact::Contact> contacts;
   };
@@ -82,8 +89,8 @@ class Simulation {
   void markActiveBlocks(const std::vector<bool>& held);
   /// Static steps in `regime` until at rest (implied acceleration < 1e-6 g); false if the scene
   /// travels more than g2·w0 (failing) or the step budget runs out.
-  bool settle(Regime regime, double& dt);
-  Attempt tryStep(double dt, Regime regime);
+  bool settle(Regime regime, double& dt, double largestDt);
+  Attempt tryStep(double dt, Regime regime, bool freezeCycling);
   void assembleBlockTerms(double dt, Regime regime, std::vector<Mat6>& k, std::vector<Vec6>& f) const;
   void commit(const Attempt& a, double dt);
   contact::ContactStrength strengthOf(const contact::Contact& c) const;
@@ -99,10 +106,11 @@ class Simulation {
   contact::ContactSet contacts_;
   std::vector<assembly::ContactKinematics> kinematics_;
   assembly::BlockSparseMatrix matrix_;
-  SparseCholesky cholesky_;
+  LinearSolver linearSolver_;
   StepSizeController stepSize_;
   std::vector<Eigen::Matrix3d> elasticity_;
   RunStatistics stats_;
+  std::function<void(const std::string&)> log_;
 };
 
 /// Runs a scene from equilibrium to its duration; `observe` sees t = 0 and every step.

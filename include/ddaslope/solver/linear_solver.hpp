@@ -1,0 +1,50 @@
+#pragma once
+// Solves the sequence of slowly changing systems K x = b of a run. The last Cholesky factor
+// preconditions conjugate gradients; K is refactorised only when CG is slow, the pattern
+// changed, or K lost positive definiteness. Between steps K changes by geometry (small) and
+// within the open-close loop by a few contact springs (low rank): CG with the old factor then
+// converges in a handful of iterations, each far cheaper than a factorisation.
+#include <Eigen/Core>
+
+#include "ddaslope/assembly/block_sparse_matrix.hpp"
+#include "ddaslope/solver/sparse_cholesky.hpp"
+
+namespace ddaslope::solver {
+
+struct LinearSolverSettings {
+  /// Relative residual ‖b − Kx‖/‖b‖ at which CG stops. Smaller: closer to a direct solve.
+  double tolerance = 1e-12;
+  /// CG iterations tried with a stale factor before refactorising.
+  int maxIterations = 8;
+};
+
+struct LinearSolverStats {
+  long factorisations = 0;
+  long solves = 0;
+  long cgIterations = 0;
+};
+
+class LinearSolver {
+ public:
+  explicit LinearSolver(LinearSolverSettings s = {}) : settings_(s) {}
+  /// K changed since the last call (values; the pattern is tracked by its version).
+  void matrixChanged() { factorCurrent_ = false; }
+  /// Returns false if K is not positive definite.
+  bool solve(const assembly::BlockSparseMatrix& k, const Eigen::VectorXd& b, Eigen::VectorXd& x);
+  const LinearSolverStats& stats() const { return stats_; }
+  int symbolicAnalyses() const { return cholesky_.symbolicAnalyses(); }
+
+ private:
+  bool refactorise(const assembly::BlockSparseMatrix& k);
+  /// Preconditioned CG from the factor's solution; false if it did not reach the tolerance.
+  bool conjugateGradients(const assembly::BlockSparseMatrix& k, const Eigen::VectorXd& b, Eigen::VectorXd& x);
+
+  LinearSolverSettings settings_;
+  SparseCholesky cholesky_;
+  bool haveFactor_ = false;
+  bool factorCurrent_ = false;
+  long patternVersion_ = -1;
+  LinearSolverStats stats_;
+};
+
+}  // namespace ddaslope::solver

@@ -1,0 +1,58 @@
+#include "ddaslope/solver/linear_solver.hpp"
+
+namespace ddaslope::solver {
+
+bool LinearSolver::refactorise(const assembly::BlockSparseMatrix& k) {
+  ++stats_.factorisations;
+  haveFactor_ = cholesky_.factorise(k);
+  factorCurrent_ = haveFactor_;
+  patternVersion_ = k.patternVersion();
+  return haveFactor_;
+}
+
+bool LinearSolver::conjugateGradients(const assembly::BlockSparseMatrix& k, const Eigen::VectorXd& b,
+                                      Eigen::VectorXd& x) {
+  const double target = settings_.tolerance * b.norm();
+  cholesky_.solve(b, x);
+  Eigen::VectorXd r = b - k.multiply(x);
+  if (r.norm() <= target) return true;
+  Eigen::VectorXd z, p, q;
+  cholesky_.solve(r, z);
+  p = z;
+  double rz = r.dot(z);
+  for (int it = 0; it < settings_.maxIterations; ++it) {
+    ++stats_.cgIterations;
+    q = k.multiply(p);
+    const double pq = p.dot(q);
+    if (!(pq > 0)) return false;  // K no longer positive definite along p: refactorise
+    const double alpha = rz / pq;
+    x += alpha * p;
+    r -= alpha * q;
+    if (r.norm() <= target) return true;
+    cholesky_.solve(r, z);
+    const double rzNext = r.dot(z);
+    p = z + (rzNext / rz) * p;
+    rz = rzNext;
+  }
+  return false;
+}
+
+bool LinearSolver::solve(const assembly::BlockSparseMatrix& k, const Eigen::VectorXd& b, Eigen::VectorXd& x) {
+  ++stats_.solves;
+  if (b.squaredNorm() == 0) {
+    x = Eigen::VectorXd::Zero(b.size());
+    return true;
+  }
+  if (haveFactor_ && patternVersion_ == k.patternVersion()) {
+    if (factorCurrent_) {
+      cholesky_.solve(b, x);
+      return true;
+    }
+    if (conjugateGradients(k, b, x)) return true;
+  }
+  if (!refactorise(k)) return false;
+  cholesky_.solve(b, x);
+  return true;
+}
+
+}  // namespace ddaslope::solver
