@@ -76,6 +76,7 @@ int main(int argc, char** argv) {
   std::printf("blocks,contacts,unknowns,equilibrium_ms,step_ms,broad_phase_ms,contacts_ms,assembly_ms,"
               "factorisation_ms,solve_ms,state_checks_ms,update_ms,iterations_per_step,factorisations_per_step,"
               "cg_iterations_per_step,cuts\n");
+  std::vector<std::pair<int, double>> perStep;
   for (int n : sizes) {
     solver::Simulation sim(makeWall(n));
     if (std::getenv("DDASLOPE_BENCH_VERBOSE")) sim.setLog([](const std::string& l) { std::fprintf(stderr, "%s\n", l.c_str()); });
@@ -98,6 +99,13 @@ int main(int argc, char** argv) {
                 double(a.cgIterations - before.cgIterations) / steps,
                 a.cuts - before.cuts);
     std::fflush(stdout);
+    perStep.emplace_back(n, wall / steps);
   }
+  // Growth of the step cost: exponent k in t ∝ N^k between consecutive sizes (on stderr, so
+  // stdout stays plain CSV).
+  for (size_t i = 1; i < perStep.size(); ++i)
+    std::fprintf(stderr, "growth %d -> %d blocks: N^%.2f\n", perStep[i - 1].first, perStep[i].first,
+                 std::log(perStep[i].second / perStep[i - 1].second) /
+                     std::log(double(perStep[i].first) / perStep[i - 1].first));
   return 0;
 }

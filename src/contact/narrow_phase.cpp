@@ -51,14 +51,34 @@ ContactCandidate makeCandidate(const Poly& V, int v, const Poly& E, int e, doubl
   return c;
 }
 
-void vertexOnEdges(const Poly& V, const Poly& E, const NarrowPhaseSettings& s,
+/// The region where the two blocks can touch: their boxes' overlap grown by the search distance.
+/// Only vertices inside it and edges crossing it need the exact tests.
+struct Region {
+  geometry::Aabb box;
+  bool contains(const Vec2& p) const {
+    return p.x() >= box.lo.x() && p.x() <= box.hi.x() && p.y() >= box.lo.y() && p.y() <= box.hi.y();
+  }
+  bool meets(const Vec2& a, const Vec2& b) const {
+    return std::max(a.x(), b.x()) >= box.lo.x() && std::min(a.x(), b.x()) <= box.hi.x() &&
+           std::max(a.y(), b.y()) >= box.lo.y() && std::min(a.y(), b.y()) <= box.hi.y();
+  }
+};
+
+Region contactRegion(const std::vector<Vec2>& pa, const std::vector<Vec2>& pb, double d) {
+  const geometry::Aabb a = geometry::boundingBox(pa), b = geometry::boundingBox(pb);
+  const Vec2 margin(d, d);
+  return {{a.lo.cwiseMax(b.lo) - margin, a.hi.cwiseMin(b.hi) + margin}};
+}
+
+void vertexOnEdges(const Poly& V, const Poly& E, const Region& region, const NarrowPhaseSettings& s,
                    std::vector<ContactCandidate>& out) {
   const double minClearance = -std::sin(s.parallelTolerance);
   for (int v = 0; v < V.n(); ++v) {
-    if (!V.convex(v)) continue;  // a reflex vertex cannot touch an edge from outside
     const Vec2& p = V.at(v);
+    if (!region.contains(p) || !V.convex(v)) continue;  // a reflex vertex cannot touch an edge from outside
     for (int e = 0; e < E.n(); ++e) {
       const Vec2 a = E.at(e), b = E.at(e + 1);
+      if (!region.meets(a, b)) continue;
       double t;
       if (geometry::distanceToSegment(p, a, b, &t) > s.searchDistance) continue;
       // Near an end of the edge: the vertex-to-vertex rule decides.
@@ -79,11 +99,12 @@ struct Option {
   double clearance;
 };
 
-void vertexToVertex(const Poly& A, const Poly& B, const NarrowPhaseSettings& s,
+void vertexToVertex(const Poly& A, const Poly& B, const Region& region, const NarrowPhaseSettings& s,
                     const std::function<bool(const ContactKey&)>& known,
                     std::vector<ContactCandidate>& out) {
   const double minClearance = -std::sin(s.parallelTolerance);
   for (int p = 0; p < A.n(); ++p) {
+    if (!region.contains(A.at(p))) continue;
     for (int q = 0; q < B.n(); ++q) {
       if ((A.at(p) - B.at(q)).norm() >= s.searchDistance) continue;
       const bool pConvex = A.convex(p), qConvex = B.convex(q);
@@ -132,9 +153,11 @@ void findContacts(int a, const std::vector<Vec2>& pa, int b, const std::vector<V
                   const NarrowPhaseSettings& s, const std::function<bool(const ContactKey&)>& known,
                   std::vector<ContactCandidate>& out) {
   const Poly A{a, pa}, B{b, pb};
-  vertexOnEdges(A, B, s, out);
-  vertexOnEdges(B, A, s, out);
-  vertexToVertex(A, B, s, known, out);
+  const Region region = contactRegion(pa, pb, s.searchDistance);
+  if (region.box.lo.x() > region.box.hi.x() || region.box.lo.y() > region.box.hi.y()) return;
+  vertexOnEdges(A, B, region, s, out);
+  vertexOnEdges(B, A, region, s, out);
+  vertexToVertex(A, B, region, s, known, out);
 }
 
 }  // namespace ddaslope::contact
