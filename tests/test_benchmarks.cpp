@@ -10,21 +10,9 @@ using namespace ddaslope;
 using scenes::InclineSpec;
 
 namespace {
-
-io::Trace run(const model::Scene& s) {
-  const io::RunOutcome o = io::runScene(s, {});
-  EXPECT_TRUE(o.completed) << o.failure;
-  return o.trace;
-}
-
-double at(const io::Trace& t, const std::string& monitor, const std::string& quantity, std::optional<double> time) {
-  model::Expectation e;
-  e.monitor = monitor;
-  e.quantity = quantity;
-  e.time = time;
-  return io::measure(t, e);
-}
-
+using scenes::measureAt;
+const auto run = scenes::runTrace;
+const auto at = scenes::measureAt;
 }  // namespace
 
 // A1: free fall, y(t) = g t²/2; Newmark β = 1/2, γ = 1 integrates a constant acceleration

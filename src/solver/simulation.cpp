@@ -379,15 +379,16 @@ bool Simulation::settle(Regime regime, double& dt, double largestDt) {
 
 void Simulation::bringToEquilibrium() {
   if (!scene_.settings.initialEquilibrium) return;
-  // Only blocks resting on a fixed block through closed contacts take part; others are held.
+  // Only blocks supported (a fixed block or a fixed point, reached through closed contacts)
+  // take part; others are held.
   const size_t n = scene_.blocks.size();
   std::vector<bool> reached(n, false);
   std::vector<int> frontier;
   for (size_t b = 0; b < n; ++b)
-    if (scene_.blocks[b].fixed) {
-      reached[b] = true;
-      frontier.push_back(static_cast<int>(b));
-    }
+    if (scene_.blocks[b].fixed) reached[b] = true;
+  for (const model::FixedPoint& f : scene_.fixedPoints) reached[f.point.block] = true;
+  for (size_t b = 0; b < n; ++b)
+    if (reached[b]) frontier.push_back(static_cast<int>(b));
   while (!frontier.empty()) {
     const int b = frontier.back();
     frontier.pop_back();
