@@ -11,8 +11,8 @@ bool ContactSet::contains(const ContactKey& key) const {
   return it != contacts_.end() && it->key() == key;
 }
 
-void ContactSet::update(std::vector<ContactCandidate> candidates,
-                        const std::vector<int>& jointOfCandidate) {
+void ContactSet::update(std::vector<ContactCandidate> candidates, const std::vector<int>& jointOfCandidate,
+                        const std::vector<char>& bondedIfNew) {
   std::vector<size_t> order(candidates.size());
   for (size_t i = 0; i < order.size(); ++i) order[i] = i;
   std::sort(order.begin(), order.end(),
@@ -25,6 +25,7 @@ void ContactSet::update(std::vector<ContactCandidate> candidates,
     Contact c;
     c.geometry = cand;
     c.joint = jointOfCandidate[idx];
+    c.bonded = bondedIfNew[idx];
     const auto same = std::lower_bound(contacts_.begin(), contacts_.end(), cand.key, keyLess);
     if (same != contacts_.end() && same->key() == cand.key) {
       const ContactCandidate g = c.geometry;

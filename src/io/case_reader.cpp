@@ -143,7 +143,7 @@ void readJoints(const Reader& r, const json& doc, model::Scene& s, std::map<std:
   if (joints.empty()) r.fail("joints", "expected at least one joint");
   for (const auto& [name, jn] : joints.items()) {
     const std::string p = "joints." + name;
-    r.onlyKeys(jn, p, {"friction_angle", "cohesion", "tensile_strength"});
+    r.onlyKeys(jn, p, {"friction_angle", "cohesion", "tensile_strength", "bond"});
     model::JointProperties jp;
     jp.name = name;
     jp.frictionAngle = degToRad(r.numberIn(r.required(jn, p, "friction_angle"), p + ".friction_angle",
@@ -151,6 +151,9 @@ void readJoints(const Reader& r, const json& doc, model::Scene& s, std::map<std:
     jp.cohesion = r.optionalIn(jn, p, "cohesion", 0, 0, 1e12, false, false, "a cohesion ≥ 0 Pa");
     jp.tensileStrength = r.optionalIn(jn, p, "tensile_strength", 0, 0, 1e12, false, false,
                                       "a tensile strength ≥ 0 Pa");
+    const std::string bond = r.choice(jn, p, "bond", "initial", {"initial", "none", "always"});
+    jp.bond = bond == "none" ? model::BondPolicy::None
+                             : (bond == "always" ? model::BondPolicy::Always : model::BondPolicy::Initial);
     ids[name] = static_cast<int>(s.joints.size());
     s.joints.push_back(jp);
   }
@@ -282,7 +285,7 @@ void readAnalysis(const Reader& r, const json& doc, model::Scene& s) {
                     "shear_penalty_ratio", "max_displacement_ratio", "open_close_max_iterations",
                     "friction_tolerance", "max_step_cuts", "step_cut_factor", "initial_equilibrium",
                     "equilibrium_max_steps", "edge_parallel_tolerance", "initial_contact_tolerance",
-                    "contact_state_tolerance"});
+                    "contact_state_tolerance", "contact_treatment"});
   model::AnalysisSettings& st = s.settings;
   st.duration = r.numberIn(r.required(a, p, "duration"), p + ".duration", 0, 1e9, true, false, "a duration > 0 s");
   st.timeStep = r.numberIn(r.required(a, p, "time_step"), p + ".time_step", 0, 1e6, true, false, "a time step > 0 s");
@@ -290,6 +293,9 @@ void readAnalysis(const Reader& r, const json& doc, model::Scene& s) {
                                                                                  : model::AnalysisMode::Dynamic;
   st.plane = r.choice(a, p, "plane", "strain", {"strain", "stress"}) == "stress" ? model::PlaneMode::Stress
                                                                               : model::PlaneMode::Strain;
+  st.contactTreatment = r.choice(a, p, "contact_treatment", "edge", {"edge", "vertex"}) == "vertex"
+                            ? model::ContactTreatment::Vertex
+                            : model::ContactTreatment::Edge;
   st.penalty = r.optionalIn(a, p, "penalty", 0, 0, 1e18, false, false, "a penalty ≥ 0 N/m (0: automatic)");
   st.penaltyFactor = r.optionalIn(a, p, "penalty_factor", st.penaltyFactor, 0, 1e6, true, false, "a factor > 0");
   st.shearPenaltyRatio = r.optionalIn(a, p, "shear_penalty_ratio", st.shearPenaltyRatio, 0, 10, true, false, "a ratio > 0");

@@ -1,6 +1,8 @@
 #include "ddaslope/solver/simulation.hpp"
 
+#include <array>
 #include <chrono>
+#include <map>
 #include <cmath>
 #include <sstream>
 
@@ -72,9 +74,13 @@ void Simulation::detectContacts(bool initial) {
     contact::findContacts(p.a, scene_.blocks[p.a].vertices, p.b, scene_.blocks[p.b].vertices, nps,
                           known, candidates);
   std::vector<int> joints;
+  std::vector<char> bondedIfNew;
   joints.reserve(candidates.size());
-  for (const auto& c : candidates) joints.push_back(scene_.jointBetween(c.key.vertexBlock, c.key.edgeBlock));
-  contacts_.update(std::move(candidates), joints);
+  for (const auto& c : candidates) {
+    joints.push_back(scene_.jointBetween(c.key.vertexBlock, c.key.edgeBlock));
+    bondedIfNew.push_back(scene_.joints[joints.back()].bond == model::BondPolicy::Always);
+  }
+  contacts_.update(std::move(candidates), joints, bondedIfNew);
 
   if (initial) {
     // Contacts touching at the start are closed and intact (bonded); the spring's zero is at
@@ -83,17 +89,68 @@ void Simulation::detectContacts(bool initial) {
     for (Contact& c : contacts_.contacts()) {
       if (c.geometry.gap > tol) continue;
       c.state = ContactState::Locked;
-      c.bonded = true;
+      c.bonded = scene_.joints[c.joint].bond != model::BondPolicy::None;
       c.lockRatio = c.geometry.ratio;
       c.normalOffset = c.geometry.gap >= -tol ? c.geometry.gap : 0.0;
     }
   }
+  pairEdgeHalves();
   kinematics_.clear();
   for (const Contact& c : contacts_.contacts())
     kinematics_.push_back(assembly::linearise(scene_.blocks[c.key().vertexBlock],
                                               scene_.blocks[c.key().edgeBlock], c));
   stats_.maxContacts = std::max(stats_.maxContacts, static_cast<int>(contacts_.contacts().size()));
   stats_.times.contacts += sw.lap();
+}
+
+void Simulation::pairEdgeHalves() {
+  // The two end contacts of one edge-to-edge contact share the pair of edges that lie against
+  // each other: (vertex block, its paired edge) and (edge block, contact edge).
+  const auto& cs = contacts_.contacts();
+  partner_.assign(cs.size(), -1);
+  std::map<std::array<int, 4>, std::vector<int>> halves;
+  for (size_t q = 0; q < cs.size(); ++q) {
+    const Contact& c = cs[q];
+    if (c.geometry.pairedEdge < 0) continue;
+    std::array<int, 2> a{c.key().vertexBlock, c.geometry.pairedEdge}, b{c.key().edgeBlock, c.key().edge};
+    if (b < a) std::swap(a, b);
+    halves[{a[0], a[1], b[0], b[1]}].push_back(static_cast<int>(q));
+  }
+  for (const auto& [edges, list] : halves)
+    if (list.size() == 2) {
+      partner_[list[0]] = list[1];
+      partner_[list[1]] = list[0];
+    }
+}
+
+std::vector<contact::ContactJudgement> Simulation::judgeContacts(
+    const std::vector<Contact>& cs, const std::vector<contact::ContactResponse>& response, Regime regime,
+    const contact::StateTolerance& tol) const {
+  std::vector<contact::ContactJudgement> out(cs.size());
+  const bool edge = scene_.settings.contactTreatment == model::ContactTreatment::Edge;
+  for (size_t q = 0; q < cs.size(); ++q) {
+    const Contact& c = cs[q];
+    if (regime == Regime::HeldEquilibrium) {
+      out[q] = contact::judgeHeldContact(c.state, c.bonded, response[q], tol);
+      continue;
+    }
+    const int p = partner_[q];
+    if (!edge || p < 0) {
+      out[q] = contact::judgeVertexContact(c.state, c.slideDirection, c.bonded, response[q], strengthOf(c), tol);
+      continue;
+    }
+    if (p < static_cast<int>(q)) continue;  // judged with its partner
+    const Contact& o = cs[p];
+    contact::ContactStrength whole = strengthOf(c);
+    whole.cohesionForce *= 2;  // strengthOf gives a half's share (L/2)
+    whole.tensileForce *= 2;
+    const auto [j1, j2] = contact::judgeEdgeContact({c.state, c.slideDirection, c.bonded},
+                                                    {o.state, o.slideDirection, o.bonded}, response[q],
+                                                    response[p], whole, tol);
+    out[q] = j1;
+    out[p] = j2;
+  }
+  return out;
 }
 
 double Simulation::edgeLength(const Contact& c) const {
@@ -234,19 +291,20 @@ Simulation::Attempt Simulation::tryStep(double dt, Regime regime, bool freezeCyc
     }
 
     // Judge every contact against the new solution.
+    std::vector<contact::ContactResponse> response(a.contacts.size());
+    for (size_t q = 0; q < a.contacts.size(); ++q) {
+      const Vec12 d = gather(a.contacts[q]);
+      response[q].normalForce = penalty_ * kin[q].penetration(d);
+      response[q].lockedShear = ps * kin[q].shearFromAnchor(d);
+      response[q].slip = kin[q].slip(d);
+    }
+    const std::vector<contact::ContactJudgement> verdict = judgeContacts(a.contacts, response, regime, stateTolerance);
     bool stateChanged = false, bondChanged = false;
     double frictionDrift = 0, forceScale = 0;
     for (size_t q = 0; q < a.contacts.size(); ++q) {
       Contact& c = a.contacts[q];
-      const Vec12 d = gather(c);
-      contact::ContactResponse r;
-      r.normalForce = penalty_ * kin[q].penetration(d);
-      r.lockedShear = ps * kin[q].shearFromAnchor(d);
-      r.slip = kin[q].slip(d);
-      contact::ContactJudgement j =
-          regime == Regime::HeldEquilibrium
-              ? contact::judgeHeldContact(c.state, c.bonded, r, stateTolerance)
-              : contact::judgeVertexContact(c.state, c.slideDirection, c.bonded, r, strengthOf(c), stateTolerance);
+      const contact::ContactResponse& r = response[q];
+      contact::ContactJudgement j = verdict[q];
       if (j.state != c.state || j.direction != c.slideDirection) {
         const bool closing = c.state == ContactState::Open;
         if (freezeCycling && flips[q] >= kFlipsBeforeFreeze && !closing) {

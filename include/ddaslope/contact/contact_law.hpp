@@ -1,5 +1,7 @@
 #pragma once
 // Contact-state rules of the open-close iteration (pure functions, dda-method.md §4).
+#include <utility>
+
 #include "ddaslope/contact/contact.hpp"
 
 namespace ddaslope::contact {
@@ -43,6 +45,30 @@ double shearStrength(bool bonded, double normalForce, const ContactStrength& s);
 ContactJudgement judgeVertexContact(ContactState state, int direction, bool bonded,
                                     const ContactResponse& r, const ContactStrength& s,
                                     const StateTolerance& tol = {});
+
+/// State of one half of an edge-to-edge contact before judgement.
+struct HalfState {
+  ContactState state = ContactState::Open;
+  int direction = 0;
+  bool bonded = false;
+};
+
+/// The founding paper's rule (Zhang et al. 2014; dda-method.md §5): the two vertex-to-edge halves
+/// of one edge-to-edge contact of overlap L are judged as one contact.
+/// - Shear: total S = S1 + S2 against c·L + (N1 + N2) tanφ while intact, N tanφ after; one state
+///   (locked or sliding, one direction) for both halves; the bond is lost by both at once.
+/// - Tension is judged at the ends: two end springs stand for a linear stress distribution whose
+///   end stress is N_k/(L/2), so an end separates when N_k < −σt·L/2 (pure tension: N1 + N2 <
+///   −σt·L). When an end separates the whole bond fails: that half opens and the other carries
+///   on alone as a vertex-to-edge contact at the pivot, friction only (toppling).
+/// - While either half is open the pair is not an edge contact: each half is judged alone with
+///   half the bond (c·L/2, σt·L/2), as original DDA does.
+/// `whole` holds c·L and σt·L of the entire contact.
+std::pair<ContactJudgement, ContactJudgement> judgeEdgeContact(const HalfState& h1, const HalfState& h2,
+                                                               const ContactResponse& r1,
+                                                               const ContactResponse& r2,
+                                                               const ContactStrength& whole,
+                                                               const StateTolerance& tol = {});
 
 /// Rule used while bringing the scene to equilibrium: strengths held, so a closed contact
 /// stays locked whatever its forces; an open one closes (locked) when the vertex penetrates.

@@ -11,7 +11,9 @@ class ContactSet {
   /// Replaces the contacts by this step's candidates (sorted by key). A candidate whose key
   /// was in contact last step inherits its state, bond and shear anchor; one whose vertex moved
   /// to another edge of the same block inherits state and bond with a fresh anchor.
-  void update(std::vector<ContactCandidate> candidates, const std::vector<int>& jointOfCandidate);
+  /// `bondedIfNew`: whether a candidate with no history starts intact (its joint's bond policy).
+  void update(std::vector<ContactCandidate> candidates, const std::vector<int>& jointOfCandidate,
+              const std::vector<char>& bondedIfNew);
   bool contains(const ContactKey& key) const;
   std::vector<Contact>& contacts() { return contacts_; }
   const std::vector<Contact>& contacts() const { return contacts_; }

@@ -6,6 +6,8 @@ namespace ddaslope::model {
 
 enum class AnalysisMode { Dynamic, Static };
 enum class PlaneMode { Strain, Stress };
+/// How the two vertex-to-edge halves of an edge-to-edge contact are judged (docs/contact-model.md).
+enum class ContactTreatment { Edge, Vertex };
 
 struct AnalysisSettings {
   /// Simulated time (s), > 0.
@@ -18,6 +20,9 @@ struct AnalysisSettings {
   AnalysisMode mode = AnalysisMode::Dynamic;
   /// Plane strain (benchmarks' default) or plane stress for the block elasticity.
   PlaneMode plane = PlaneMode::Strain;
+  /// edge: each edge-to-edge contact judged as one (Zhang et al. 2014, the default); vertex:
+  /// original DDA, each half judged alone with c·L/2 (fails cohesive blocks too early).
+  ContactTreatment contactTreatment = ContactTreatment::Edge;
   /// Normal contact penalty p (N/m per metre of thickness). 0 = automatic: penaltyFactor × max E.
   /// Stiffer: less interpenetration and settling, worse conditioning and more open-close work.
   double penalty = 0;

@@ -94,6 +94,12 @@ class Simulation {
   void assembleBlockTerms(double dt, Regime regime, std::vector<Mat6>& k, std::vector<Vec6>& f) const;
   void commit(const Attempt& a, double dt);
   contact::ContactStrength strengthOf(const contact::Contact& c) const;
+  /// Finds the two halves of every edge-to-edge contact (partner_).
+  void pairEdgeHalves();
+  /// States after a solve: vertex rule per contact, or edge rule per pair (contact_treatment).
+  std::vector<contact::ContactJudgement> judgeContacts(const std::vector<contact::Contact>& cs,
+                                                       const std::vector<contact::ContactResponse>& response,
+                                                       Regime regime, const contact::StateTolerance& tol) const;
   double edgeLength(const contact::Contact& c) const;
 
   model::Scene scene_;
@@ -105,6 +111,7 @@ class Simulation {
   int nActive_ = 0;
   contact::ContactSet contacts_;
   std::vector<assembly::ContactKinematics> kinematics_;
+  std::vector<int> partner_;  ///< other half of the same edge-to-edge contact, or −1
   assembly::BlockSparseMatrix matrix_;
   LinearSolver linearSolver_;
   StepSizeController stepSize_;
