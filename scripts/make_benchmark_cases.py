@@ -92,6 +92,19 @@ def main():
         "expected": [{"monitor": "centre", "quantity": "displacement", "at_most": 0.01,
                       "source": "A3: displacement < 1e-3 b"}]})
 
+    # B2: cohesive block, stiff (rigid compared with its springs: the founding paper's setting).
+    case, _ = incline_case(40, 10, 5, s0=15.0, length=30.0, rho=2000, g=10, phi_deg=20, c=42000, young=5e11)
+    write("cohesive_block_42kpa.json", {
+        "description": "B2 (founding paper's case): the A2 block (b = 10, h = 5 m, alpha = 40, phi = 20 degrees) "
+                       "with cohesion c = 42 kPa, factor of safety (c b + N tan phi)/T = 1.087. The edge-to-edge "
+                       "treatment (default) holds it. Run with --contact-treatment vertex to see original DDA "
+                       "slide it: its upslope half fails first (threshold about 48 kPa for a block rigid compared "
+                       "with its springs, as here: E = 500 GPa, penalty 200 GN/m).",
+        **case,
+        "analysis": {"duration": 1.0, "time_step": 0.001, "penalty": 2e11},
+        "expected": [{"monitor": "centre", "quantity": "displacement", "at_most": 0.01,
+                      "source": "B2: c = 42 kPa > c_cr = 36.40 kPa, holds with the edge-to-edge treatment"}]})
+
     # A6: toppling. Rigid rotation about the downslope corner: torque W (b cos a - h sin a)/2,
     # I = m (b^2 + h^2)/3, so the initial angular acceleration is known in closed form.
     alpha, b, h, g = 30.0, 10.0, 25.0, 9.81

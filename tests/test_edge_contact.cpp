@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "ddaslope/calibration/bisection.hpp"
+#include "ddaslope/calibration/contact_comparison.hpp"
 #include "ddaslope/calibration/verdict.hpp"
 #include "ddaslope/contact/contact_law.hpp"
 #include "scene_builders.hpp"
@@ -132,4 +133,24 @@ TEST(EdgeContact, RuleJudgesTotalsAndSplitsAtAPivot) {
   std::tie(h, t) = contact::judgeEdgeContact(locked, locked, {-150, 0, 0}, {1000, 100, 0}, whole);
   EXPECT_EQ(h.state, ContactState::Locked);
   EXPECT_TRUE(h.bonded);
+}
+
+// The comparison table of docs/contact-model.md: on 27 inclines (α 30–50°, h/b 0.25–1,
+// φ 10–30°) the edge treatment's critical cohesion is within 1 % of the closed form
+// c_cr = (W sin α − W cos α tan φ)/b in every row (issue #3); the original treatment's error is
+// positive in every cohesive row (it needs more cohesion than the truth).
+TEST(EdgeContact, ComparisonTableEdgeMatchesClosedFormEverywhere) {
+  const auto rows = calibration::compareContactTreatments({});
+  ASSERT_EQ(rows.size(), 27u);
+  for (const auto& r : rows) {
+    SCOPED_TRACE("alpha " + std::to_string(r.alphaDeg) + " h/b " + std::to_string(r.heightRatio) + " phi " +
+                 std::to_string(r.phiDeg));
+    EXPECT_TRUE(r.bracketed);
+    if (r.closedForm == 0) {
+      EXPECT_EQ(r.edge, 0);
+      continue;
+    }
+    EXPECT_NEAR(r.edge, r.closedForm, 0.01 * r.closedForm);
+    EXPECT_GT(r.vertex, 1.01 * r.closedForm);
+  }
 }

@@ -1,0 +1,76 @@
+#include "ddaslope/calibration/contact_comparison.hpp"
+
+#include <atomic>
+#include <cmath>
+#include <thread>
+
+#include "ddaslope/calibration/bisection.hpp"
+#include "ddaslope/calibration/verdict.hpp"
+#include "ddaslope/model/incline_scene.hpp"
+
+namespace ddaslope::calibration {
+namespace {
+
+model::InclineSpec specOf(const ComparisonRow& r) {
+  model::InclineSpec s{r.alphaDeg, 10, 10 * r.heightRatio, r.phiDeg, 0, 2000, 10};
+  s.duration = 0.5;
+  return s;
+}
+
+/// Critical cohesion with one treatment; σt = c so that tall blocks do not topple first.
+double critical(const ComparisonRow& row, model::ContactTreatment t, bool stiff, ComparisonRow& out) {
+  const model::InclineSpec spec = specOf(row);
+  const auto stableAt = [&](double c) {
+    model::InclineSpec s = spec;
+    s.cohesion = c;
+    model::Scene sc = model::makeInclineScene(s);
+    sc.joints[0].tensileStrength = c;
+    sc.settings.contactTreatment = t;
+    if (stiff) {
+      sc.settings.penalty = 2e11;
+      sc.materials[0].youngModulus = 5e11;
+    }
+    return judgeStability(sc).stable;
+  };
+  if (stableAt(0)) {
+    ++out.runs;
+    return 0;
+  }
+  const double top = 2 * spec.density * spec.g * spec.h * std::sin(degToRad(spec.alphaDeg));
+  const BisectionResult r = bisect(stableAt, 0, top, 1e-4 * top);
+  out.runs += r.runs + 1;
+  out.bracketed &= r.bracketed;
+  return r.critical;
+}
+
+}  // namespace
+
+std::vector<ComparisonRow> compareContactTreatments(const ComparisonSettings& settings) {
+  std::vector<ComparisonRow> rows;
+  for (double a : settings.alphasDeg)
+    for (double hb : settings.heightRatios)
+      for (double phi : settings.phisDeg) {
+        ComparisonRow r;
+        r.alphaDeg = a;
+        r.heightRatio = hb;
+        r.phiDeg = phi;
+        r.closedForm = model::criticalCohesion(specOf(r));
+        rows.push_back(r);
+      }
+  // Rows are independent forward-model searches: share them among threads (results do not
+  // depend on the schedule, each row is computed alone).
+  std::atomic<size_t> next{0};
+  const auto work = [&] {
+    for (size_t i = next++; i < rows.size(); i = next++) {
+      rows[i].edge = critical(rows[i], model::ContactTreatment::Edge, settings.stiffBlocks, rows[i]);
+      rows[i].vertex = critical(rows[i], model::ContactTreatment::Vertex, settings.stiffBlocks, rows[i]);
+    }
+  };
+  std::vector<std::thread> pool;
+  for (int t = 1; t < std::max(1, settings.threads); ++t) pool.emplace_back(work);
+  work();
+  for (auto& t : pool) t.join();
+  return rows;
+}
+
+}  // namespace ddaslope::calibration
