@@ -8,6 +8,8 @@
 #include <CLI/CLI.hpp>
 
 #include "ddaslope/calibration/contact_comparison.hpp"
+#include "ddaslope/calibration/strength_search.hpp"
+#include "ddaslope/io/json_record.hpp"
 #include "ddaslope/core/errors.hpp"
 #include "ddaslope/io/case_reader.hpp"
 #include "ddaslope/io/run_case.hpp"
@@ -105,6 +107,84 @@ int checkCommand(const std::string& casePath) {
   return kExitOk;
 }
 
+int jointIndex(const ddaslope::model::Scene& scene, const std::string& name, const std::string& casePath) {
+  for (size_t j = 0; j < scene.joints.size(); ++j)
+    if (scene.joints[j].name == name) return static_cast<int>(j);
+  std::string known;
+  for (const auto& j : scene.joints) known += (known.empty() ? "" : ", ") + j.name;
+  throw ddaslope::InputError(casePath, "joints", "no joint named \"" + name + "\" (the case has: " + known + ")");
+}
+
+struct CriticalOptions {
+  std::string joint;
+  std::string solve = "cohesion";
+  double friction = -1;
+  double cohesion = -1;
+  double width = 0;
+  bool json = false;
+  int threads = 2;
+};
+
+int criticalCommand(const std::string& casePath, const Overrides& o, const CriticalOptions& opt) {
+  ddaslope::model::Scene scene = ddaslope::io::readCase(casePath);
+  applyOverrides(scene, o);
+  const int joint = jointIndex(scene, opt.joint, casePath);
+  ddaslope::calibration::SearchSettings s;
+  s.threads = opt.threads;
+  const bool cohesion = opt.solve == "cohesion";
+  const ddaslope::model::JointProperties& jp = scene.joints[joint];
+  const double phi = opt.friction >= 0 ? opt.friction : ddaslope::radToDeg(jp.frictionAngle);
+  const double c = opt.cohesion >= 0 ? opt.cohesion : jp.cohesion;
+  if (opt.friction >= 90) throw ddaslope::InputError("--friction", "", "expected an angle in [0, 90) degrees");
+  const auto r = cohesion ? ddaslope::calibration::criticalCohesion(scene, joint, phi, opt.width > 0 ? opt.width : 10, s)
+                          : ddaslope::calibration::criticalFriction(scene, joint, c, opt.width > 0 ? opt.width : 0.01, s);
+  const char* unit = cohesion ? "Pa" : "degrees";
+  if (opt.json) {
+    ddaslope::io::JsonRecord j;
+    j.set("case", casePath).set("joint", opt.joint).set("solve", opt.solve).set("found", r.found);
+    if (cohesion) j.set("friction_angle_deg", phi); else j.set("cohesion_pa", c);
+    j.set("critical", r.critical).set("unit", unit).set("bracket", std::vector<double>{r.failingEnd, r.stableEnd});
+    j.set("forward_runs", r.runs).set("wall_time_s", r.wallTime).set("message", r.message);
+    std::printf("%s\n", j.dump().c_str());
+  } else if (r.found) {
+    std::printf("critical %s of joint '%s' %s: %.6g %s (failing at %.6g, stable at %.6g)%s%s\n", opt.solve.c_str(),
+                opt.joint.c_str(),
+                (cohesion ? "at φ = " + std::to_string(phi) + "°" : "at c = " + std::to_string(c) + " Pa").c_str(),
+                r.critical, unit, r.failingEnd, r.stableEnd, r.message.empty() ? "" : ": ", r.message.c_str());
+    std::printf("%d forward runs, %.2f s wall\n", r.runs, r.wallTime);
+  } else {
+    std::fprintf(stderr, "ddaslope: %s: no critical %s found after %d forward runs: %s\n", casePath.c_str(),
+                 opt.solve.c_str(), r.runs, r.message.c_str());
+  }
+  return r.found ? kExitOk : kExitNonConvergence;
+}
+
+int fosCommand(const std::string& casePath, const Overrides& o, const std::vector<std::string>& jointNames,
+               double width, bool json, int threads) {
+  ddaslope::model::Scene scene = ddaslope::io::readCase(casePath);
+  applyOverrides(scene, o);
+  std::vector<int> joints;
+  for (const auto& n : jointNames) joints.push_back(jointIndex(scene, n, casePath));
+  ddaslope::calibration::SearchSettings s;
+  s.threads = threads;
+  const auto r = ddaslope::calibration::factorOfSafety(scene, joints, width, s);
+  if (json) {
+    ddaslope::io::JsonRecord j;
+    j.set("case", casePath).set("found", r.found).set("factor_of_safety", r.factor);
+    j.set("bracket", std::vector<double>{r.stableEnd, r.failingEnd}).set("width", width);
+    j.set("forward_runs", r.runs).set("rounds", r.rounds).set("wall_time_s", r.wallTime).set("message", r.message);
+    std::printf("%s\n", j.dump().c_str());
+  } else if (r.found) {
+    std::printf("factor of safety (strength reduction on %s): %.4f (stable at %.4f, failing at %.4f)\n",
+                jointNames.empty() ? "all joints" : "the named joints", r.factor, r.stableEnd, r.failingEnd);
+    std::printf("%d forward runs in %d rounds of %d, %.2f s wall\n", r.runs, r.rounds, threads, r.wallTime);
+  } else {
+    std::fprintf(stderr, "ddaslope: %s: no factor of safety found after %d forward runs: %s\n", casePath.c_str(),
+                 r.runs, r.message.c_str());
+  }
+  return r.found ? kExitOk : kExitNonConvergence;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -136,6 +216,32 @@ int main(int argc, char** argv) {
   compare->add_flag("--deformable", deformable, "deformable rock blocks (E = 5 GPa) instead of stiff ones");
   compare->add_option("--csv", csvPath, "also write the table as CSV");
 
+  CriticalOptions crit;
+  CLI::App* critical = app.add_subcommand("critical", "critical cohesion (at a friction angle) or friction angle (at a cohesion) of one joint, by bisection");
+  critical->add_option("case", casePath, "case file (JSON)")->required();
+  critical->add_option("--joint", crit.joint, "joint to search")->required();
+  critical->add_option("--solve", crit.solve, "cohesion or friction")->check(CLI::IsMember({"cohesion", "friction"}))->capture_default_str();
+  critical->add_option("--friction", crit.friction, "friction angle (degrees) while solving for cohesion (default: the case's)");
+  critical->add_option("--cohesion", crit.cohesion, "cohesion (Pa) while solving for friction (default: the case's)");
+  critical->add_option("--width", crit.width, "final bracket width (Pa or degrees; default 10 Pa or 0.01°)");
+  critical->add_option("--threads", crit.threads, "forward runs at once")->capture_default_str();
+  critical->add_option("--time-step", overrides.timeStep, "override analysis.time_step (s)");
+  critical->add_option("--contact-treatment", overrides.contactTreatment, "edge or vertex")->check(CLI::IsMember({"edge", "vertex"}));
+  critical->add_flag("--json", crit.json, "print the result as JSON");
+
+  std::vector<std::string> fosJoints;
+  double fosWidth = 0.005;
+  bool fosJson = false;
+  int fosThreads = 2;
+  CLI::App* fos = app.add_subcommand("fos", "strength-reduction factor of safety: largest F with c/F, atan(tan φ/F) stable");
+  fos->add_option("case", casePath, "case file (JSON)")->required();
+  fos->add_option("--joints", fosJoints, "joints to reduce (default: all)")->delimiter(',');
+  fos->add_option("--width", fosWidth, "final bracket width of F")->capture_default_str();
+  fos->add_option("--threads", fosThreads, "trial factors per round, run at once")->capture_default_str();
+  fos->add_option("--time-step", overrides.timeStep, "override analysis.time_step (s)");
+  fos->add_option("--contact-treatment", overrides.contactTreatment, "edge or vertex")->check(CLI::IsMember({"edge", "vertex"}));
+  fos->add_flag("--json", fosJson, "print the result as JSON");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -145,6 +251,8 @@ int main(int argc, char** argv) {
     if (run->parsed()) return runCommand(casePath, outDir, overrides, quiet, verbose);
     if (check->parsed()) return checkCommand(casePath);
     if (compare->parsed()) return compareContactsCommand(deformable, csvPath);
+    if (critical->parsed()) return criticalCommand(casePath, overrides, crit);
+    if (fos->parsed()) return fosCommand(casePath, overrides, fosJoints, fosWidth, fosJson, fosThreads);
   } catch (const ddaslope::InputError& e) {
     std::cerr << "ddaslope: error: " << e.what() << "\n";
     return kExitBadInput;

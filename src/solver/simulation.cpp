@@ -244,8 +244,12 @@ Simulation::Attempt Simulation::tryStep(double dt, Regime regime, bool freezeCyc
   // for the rest of it; an open one may still close. Steps accepted so are counted.
   constexpr int kFlipsBeforeFreeze = 4;
   std::vector<int> flips(a.contacts.size(), 0);
+  // Round-off guard: the larger of the penalty force of a round-off displacement and 1e-9 of the
+  // largest contact force of the last solve (forces are only known to that relative precision).
   const double noise = scene_.settings.contactStateTolerance * w0_;
-  const contact::StateTolerance stateTolerance{penalty_ * noise, noise};
+  double largestForce = 0;
+  for (const Contact& c : a.contacts) largestForce = std::max(largestForce, std::abs(c.normalForce));
+  const contact::StateTolerance stateTolerance{std::max(penalty_ * noise, 1e-9 * largestForce), noise};
   bool stiffnessChanged = true;
   const int maxIterations = std::max(1, scene_.settings.openCloseMaxIterations);
   for (a.iterations = 1; a.iterations <= maxIterations; ++a.iterations) {

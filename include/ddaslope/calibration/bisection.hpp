@@ -1,7 +1,9 @@
 #pragma once
-// Bisection for the critical value of one parameter between a stable and a failing trial.
+// Narrowing a bracket between a stable and a failing trial (bisection, or k-section when
+// several forward runs can be evaluated at once).
 #include <functional>
 #include <string>
+#include <vector>
 
 namespace ddaslope::calibration {
 
@@ -11,11 +13,22 @@ struct BisectionResult {
   double stableEnd = 0;    ///< the bracket end that is stable
   double failingEnd = 0;   ///< the bracket end that fails
   int runs = 0;            ///< forward runs spent
+  int rounds = 0;          ///< narrowing rounds
   std::string message;
 };
 
-/// Finds where `stableAt` switches between `lo` and `hi` until the bracket is narrower than
-/// `width` (absolute). Exactly one end must be stable; the verdict is assumed monotone between.
-BisectionResult bisect(const std::function<bool(double)>& stableAt, double lo, double hi, double width);
+/// Evaluates `stableAt` for every value, `threads` at a time; results in input order.
+std::vector<bool> evaluateAll(const std::function<bool(double)>& stableAt, const std::vector<double>& values,
+                              int threads);
+
+/// Narrows [stable, failing] (verdicts already known) to `width`: each round evaluates
+/// `threads` equally spaced interior points at once, shrinking the bracket by threads + 1.
+/// The verdict is assumed monotone between the ends.
+BisectionResult narrowBracket(const std::function<bool(double)>& stableAt, double stable, double failing,
+                              double width, int threads = 1);
+
+/// Evaluates both ends, then narrows. Exactly one end must be stable.
+BisectionResult bisect(const std::function<bool(double)>& stableAt, double lo, double hi, double width,
+                       int threads = 1);
 
 }  // namespace ddaslope::calibration

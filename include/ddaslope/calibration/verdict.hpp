@@ -4,22 +4,31 @@
 
 namespace ddaslope::calibration {
 
+/// A run is failing when (a) a monitor moves more than `failureDisplacement` (the run stops
+/// there: its verdict is certain), or (b) at the end of the run a monitor still moves faster
+/// than `restingSpeed` and is not slowing down (its speed at the end is at least 90 % of its
+/// speed at half the duration). (b) catches slopes just past failure, whose acceleration is too
+/// small to reach (a) within the run; a stable scene is brought to rest before t = 0, so its
+/// speed is at round-off level, and a decaying transient fails the "not slowing down" test.
+/// Neither rule depends on Δt: sliding at constant acceleration is integrated exactly by
+/// Newmark β = 1/2, γ = 1, whose numerical damping acts on oscillations only.
 struct VerdictSettings {
-  /// Failing once any monitor has moved more than this (m) from its initial position. The
-  /// elastic settling of the contact springs is orders of magnitude smaller; a released block
-  /// passes it within a fraction of a second. ≤ 0: 1e-3 of the model half-size w0.
+  /// m; ≤ 0: 1e-3 of the model half-size w0.
   double failureDisplacement = 0;
+  /// m/s; ≤ 0: 1e-4 of failureDisplacement per second.
+  double restingSpeed = 0;
 };
 
 struct TrialResult {
   bool stable = true;
   double maxDisplacement = 0;  ///< largest monitor displacement reached (m)
+  double finalSpeed = 0;       ///< largest monitor speed at the end of the run (m/s)
   double timeReached = 0;      ///< simulated time when the trial stopped (s)
   bool converged = true;       ///< false if the run hit non-convergence (counted as failing)
+  const char* reason = "";     ///< which rule decided a failing verdict
 };
 
-/// Runs the scene (equilibrium first) until its duration or until a monitor passes the failure
-/// displacement, whichever comes first: a failing trial stops as soon as its verdict is certain.
+/// Runs the scene (equilibrium first) until its duration or until rule (a) fires.
 TrialResult judgeStability(const model::Scene& scene, const VerdictSettings& settings = {});
 
 }  // namespace ddaslope::calibration

@@ -39,9 +39,10 @@ struct AnalysisSettings {
   /// Relative change of friction forces below which a sliding contact counts as converged.
   double frictionTolerance = 1e-4;
   /// Round-off guard on contact states, as a fraction of w0: a contact changes state only when
-  /// its criterion is passed by this displacement (or penalty × it in force). Larger: fewer
-  /// open-close iterations on unloaded contacts, a slightly blunter strength threshold.
-  double contactStateTolerance = 1e-11;
+  /// its criterion is passed by this displacement, or in force by the larger of penalty × it and
+  /// 1e-9 of the largest contact force. Larger: fewer open-close iterations on unloaded
+  /// contacts, a blunter strength threshold.
+  double contactStateTolerance = 1e-12;
   /// Successive Δt cuts allowed for one step before the analysis reports non-convergence.
   int maxStepCuts = 12;
   /// Factor applied to Δt when a step is cut (0 < f < 1).

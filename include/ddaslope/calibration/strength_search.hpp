@@ -1,0 +1,56 @@
+#pragma once
+// The searches over joint strength: critical cohesion or friction angle of one joint by
+// bisection, and the strength-reduction factor of safety (benchmarks.md §G).
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "ddaslope/calibration/verdict.hpp"
+#include "ddaslope/model/scene.hpp"
+
+namespace ddaslope::calibration {
+
+struct SearchSettings {
+  VerdictSettings verdict;
+  int threads = 2;  ///< independent forward runs evaluated at once
+};
+
+struct CriticalResult {
+  bool found = false;
+  std::string message;      ///< why not found, or a remark (e.g. stable without cohesion)
+  double critical = 0;      ///< Pa for cohesion, degrees for friction
+  double stableEnd = 0;     ///< bracket end that holds
+  double failingEnd = 0;    ///< bracket end that fails
+  int runs = 0;
+  double wallTime = 0;      ///< s
+};
+
+/// The cohesion (Pa) of `joint` at which the scene becomes stable, with φ of that joint set to
+/// `frictionDeg`. Bracketing from 0 upward by doubling from `initialGuess`, then bisection to
+/// `width` Pa. 0 with a remark when the scene holds without cohesion.
+CriticalResult criticalCohesion(const model::Scene& scene, int joint, double frictionDeg, double width,
+                                const SearchSettings& s = {}, double initialGuess = 1e5);
+/// The friction angle (degrees) of `joint` at which the scene becomes stable, with its cohesion
+/// set to `cohesion`; bisection on [0, 89.9] to `width` degrees.
+CriticalResult criticalFriction(const model::Scene& scene, int joint, double cohesion, double width,
+                                const SearchSettings& s = {});
+
+struct FactorOfSafetyResult {
+  bool found = false;
+  std::string message;
+  double factor = 0;      ///< midpoint of the final bracket
+  double stableEnd = 0;   ///< largest F tried that holds
+  double failingEnd = 0;  ///< smallest F tried that fails
+  int runs = 0;
+  int rounds = 0;
+  double wallTime = 0;
+};
+
+/// Strength reduction: the F at which c/F and atan(tan φ / F) on `joints` (all if empty) turn
+/// the scene from stable to failing. Brackets from F = 1 (×1.5 or ÷1.5 per step), then narrows
+/// to `width`; each round tries `threads` interior factors at once (k-section), so one round
+/// shrinks the bracket by threads + 1.
+FactorOfSafetyResult factorOfSafety(const model::Scene& scene, const std::vector<int>& joints, double width,
+                                    const SearchSettings& s = {});
+
+}  // namespace ddaslope::calibration

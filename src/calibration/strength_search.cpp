@@ -1,0 +1,134 @@
+#include "ddaslope/calibration/strength_search.hpp"
+
+#include <atomic>
+#include <chrono>
+#include <cmath>
+
+#include "ddaslope/calibration/bisection.hpp"
+#include "ddaslope/core/types.hpp"
+
+namespace ddaslope::calibration {
+namespace {
+
+double secondsSince(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+/// Wraps a verdict function so that every forward run is counted (thread-safe).
+struct CountedVerdict {
+  std::function<bool(double)> verdict;
+  std::atomic<int> runs{0};
+  bool operator()(double x) {
+    ++runs;
+    return verdict(x);
+  }
+};
+
+template <class Result>
+void copyBracket(const BisectionResult& b, Result& r) {
+  r.found = b.bracketed;
+  r.message = b.message;
+  r.stableEnd = b.stableEnd;
+  r.failingEnd = b.failingEnd;
+}
+
+}  // namespace
+
+CriticalResult criticalCohesion(const model::Scene& scene, int joint, double frictionDeg, double width,
+                                const SearchSettings& s, double initialGuess) {
+  const auto t0 = std::chrono::steady_clock::now();
+  CountedVerdict stableAt{[&](double c) {
+    model::Scene trial = scene;
+    trial.joints[joint].cohesion = c;
+    trial.joints[joint].frictionAngle = degToRad(frictionDeg);
+    return judgeStability(trial, s.verdict).stable;
+  }};
+  const std::function<bool(double)> f = std::ref(stableAt);
+  CriticalResult r;
+  if (stableAt(0)) {
+    r.found = true;
+    r.message = "stable without cohesion at this friction angle";
+  } else {
+    // Bracket: double the cohesion until the scene holds.
+    double failing = 0, hi = initialGuess;
+    while (!stableAt(hi) && hi < 1e12) {
+      failing = hi;
+      hi *= 2;
+    }
+    if (hi >= 1e12) {
+      r.message = "fails even with a cohesion of 1e12 Pa: strength cannot hold this scene";
+    } else {
+      const BisectionResult b = narrowBracket(f, hi, failing, width, s.threads);
+      copyBracket(b, r);
+      r.critical = b.critical;
+    }
+  }
+  r.runs = stableAt.runs;
+  r.wallTime = secondsSince(t0);
+  return r;
+}
+
+CriticalResult criticalFriction(const model::Scene& scene, int joint, double cohesion, double width,
+                                const SearchSettings& s) {
+  const auto t0 = std::chrono::steady_clock::now();
+  CountedVerdict stableAt{[&](double phiDeg) {
+    model::Scene trial = scene;
+    trial.joints[joint].cohesion = cohesion;
+    trial.joints[joint].frictionAngle = degToRad(phiDeg);
+    return judgeStability(trial, s.verdict).stable;
+  }};
+  const BisectionResult b = bisect(std::ref(stableAt), 0.0, 89.9, width, s.threads);
+  CriticalResult r;
+  copyBracket(b, r);
+  r.critical = b.critical;
+  if (!r.found) {
+    r.message = b.stableEnd == 0 ? "stable even with φ = 0 at this cohesion" : "fails even with φ = 89.9°";
+    if (b.stableEnd == 0) {  // holds without friction: the critical angle is 0
+      r.found = true;
+      r.critical = 0;
+    }
+  }
+  r.runs = stableAt.runs;
+  r.wallTime = secondsSince(t0);
+  return r;
+}
+
+FactorOfSafetyResult factorOfSafety(const model::Scene& scene, const std::vector<int>& joints, double width,
+                                    const SearchSettings& s) {
+  const auto t0 = std::chrono::steady_clock::now();
+  std::vector<int> reduced = joints;
+  if (reduced.empty())
+    for (size_t j = 0; j < scene.joints.size(); ++j) reduced.push_back(static_cast<int>(j));
+  CountedVerdict stableAt{[&](double f) {
+    model::Scene trial = scene;
+    for (int j : reduced) {
+      trial.joints[j].cohesion = scene.joints[j].cohesion / f;
+      trial.joints[j].tensileStrength = scene.joints[j].tensileStrength / f;
+      trial.joints[j].frictionAngle = std::atan(std::tan(scene.joints[j].frictionAngle) / f);
+    }
+    return judgeStability(trial, s.verdict).stable;
+  }};
+  FactorOfSafetyResult r;
+  // Bracket from F = 1 by factors of 1.5 (stable: raise F; failing: lower it).
+  double stable = 0, failing = 0, f = 1;
+  const bool atOne = stableAt(f);
+  (atOne ? stable : failing) = f;
+  for (int k = 0; k < 40 && (stable == 0 || failing == 0); ++k) {
+    f = atOne ? f * 1.5 : f / 1.5;
+    (stableAt(f) ? stable : failing) = f;
+  }
+  if (stable == 0 || failing == 0) {
+    r.message = stable == 0 ? "fails at every reduction factor tried (down to 1.5^-40)"
+                            : "stable at every reduction factor tried (up to 1.5^40)";
+  } else {
+    const BisectionResult b = narrowBracket(std::ref(stableAt), stable, failing, width, s.threads);
+    copyBracket(b, r);
+    r.factor = b.critical;
+    r.rounds = b.rounds;
+  }
+  r.runs = stableAt.runs;
+  r.wallTime = secondsSince(t0);
+  return r;
+}
+
+}  // namespace ddaslope::calibration

@@ -1,0 +1,100 @@
+// Critical strength and strength reduction against closed forms (benchmarks.md A5, B1, C).
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "ddaslope/calibration/strength_search.hpp"
+#include "scene_builders.hpp"
+
+using namespace ddaslope;
+using scenes::InclineSpec;
+
+namespace {
+
+/// Hoek & Bray planar failure (benchmarks.md §C): a slope with a 60° face and a horizontal crest
+/// 20 m above the point (0, 0) where a sliding plane of dip ψ daylights on the face; the face
+/// continues 5 m below it to the ground, so the wedge slides out into the air. A dry vertical
+/// tension crack at x = 20 m is left open by 5 cm so that it carries nothing (as Hoek & Bray
+/// assume).
+struct Planar {
+  model::Scene scene;
+  double weight = 0;   ///< W (N/m)
+  double length = 0;   ///< A, length of the sliding plane (m)
+  double psi = 0;      ///< rad
+  double factor(double c, double phi) const {
+    return (c * length + weight * std::cos(psi) * std::tan(phi)) / (weight * std::sin(psi));
+  }
+};
+
+Planar planar(double psiDeg, double c, double phiDeg) {
+  const double h = 20, xc = 20, gap = 0.05, psi = psiDeg * M_PI / 180, t = std::tan(psi);
+  model::Scene s;
+  s.materials.push_back({"rock", 2600, 10e9, 0.25});
+  s.joints.push_back({"plane", phiDeg * M_PI / 180, c, 0});
+  model::Block base, block;
+  base.id = "rock mass";
+  base.fixed = true;
+  const double cot60 = 1 / std::tan(60 * M_PI / 180);
+  base.vertices = {{-10, -10}, {xc + 20, -10}, {xc + 20, h},     {xc + gap, h},
+                   {xc + gap, (xc + gap) * t}, {0, 0}, {-5 * cot60, -5}, {-10, -5}};
+  block.id = "wedge";
+  block.vertices = {{0, 0}, {xc, xc * t}, {xc, h}, {h * cot60, h}};
+  for (model::Block* b : {&base, &block}) b->moments = geometry::computeMoments(b->vertices);
+  s.blocks = {base, block};
+  const Vec2 c0 = block.moments.centroid;
+  s.monitors.push_back({"wedge", {1, c0, c0}});
+  s.settings.duration = 1.0;
+  s.settings.timeStep = 1e-3;
+  return {s, 2600 * 9.81 * block.moments.area, xc / std::cos(psi), psi};
+}
+
+}  // namespace
+
+// The verdict does not depend on Δt: a block just past failure (φ = 29.9° on 30°, a = 0.020 m/s²)
+// fails and one just short of it (φ = 30.1°) holds at Δt = 0.1, 1 and 10 ms (issue #4).
+TEST(Verdict, IndependentOfTimeStep) {
+  for (double dt : {1e-4, 1e-3, 1e-2}) {
+    for (double phi : {29.9, 30.1}) {
+      InclineSpec s;
+      s.phiDeg = phi;
+      s.timeStep = dt;
+      const calibration::TrialResult r = calibration::judgeStability(scenes::makeIncline(s));
+      EXPECT_EQ(r.stable, phi > 30) << "dt " << dt << " phi " << phi << ": " << r.reason;
+    }
+  }
+}
+
+// A5: critical friction on a 30° plane, c = 0: 30.00° ± 0.05° (benchmarks.md A5).
+TEST(CriticalStrength, A5CriticalFrictionOnThirtyDegrees) {
+  const model::Scene s = scenes::makeIncline(InclineSpec{});
+  const calibration::CriticalResult r = calibration::criticalFriction(s, 0, 0, 0.01);
+  ASSERT_TRUE(r.found) << r.message;
+  EXPECT_NEAR(r.critical, 30.0, 0.05);
+  EXPECT_LE(r.failingEnd, r.stableEnd);
+}
+
+// B1 through the critical-cohesion search: 36.40 kPa within 1 % (benchmarks.md B1).
+TEST(CriticalStrength, B1CriticalCohesionOfTheA2Block) {
+  InclineSpec spec{40, 10, 5, 20, 0, 2000, 10};
+  spec.duration = 0.5;
+  const calibration::CriticalResult r = calibration::criticalCohesion(scenes::makeIncline(spec), 0, 20, 20);
+  ASSERT_TRUE(r.found) << r.message;
+  EXPECT_NEAR(r.critical, 36400, 0.01 * 36400);
+}
+
+// C: strength-reduction factor of safety of a planar failure within 2 % of Hoek & Bray's
+// FS = (c A + W cos ψ tan φ)/(W sin ψ), dry, for three (c, φ, ψ) sets including FS < 1.
+TEST(StrengthReduction, PlanarFailureMatchesHoekAndBray) {
+  struct Set {
+    double c, phi, psi;
+  };
+  for (const Set& set : {Set{25e3, 30, 35}, Set{10e3, 35, 40}, Set{0, 30, 35}}) {
+    const Planar p = planar(set.psi, set.c, set.phi);
+    const double expected = p.factor(set.c, set.phi * M_PI / 180);
+    const calibration::FactorOfSafetyResult r = calibration::factorOfSafety(p.scene, {}, 0.005);
+    SCOPED_TRACE("c " + std::to_string(set.c) + " phi " + std::to_string(set.phi) + " psi " + std::to_string(set.psi));
+    ASSERT_TRUE(r.found) << r.message;
+    EXPECT_NEAR(r.factor, expected, 0.02 * expected);
+    EXPECT_LE(r.failingEnd - r.stableEnd, 0.005 + 1e-12);
+  }
+}
