@@ -105,6 +105,36 @@ def main():
         "expected": [{"monitor": "centre", "quantity": "displacement", "at_most": 0.01,
                       "source": "B2: c = 42 kPa > c_cr = 36.40 kPa, holds with the edge-to-edge treatment"}]})
 
+    # C: Hoek & Bray planar failure, dry (benchmarks.md C).
+    h, xc, gap, psi, face = 20.0, 20.0, 0.05, 35.0, 60.0
+    t, cot = math.tan(math.radians(psi)), 1 / math.tan(math.radians(face))
+    wedge = [[0.0, 0.0], [xc, r(xc * t)], [xc, h], [r(h * cot), h]]
+    area = 0.5 * abs(sum(wedge[i][0] * wedge[(i + 1) % 4][1] - wedge[(i + 1) % 4][0] * wedge[i][1] for i in range(4)))
+    cx = sum((wedge[i][0] + wedge[(i + 1) % 4][0]) * (wedge[i][0] * wedge[(i + 1) % 4][1] - wedge[(i + 1) % 4][0] * wedge[i][1]) for i in range(4)) / (6 * area)
+    cy = sum((wedge[i][1] + wedge[(i + 1) % 4][1]) * (wedge[i][0] * wedge[(i + 1) % 4][1] - wedge[(i + 1) % 4][0] * wedge[i][1]) for i in range(4)) / (6 * area)
+    w, length, c, phi = 2600 * 9.81 * area, xc / math.cos(math.radians(psi)), 25e3, 30.0
+    fs = (c * length + w * math.cos(math.radians(psi)) * math.tan(math.radians(phi))) / (w * math.sin(math.radians(psi)))
+    write("planar_failure.json", {
+        "description": f"C (Hoek & Bray planar failure, dry): a slope with a {face:.0f} degree face and a horizontal crest "
+                       f"{h:.0f} m above the point where a {psi:.0f} degree sliding plane daylights; a vertical tension "
+                       f"crack {xc:.0f} m behind, left open by {gap} m so it carries nothing. c = {c/1e3:.0f} kPa, "
+                       f"phi = {phi:.0f} degrees. Hoek & Bray: FS = (c A + W cos psi tan phi)/(W sin psi) = {fs:.4f} "
+                       f"(W = {w/1e3:.1f} kN/m, A = {length:.3f} m). Try: ddaslope fos cases/planar_failure.json",
+        "gravity": [0, -9.81],
+        "materials": {"rock": {"density": 2600, "young_modulus": 10e9, "poisson_ratio": 0.25}},
+        "joints": {"sliding_plane": {"friction_angle": phi, "cohesion": c, "tensile_strength": 0}},
+        "default_joint": "sliding_plane",
+        "blocks": [
+            {"id": "rock_mass", "material": "rock", "fixed": True,
+             "vertices": [[-10, -10], [xc + 20, -10], [xc + 20, h], [xc + gap, h], [xc + gap, r((xc + gap) * t)],
+                          [0, 0], [r(-5 * cot), -5], [-10, -5]]},
+            {"id": "wedge", "material": "rock", "vertices": wedge},
+        ],
+        "monitors": [{"id": "wedge", "block": "wedge", "point": [r(cx), r(cy)]}],
+        "analysis": {"duration": 1.0, "time_step": 0.001},
+        "expected": [{"monitor": "wedge", "quantity": "displacement", "at_most": 0.01,
+                      "source": f"C: FS = {fs:.4f} > 1, the wedge holds"}]})
+
     # A6: toppling. Rigid rotation about the downslope corner: torque W (b cos a - h sin a)/2,
     # I = m (b^2 + h^2)/3, so the initial angular acceleration is known in closed form.
     alpha, b, h, g = 30.0, 10.0, 25.0, 9.81

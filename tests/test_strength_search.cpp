@@ -98,3 +98,19 @@ TEST(StrengthReduction, PlanarFailureMatchesHoekAndBray) {
     EXPECT_LE(r.failingEnd - r.stableEnd, 0.005 + 1e-12);
   }
 }
+
+// The critical (c, φ) curve of the planar failure matches c_cr = W (sin ψ − cos ψ tan φ)/A
+// (Hoek & Bray's FS = 1, benchmarks.md §C) at every point within 1 %, and is 0 once φ ≥ ψ.
+TEST(CriticalStrength, CurveOfPlanarFailureMatchesClosedForm) {
+  const Planar p = planar(35, 0, 30);
+  const auto curve = calibration::criticalCurve(p.scene, 0, 10, 40, 7, 20);
+  ASSERT_EQ(curve.size(), 7u);
+  for (const auto& pt : curve) {
+    const double phi = pt.frictionDeg * M_PI / 180;
+    const double expected = std::max(0.0, p.weight * (std::sin(p.psi) - std::cos(p.psi) * std::tan(phi)) / p.length);
+    SCOPED_TRACE("phi " + std::to_string(pt.frictionDeg));
+    ASSERT_TRUE(pt.cohesion.found) << pt.cohesion.message;
+    if (expected == 0) EXPECT_EQ(pt.cohesion.critical, 0);
+    else EXPECT_NEAR(pt.cohesion.critical, expected, 0.01 * expected);
+  }
+}

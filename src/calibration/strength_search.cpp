@@ -3,6 +3,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <thread>
 
 #include "ddaslope/calibration/bisection.hpp"
 #include "ddaslope/core/types.hpp"
@@ -91,6 +92,25 @@ CriticalResult criticalFriction(const model::Scene& scene, int joint, double coh
   r.runs = stableAt.runs;
   r.wallTime = secondsSince(t0);
   return r;
+}
+
+std::vector<CurvePoint> criticalCurve(const model::Scene& scene, int joint, double phiMinDeg, double phiMaxDeg,
+                                      int n, double width, const SearchSettings& s) {
+  std::vector<CurvePoint> curve(std::max(2, n));
+  for (size_t i = 0; i < curve.size(); ++i)
+    curve[i].frictionDeg = phiMinDeg + (phiMaxDeg - phiMinDeg) * i / (curve.size() - 1);
+  SearchSettings single = s;
+  single.threads = 1;  // parallel over points instead
+  std::atomic<size_t> next{0};
+  const auto work = [&] {
+    for (size_t i = next++; i < curve.size(); i = next++)
+      curve[i].cohesion = criticalCohesion(scene, joint, curve[i].frictionDeg, width, single);
+  };
+  std::vector<std::thread> pool;
+  for (int t = 1; t < std::max(1, s.threads); ++t) pool.emplace_back(work);
+  work();
+  for (auto& t : pool) t.join();
+  return curve;
 }
 
 FactorOfSafetyResult factorOfSafety(const model::Scene& scene, const std::vector<int>& joints, double width,

@@ -2,6 +2,8 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cmath>
+#include <filesystem>
 #include <cstdio>
 #include <iostream>
 
@@ -10,6 +12,7 @@
 #include "ddaslope/calibration/contact_comparison.hpp"
 #include "ddaslope/calibration/strength_search.hpp"
 #include "ddaslope/io/json_record.hpp"
+#include "ddaslope/io/line_plot.hpp"
 #include "ddaslope/core/errors.hpp"
 #include "ddaslope/io/case_reader.hpp"
 #include "ddaslope/io/run_case.hpp"
@@ -123,12 +126,60 @@ struct CriticalOptions {
   double width = 0;
   bool json = false;
   int threads = 2;
+  std::string curve;       ///< "phiMin:phiMax:n"
+  std::string outDir = "out";
 };
+
+int curveCommand(const std::string& casePath, const ddaslope::model::Scene& scene, int joint, const CriticalOptions& opt) {
+  double lo = 0, hi = 0;
+  int n = 0;
+  if (std::sscanf(opt.curve.c_str(), "%lf:%lf:%d", &lo, &hi, &n) != 3 || n < 2 || lo < 0 || hi >= 90 || lo >= hi)
+    throw ddaslope::InputError("--curve", "", "expected φmin:φmax:n with 0 ≤ φmin < φmax < 90 and n ≥ 2, found \"" + opt.curve + "\"");
+  ddaslope::calibration::SearchSettings s;
+  s.threads = opt.threads;
+  const auto t0 = std::chrono::steady_clock::now();
+  const auto curve = ddaslope::calibration::criticalCurve(scene, joint, lo, hi, n, opt.width > 0 ? opt.width : 10, s);
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  std::filesystem::create_directories(opt.outDir);
+  const std::string csv = opt.outDir + "/critical_curve.csv", png = opt.outDir + "/critical_curve.png";
+  std::FILE* f = std::fopen((csv + ".tmp").c_str(), "w");
+  if (!f) throw ddaslope::InputError(csv, "", "cannot write the file");
+  std::fprintf(f, "friction_angle_deg,critical_cohesion_pa,failing_pa,stable_pa,found,forward_runs\n");
+  ddaslope::io::PlotSeries series{"critical cohesion (" + opt.joint + ")", {}, {}, true};
+  int runs = 0;
+  bool all = true;
+  for (const auto& p : curve) {
+    const auto& r = p.cohesion;
+    std::fprintf(f, "%g,%.6g,%.6g,%.6g,%d,%d\n", p.frictionDeg, r.critical, r.failingEnd, r.stableEnd, r.found, r.runs);
+    series.x.push_back(p.frictionDeg);
+    series.y.push_back(r.found ? r.critical / 1e3 : NAN);
+    runs += r.runs;
+    all &= r.found;
+  }
+  std::fclose(f);
+  std::filesystem::rename(csv + ".tmp", csv);
+  ddaslope::io::writePng({"Critical strength: " + casePath, "friction angle φ (°)", "critical cohesion c (kPa)", {series}}, png);
+  if (opt.json) {
+    ddaslope::io::JsonRecord j;
+    std::vector<double> phis, cs;
+    for (const auto& p : curve) phis.push_back(p.frictionDeg), cs.push_back(p.cohesion.critical);
+    j.set("case", casePath).set("joint", opt.joint).set("friction_angle_deg", phis).set("critical_cohesion_pa", cs);
+    j.set("all_found", all).set("forward_runs", runs).set("wall_time_s", wall).set("csv", csv).set("png", png);
+    std::printf("%s\n", j.dump().c_str());
+  } else {
+    for (const auto& p : curve)
+      std::printf("  φ = %6.2f°  c_cr = %10.1f Pa%s%s\n", p.frictionDeg, p.cohesion.critical,
+                  p.cohesion.message.empty() ? "" : "  ", p.cohesion.message.c_str());
+    std::printf("%d forward runs, %.2f s wall; wrote %s and %s\n", runs, wall, csv.c_str(), png.c_str());
+  }
+  return all ? kExitOk : kExitNonConvergence;
+}
 
 int criticalCommand(const std::string& casePath, const Overrides& o, const CriticalOptions& opt) {
   ddaslope::model::Scene scene = ddaslope::io::readCase(casePath);
   applyOverrides(scene, o);
   const int joint = jointIndex(scene, opt.joint, casePath);
+  if (!opt.curve.empty()) return curveCommand(casePath, scene, joint, opt);
   ddaslope::calibration::SearchSettings s;
   s.threads = opt.threads;
   const bool cohesion = opt.solve == "cohesion";
@@ -228,6 +279,8 @@ int main(int argc, char** argv) {
   critical->add_option("--time-step", overrides.timeStep, "override analysis.time_step (s)");
   critical->add_option("--contact-treatment", overrides.contactTreatment, "edge or vertex")->check(CLI::IsMember({"edge", "vertex"}));
   critical->add_flag("--json", crit.json, "print the result as JSON");
+  critical->add_option("--curve", crit.curve, "φmin:φmax:n: the critical (c, φ) curve as CSV and PNG in --out");
+  critical->add_option("--out", crit.outDir, "output directory for --curve")->capture_default_str();
 
   std::vector<std::string> fosJoints;
   double fosWidth = 0.005;

@@ -35,6 +35,17 @@ CriticalResult criticalCohesion(const model::Scene& scene, int joint, double fri
 CriticalResult criticalFriction(const model::Scene& scene, int joint, double cohesion, double width,
                                 const SearchSettings& s = {});
 
+struct CurvePoint {
+  double frictionDeg = 0;
+  CriticalResult cohesion;  ///< critical cohesion at this friction angle
+};
+
+/// The curve of critical (c, φ) pairs of `joint`: the critical cohesion at n friction angles
+/// evenly spaced over [phiMin, phiMax] (n ≥ 2). Points are independent searches, run
+/// `threads` at a time.
+std::vector<CurvePoint> criticalCurve(const model::Scene& scene, int joint, double phiMinDeg, double phiMaxDeg,
+                                      int n, double width, const SearchSettings& s = {});
+
 struct FactorOfSafetyResult {
   bool found = false;
   std::string message;
