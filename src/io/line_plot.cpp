@@ -60,24 +60,22 @@ void writePng(const LinePlot& plot, const std::string& path) {
   // Grid and tick labels.
   cairo_set_line_width(cr, 1);
   char buf[32];
-  for (double x = x0; x <= x1 + 1e-9 * dx; x += dx) {
-    cairo_set_source_rgb(cr, 0.88, 0.88, 0.88);
-    cairo_move_to(cr, px(x), py(y0));
-    cairo_line_to(cr, px(x), py(y1));
-    cairo_stroke(cr);
-    cairo_set_source_rgb(cr, 0.2, 0.2, 0.2);
-    std::snprintf(buf, sizeof buf, "%g", std::abs(x) < 1e-12 * dx ? 0.0 : x);
-    text(cr, px(x), py(y0) + 8, buf, 0.5, 1);
-  }
-  for (double y = y0; y <= y1 + 1e-9 * dy; y += dy) {
-    cairo_set_source_rgb(cr, 0.88, 0.88, 0.88);
-    cairo_move_to(cr, px(x0), py(y));
-    cairo_line_to(cr, px(x1), py(y));
-    cairo_stroke(cr);
-    cairo_set_source_rgb(cr, 0.2, 0.2, 0.2);
-    std::snprintf(buf, sizeof buf, "%g", std::abs(y) < 1e-12 * dy ? 0.0 : y);
-    text(cr, px(x0) - 8, py(y), buf, 1, 0.5);
-  }
+  // One grid line and label per tick; `vertical` lines carry x ticks.
+  const auto grid = [&](bool vertical, double lo, double hi, double step) {
+    for (double v = lo; v <= hi + 1e-9 * step; v += step) {
+      const double ax = vertical ? px(v) : px(x0), ay = vertical ? py(y0) : py(v);
+      cairo_set_source_rgb(cr, 0.88, 0.88, 0.88);
+      cairo_move_to(cr, ax, ay);
+      cairo_line_to(cr, vertical ? ax : px(x1), vertical ? py(y1) : ay);
+      cairo_stroke(cr);
+      cairo_set_source_rgb(cr, 0.2, 0.2, 0.2);
+      std::snprintf(buf, sizeof buf, "%g", std::abs(v) < 1e-12 * step ? 0.0 : v);
+      if (vertical) text(cr, ax, ay + 8, buf, 0.5, 1);
+      else text(cr, ax - 8, ay, buf, 1, 0.5);
+    }
+  };
+  grid(true, x0, x1, dx);
+  grid(false, y0, y1, dy);
   cairo_set_source_rgb(cr, 0, 0, 0);
   cairo_rectangle(cr, px(x0), py(y1), px(x1) - px(x0), py(y0) - py(y1));
   cairo_stroke(cr);
