@@ -10,6 +10,7 @@
 
 #include "ddaslope/core/errors.hpp"
 #include "ddaslope/io/case_reader.hpp"
+#include "ddaslope/io/job_reader.hpp"
 
 using namespace ddaslope;
 using nlohmann::json;
@@ -218,4 +219,53 @@ TEST(Cli, ContactTreatmentSwitchShowsTheDifference) {
   EXPECT_LT(moved[0], 0.01);  // edge: holds
   EXPECT_GT(moved[1], 1.0);   // vertex: slides (frictional a = 3.64 m/s² once the bond is gone)
   fs::remove_all(out);
+}
+
+// Bad back-analysis jobs: clear errors naming the file and the JSON path.
+TEST(JobReader, BadJobs) {
+  const std::string casePath = std::string(DDASLOPE_SOURCE_DIR) + "/cases/planar_failure.json";
+  const auto expectJobError = [&](const json& job, const std::string& path, const std::string& what) {
+    const std::string file = writeTemp("job.json", job.dump());
+    try {
+      io::readJob(file);
+      ADD_FAILURE() << "accepted a bad job; expected an error at " << path;
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.file(), file);
+      EXPECT_EQ(e.jsonPath(), path) << e.what();
+      EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << e.what();
+    }
+    fs::remove(file);
+  };
+  const json good = {{"case", casePath},
+                     {"parameters", {{{"name", "c"}, {"joint", "sliding_plane"}, {"property", "cohesion"}, {"min", 0}, {"max", 1e5}}}},
+                     {"observations", {{{"type", "factor_of_safety"}, {"target", 1.0}, {"sigma", 0.01}}}}};
+  json j = good;
+  j["optimizer"] = json::object();
+  expectJobError(j, "optimizer", "unknown key");
+  j = good;
+  j["observations"][0].erase("sigma");
+  expectJobError(j, "observations[0].sigma", "required");
+  j = good;
+  j["parameters"][0]["max"] = -1;
+  expectJobError(j, "parameters[0].max", "max > min");
+  j = good;
+  j["parameters"][0]["property"] = "strength";
+  expectJobError(j, "parameters[0].property", "cohesion, friction_angle or tensile_strength");
+  j = good;
+  j["observations"][0]["type"] = "velocity";
+  expectJobError(j, "observations[0].type", "series, factor_of_safety or runout");
+}
+
+// A case value varied by JSON path must exist and be a number.
+TEST(CaseReader, OverrideByJsonPath) {
+  const std::string casePath = std::string(DDASLOPE_SOURCE_DIR) + "/cases/planar_failure.json";
+  const model::Scene s = io::readCase(casePath, {{"materials.rock.young_modulus", 2e10}, {"blocks[1].vertices[3][0]", 11.5}});
+  EXPECT_EQ(s.materials[0].youngModulus, 2e10);
+  EXPECT_EQ(s.blocks[1].vertices[3].x(), 11.5);  // the wedge is given counter-clockwise: order kept
+  try {
+    io::readCase(casePath, {{"materials.granite.density", 1}});
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.jsonPath(), "materials.granite.density");
+  }
 }

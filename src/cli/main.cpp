@@ -4,12 +4,15 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <cstdio>
 #include <iostream>
 
 #include <CLI/CLI.hpp>
 
+#include "ddaslope/calibration/backanalysis.hpp"
 #include "ddaslope/calibration/contact_comparison.hpp"
+#include "ddaslope/io/job_reader.hpp"
 #include "ddaslope/calibration/strength_search.hpp"
 #include "ddaslope/io/json_record.hpp"
 #include "ddaslope/io/line_plot.hpp"
@@ -236,6 +239,47 @@ int fosCommand(const std::string& casePath, const Overrides& o, const std::vecto
   return r.found ? kExitOk : kExitNonConvergence;
 }
 
+int backanalyseCommand(const std::string& jobPath, const std::string& outDir, bool json) {
+  const ddaslope::io::BackanalysisJob job = ddaslope::io::readJob(jobPath);
+  const ddaslope::calibration::BackanalysisResult r = ddaslope::calibration::runBackanalysis(job);
+  std::filesystem::create_directories(outDir);
+  ddaslope::io::JsonRecord j;
+  j.set("job", jobPath).set("case", job.casePath);
+  for (size_t i = 0; i < r.names.size(); ++i) j.set(r.names[i], r.estimate[i]);
+  j.set("misfit", r.misfit).set("evaluations", r.evaluations).set("forward_runs", r.forwardRuns);
+  j.set("global_search", r.globalStatus).set("local_search", r.localStatus).set("wall_time_s", r.wallTime);
+  if (!r.map.empty()) j.set("constrains_only_a_line", r.lineOnly).set("statement", r.statement);
+  const std::string result = outDir + "/result.json";
+  {
+    std::ofstream out(result + ".tmp");
+    out << j.dump() << "\n";
+  }
+  std::filesystem::rename(result + ".tmp", result);
+  if (!r.map.empty()) {
+    const std::string csv = outDir + "/misfit_map.csv";
+    std::ofstream out(csv + ".tmp");
+    out << r.names[0] << "," << r.names[1] << ",misfit\n";
+    for (size_t a = 0; a < r.axis0.size(); ++a)
+      for (size_t b = 0; b < r.axis1.size(); ++b) out << r.axis0[a] << "," << r.axis1[b] << "," << r.map[a][b] << "\n";
+    out.close();
+    std::filesystem::rename(csv + ".tmp", csv);
+    ddaslope::io::HeatMap m{"Misfit: " + jobPath, r.names[0], r.names[1], "misfit (log scale)", r.axis0, r.axis1, r.map,
+                            r.estimate[0], r.estimate[1]};
+    ddaslope::io::writePng(m, outDir + "/misfit_map.png");
+  }
+  if (json) {
+    std::printf("%s\n", j.dump().c_str());
+  } else {
+    std::printf("back-analysis of %s\n", job.casePath.c_str());
+    for (size_t i = 0; i < r.names.size(); ++i) std::printf("  %s = %.6g\n", r.names[i].c_str(), r.estimate[i]);
+    std::printf("  misfit %.4g after %d evaluations (%d forward runs), %.1f s wall\n  %s; %s\n", r.misfit, r.evaluations,
+                r.forwardRuns, r.wallTime, r.globalStatus.c_str(), r.localStatus.c_str());
+    if (!r.statement.empty()) std::printf("  %s\n", r.statement.c_str());
+    std::printf("  wrote %s%s\n", result.c_str(), r.map.empty() ? "" : (" and " + outDir + "/misfit_map.csv, .png").c_str());
+  }
+  return kExitOk;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -295,6 +339,13 @@ int main(int argc, char** argv) {
   fos->add_option("--contact-treatment", overrides.contactTreatment, "edge or vertex")->check(CLI::IsMember({"edge", "vertex"}));
   fos->add_flag("--json", fosJson, "print the result as JSON");
 
+  std::string jobPath, baOut = "out/backanalysis";
+  bool baJson = false;
+  CLI::App* ba = app.add_subcommand("backanalyse", "estimate joint strengths (or any case value) from observations (NLopt)");
+  ba->add_option("job", jobPath, "back-analysis job (JSON)")->required();
+  ba->add_option("--out", baOut, "output directory")->capture_default_str();
+  ba->add_flag("--json", baJson, "print the result as JSON");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -305,6 +356,7 @@ int main(int argc, char** argv) {
     if (check->parsed()) return checkCommand(casePath);
     if (compare->parsed()) return compareContactsCommand(deformable, csvPath);
     if (critical->parsed()) return criticalCommand(casePath, overrides, crit);
+    if (ba->parsed()) return backanalyseCommand(jobPath, baOut, baJson);
     if (fos->parsed()) return fosCommand(casePath, overrides, fosJoints, fosWidth, fosJson, fosThreads);
   } catch (const ddaslope::InputError& e) {
     std::cerr << "ddaslope: error: " << e.what() << "\n";

@@ -240,10 +240,11 @@ void readPointsAndLoads(const Reader& r, const json& doc, model::Scene& s) {
   if (const json* loads = list("point_loads")) {
     for (size_t i = 0; i < loads->size(); ++i) {
       const std::string p = Reader::index("point_loads", i);
-      r.onlyKeys((*loads)[i], p, {"block", "point", "force"});
+      r.onlyKeys((*loads)[i], p, {"block", "point", "force", "rate"});
       model::PointLoad l;
       l.point = blockPoint(r, (*loads)[i], p, s);
       l.force = r.point(r.required((*loads)[i], p, "force"), p + ".force");
+      if ((*loads)[i].contains("rate")) l.rate = r.point((*loads)[i].at("rate"), p + ".rate");
       s.pointLoads.push_back(l);
     }
   }
@@ -370,6 +371,54 @@ model::Scene parseCase(const std::string& text, const std::string& file) {
   readAnalysis(r, doc, s);
   readExpectations(r, doc, s);
   return s;
+}
+
+namespace {
+
+/// The JSON value at a dotted path with [index] parts, or nullptr.
+json* locate(json& doc, const std::string& path) {
+  json* at = &doc;
+  size_t i = 0;
+  while (i < path.size()) {
+    if (path[i] == '.') ++i;
+    if (path[i] == '[') {
+      const size_t close = path.find(']', i);
+      if (close == std::string::npos || !at->is_array()) return nullptr;
+      const size_t k = std::stoul(path.substr(i + 1, close - i - 1));
+      if (k >= at->size()) return nullptr;
+      at = &(*at)[k];
+      i = close + 1;
+      continue;
+    }
+    const size_t end = path.find_first_of(".[", i);
+    const std::string key = path.substr(i, end == std::string::npos ? std::string::npos : end - i);
+    if (!at->is_object() || !at->contains(key)) return nullptr;
+    at = &(*at)[key];
+    i = end == std::string::npos ? path.size() : end;
+  }
+  return at;
+}
+
+}  // namespace
+
+model::Scene readCase(const std::string& path, const std::vector<CaseOverride>& overrides) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path, "", "cannot open the file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  json doc;
+  try {
+    doc = json::parse(text.str());
+  } catch (const json::parse_error& e) {
+    throw InputError(path, "", std::string("invalid JSON: ") + e.what());
+  }
+  for (const CaseOverride& o : overrides) {
+    json* at = locate(doc, o.jsonPath);
+    if (!at || !at->is_number())
+      throw InputError(path, o.jsonPath, "expected a number at this path of the case (to vary it), found none");
+    *at = o.value;
+  }
+  return parseCase(doc.dump(), path);
 }
 
 model::Scene readCase(const std::string& path) {

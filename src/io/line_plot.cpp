@@ -111,6 +111,7 @@ void writePng(const LinePlot& plot, const std::string& path) {
     if (s.markers)
       for (size_t i = 0; i < s.x.size(); ++i)
         if (std::isfinite(s.y[i])) {
+          cairo_new_path(cr);
           cairo_arc(cr, px(s.x[i]), py(s.y[i]), 3.5, 0, 2 * M_PI);
           cairo_fill(cr);
         }
@@ -122,6 +123,92 @@ void writePng(const LinePlot& plot, const std::string& path) {
     cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);
     text(cr, legendX + 32, ly, s.label, 0, 0.35);
   }
+  cairo_destroy(cr);
+  const cairo_status_t st = cairo_surface_write_to_png(surface, (path + ".tmp").c_str());
+  cairo_surface_destroy(surface);
+  if (st != CAIRO_STATUS_SUCCESS || std::rename((path + ".tmp").c_str(), path.c_str()) != 0)
+    throw InputError(path, "", "cannot write the picture");
+}
+
+void writePng(const HeatMap& m, const std::string& path) {
+  const int width = 820, height = 600;
+  const double left = 90, right = 140, top = 50, bottom = 70;
+  const size_t nx = m.x.size(), ny = m.y.size();
+  double lo = INFINITY, hi = -INFINITY;
+  for (const auto& row : m.values)
+    for (double v : row)
+      if (std::isfinite(v) && v > 0) lo = std::min(lo, v), hi = std::max(hi, v);
+  if (!(hi > lo)) lo = 1e-12, hi = 1;
+  const double llo = std::log10(lo), lhi = std::log10(hi);
+  const double x0 = m.x.front(), x1 = m.x.back(), y0 = m.y.front(), y1 = m.y.back();
+  const double pw = width - left - right, ph = height - top - bottom;
+  const auto px = [&](double x) { return left + (x - x0) / (x1 - x0) * pw; };
+  const auto py = [&](double y) { return height - bottom - (y - y0) / (y1 - y0) * ph; };
+  // Viridis-like ramp: dark blue (low misfit) to yellow (high).
+  const auto colour = [](double t, double* c) {
+    const double k[5][3] = {{0.27, 0.00, 0.33}, {0.23, 0.32, 0.55}, {0.13, 0.57, 0.55}, {0.37, 0.79, 0.38}, {0.99, 0.91, 0.14}};
+    t = std::clamp(t, 0.0, 1.0) * 4;
+    const int i = std::min(3, static_cast<int>(t));
+    const double f = t - i;
+    for (int a = 0; a < 3; ++a) c[a] = k[i][a] * (1 - f) + k[i + 1][a] * f;
+  };
+  cairo_surface_t* surface = cairo_image_surface_create(CAIRO_FORMAT_RGB24, width, height);
+  cairo_t* cr = cairo_create(surface);
+  cairo_set_source_rgb(cr, 1, 1, 1);
+  cairo_paint(cr);
+  const double cw = pw / (nx - 1), ch = ph / (ny - 1);
+  double c[3];
+  for (size_t i = 0; i < nx; ++i)
+    for (size_t j = 0; j < ny; ++j) {
+      const double v = m.values[i][j];
+      colour(std::isfinite(v) && v > 0 ? (std::log10(v) - llo) / (lhi - llo) : 0, c);
+      cairo_set_source_rgb(cr, c[0], c[1], c[2]);
+      cairo_rectangle(cr, px(m.x[i]) - cw / 2, py(m.y[j]) - ch / 2, cw + 0.5, ch + 0.5);
+      cairo_fill(cr);
+    }
+  cairo_reset_clip(cr);
+  cairo_set_source_rgb(cr, 1, 1, 1);  // white margins over the half cells at the edges
+  cairo_rectangle(cr, 0, 0, width, top), cairo_rectangle(cr, 0, height - bottom, width, bottom);
+  cairo_rectangle(cr, 0, 0, left, height), cairo_rectangle(cr, width - right, 0, right, height);
+  cairo_fill(cr);
+  cairo_set_source_rgb(cr, 0, 0, 0);
+  cairo_set_line_width(cr, 1);
+  cairo_rectangle(cr, left, top, pw, ph);
+  cairo_stroke(cr);
+  cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
+  cairo_set_font_size(cr, 13);
+  char buf[32];
+  for (int k = 0; k <= 4; ++k) {
+    const double x = x0 + (x1 - x0) * k / 4, y = y0 + (y1 - y0) * k / 4;
+    std::snprintf(buf, sizeof buf, "%.4g", x);
+    text(cr, px(x), height - bottom + 8, buf, 0.5, 1);
+    std::snprintf(buf, sizeof buf, "%.4g", y);
+    text(cr, left - 8, py(y), buf, 1, 0.5);
+  }
+  // Colour bar with decades.
+  for (int k = 0; k < 100; ++k) {
+    colour(k / 99.0, c);
+    cairo_set_source_rgb(cr, c[0], c[1], c[2]);
+    cairo_rectangle(cr, width - right + 20, height - bottom - ph * (k + 1) / 100.0, 20, ph / 100.0 + 0.5);
+    cairo_fill(cr);
+  }
+  cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);
+  for (int k = 0; k <= 4; ++k) {
+    std::snprintf(buf, sizeof buf, "%.2g", std::pow(10, llo + (lhi - llo) * k / 4));
+    text(cr, width - right + 46, height - bottom - ph * k / 4, buf, 0, 0.5);
+  }
+  // Marker at the estimate.
+  cairo_set_source_rgb(cr, 1, 0.2, 0.2);
+  cairo_set_line_width(cr, 2.5);
+  cairo_new_path(cr);
+  cairo_arc(cr, px(m.markX), py(m.markY), 7, 0, 2 * M_PI);
+  cairo_stroke(cr);
+  cairo_set_source_rgb(cr, 0, 0, 0);
+  cairo_set_font_size(cr, 15);
+  text(cr, left + pw / 2, 30, m.title, 0.5, 0);
+  text(cr, left + pw / 2, height - 22, m.xLabel, 0.5, 0);
+  text(cr, 28, top + ph / 2, m.yLabel, 0.5, 0, -M_PI / 2);
+  text(cr, width - 8, top + ph / 2, m.valueLabel, 0.5, 0, -M_PI / 2);
   cairo_destroy(cr);
   const cairo_status_t st = cairo_surface_write_to_png(surface, (path + ".tmp").c_str());
   cairo_surface_destroy(surface);

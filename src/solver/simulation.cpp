@@ -185,7 +185,10 @@ void Simulation::assembleBlockTerms(double dt, Regime regime, std::vector<Mat6>&
   }
   for (const model::PointLoad& l : scene_.pointLoads) {
     const int i = active_[l.point.block];
-    if (i >= 0) f[i] += assembly::pointForce(scene_.blocks[l.point.block].moments.centroid, l.point.current, l.force);
+    // The load at the end of the step (implicit, like every other term).
+    if (i >= 0)
+      f[i] += assembly::pointForce(scene_.blocks[l.point.block].moments.centroid, l.point.current,
+                                   l.at(regime == Regime::Analysis ? time_ + dt : 0.0));
   }
   for (const model::FixedPoint& fp : scene_.fixedPoints) {
     const int i = active_[fp.point.block];

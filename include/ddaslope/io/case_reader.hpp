@@ -1,6 +1,7 @@
 #pragma once
 // Reads a case file (JSON, docs/case-format.md) into a Scene. Only this layer sees JSON.
 #include <string>
+#include <vector>
 
 #include "ddaslope/model/scene.hpp"
 
@@ -10,5 +11,14 @@ namespace ddaslope::io {
 model::Scene readCase(const std::string& path);
 /// Same, from text already loaded (`file` names it in errors).
 model::Scene parseCase(const std::string& text, const std::string& file);
+
+/// A number to put at a JSON path of the case before it is read ("materials.rock.young_modulus",
+/// "point_loads[0].rate[0]"): how a back-analysis varies any case value.
+struct CaseOverride {
+  std::string jsonPath;
+  double value = 0;
+};
+/// Reads the case with overrides applied; a path that does not lead to a number is an InputError.
+model::Scene readCase(const std::string& path, const std::vector<CaseOverride>& overrides);
 
 }  // namespace ddaslope::io

@@ -19,4 +19,14 @@ struct LinePlot {
 /// Writes the plot (800 × 560 px) to `path`. Throws InputError if the file cannot be written.
 void writePng(const LinePlot& plot, const std::string& path);
 
+/// A scalar field on a regular grid: values[i][j] at (x[i], y[j]), drawn as coloured cells on
+/// a log scale (misfits span decades), with a marker at (markX, markY).
+struct HeatMap {
+  std::string title, xLabel, yLabel, valueLabel;
+  std::vector<double> x, y;
+  std::vector<std::vector<double>> values;
+  double markX = 0, markY = 0;
+};
+void writePng(const HeatMap& map, const std::string& path);
+
 }  // namespace ddaslope::io

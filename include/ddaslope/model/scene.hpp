@@ -26,7 +26,9 @@ struct Monitor {
 
 struct PointLoad {
   BlockPoint point;
-  Vec2 force{0, 0};  ///< N per metre of thickness
+  Vec2 force{0, 0};  ///< N per metre of thickness, at t = 0
+  Vec2 rate{0, 0};   ///< N/m per second: the force at time t is force + rate · t
+  Vec2 at(double t) const { return force + t * rate; }
 };
 
 struct FixedPoint {

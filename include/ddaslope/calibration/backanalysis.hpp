@@ -1,0 +1,39 @@
+#pragma once
+// Back-analysis: the joint strengths (or any case values) that best explain the observations.
+// Misfit = Σ weight · mean(((simulated − observed)/σ)²) over the observations; a global search
+// then a local polish (NLopt), and for two parameters a misfit map over the box.
+#include <string>
+#include <vector>
+
+#include "ddaslope/io/job_reader.hpp"
+#include "ddaslope/model/scene.hpp"
+
+namespace ddaslope::calibration {
+
+struct BackanalysisResult {
+  std::vector<std::string> names;
+  std::vector<double> estimate;     ///< physical units (friction angles in degrees)
+  double misfit = 0;
+  int evaluations = 0;              ///< misfit evaluations (each ≥ 1 forward run)
+  int forwardRuns = 0;
+  std::string globalStatus, localStatus;
+  double wallTime = 0;
+  /// Misfit map (two parameters): axes and values[i][j] at (axis0[i], axis1[j]).
+  std::vector<double> axis0, axis1;
+  std::vector<std::vector<double>> map;
+  /// True when the data fix only a relation between the two parameters (a factor of safety of 1
+  /// alone does this): along one of them, the misfit profile stays within one standard deviation
+  /// of the optimum over at least 40 % of its range.
+  bool lineOnly = false;
+  std::string statement;            ///< the plain statement for the user
+};
+
+/// The job's case with the parameter values x (physical units) applied.
+model::Scene sceneAt(const io::BackanalysisJob& job, const std::vector<double>& x);
+
+/// Misfit of one parameter vector (physical units); counts forward runs in `runs`.
+double misfitAt(const io::BackanalysisJob& job, const std::vector<double>& x, int* runs = nullptr);
+
+BackanalysisResult runBackanalysis(const io::BackanalysisJob& job);
+
+}  // namespace ddaslope::calibration

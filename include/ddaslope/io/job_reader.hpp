@@ -1,0 +1,52 @@
+#pragma once
+// Reads a back-analysis job (JSON, docs/calibration.md): the case, the parameters to estimate,
+// the observations and the optimiser settings. Plain data; calibration/ runs it.
+#include <string>
+#include <vector>
+
+namespace ddaslope::io {
+
+struct ParameterSpec {
+  std::string name;
+  /// Either a joint property ("cohesion" Pa, "friction_angle" degrees, "tensile_strength" Pa) of
+  /// `joint`, or any number of the case at `jsonPath`.
+  std::string joint, property, jsonPath;
+  double min = 0, max = 0;
+  double start = 0;  ///< where the local search starts if there is no global one
+  bool hasStart = false;
+};
+
+struct ObservationSpec {
+  enum class Kind { Series, FactorOfSafety, Runout };
+  Kind kind = Kind::Series;
+  std::string label;
+  std::string monitor, quantity = "displacement";  ///< Series and Runout
+  std::vector<double> times, values;                ///< Series (from CSV)
+  double target = 0;                                ///< FactorOfSafety or Runout
+  std::vector<std::string> joints;                  ///< FactorOfSafety: joints reduced (empty: all)
+  double sigma = 0;                                 ///< measurement uncertainty (units of the value)
+  double weight = 1;
+};
+
+struct OptimiserSpec {
+  std::string global = "GN_DIRECT_L";  ///< "" for none
+  std::string local = "LN_BOBYQA";     ///< "" for none
+  int globalEvaluations = 60;
+  int localEvaluations = 60;
+  double xtolRel = 1e-4;               ///< local search stops when steps are this small (of the range)
+};
+
+struct BackanalysisJob {
+  std::string jobPath;
+  std::string casePath;  ///< resolved relative to the job file
+  std::vector<ParameterSpec> parameters;
+  std::vector<ObservationSpec> observations;
+  OptimiserSpec optimiser;
+  int gridPoints = 15;   ///< per axis, for the misfit map of two parameters (0: none)
+  int threads = 2;
+};
+
+/// Throws InputError (file, JSON path, expected vs found) on bad input.
+BackanalysisJob readJob(const std::string& path);
+
+}  // namespace ddaslope::io

@@ -1,0 +1,212 @@
+#include "ddaslope/calibration/backanalysis.hpp"
+
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <sstream>
+#include <thread>
+
+#include "ddaslope/calibration/minimiser.hpp"
+#include "ddaslope/calibration/strength_search.hpp"
+#include "ddaslope/core/errors.hpp"
+#include "ddaslope/io/case_reader.hpp"
+#include "ddaslope/io/run_case.hpp"
+
+namespace ddaslope::calibration {
+namespace {
+
+int jointNamed(const model::Scene& s, const std::string& name, const std::string& file) {
+  for (size_t j = 0; j < s.joints.size(); ++j)
+    if (s.joints[j].name == name) return static_cast<int>(j);
+  throw InputError(file, "parameters", "no joint named \"" + name + "\" in the case");
+}
+
+std::vector<double> physical(const io::BackanalysisJob& job, const std::vector<double>& u) {
+  std::vector<double> x(u.size());
+  for (size_t i = 0; i < u.size(); ++i) x[i] = job.parameters[i].min + u[i] * (job.parameters[i].max - job.parameters[i].min);
+  return x;
+}
+
+/// Profile of the misfit map along one axis: for each value of parameter `axis`, the least misfit
+/// over the other parameter, refined by a parabola through the best cell and its neighbours
+/// (exact when the observation is linear in that parameter, as a factor of safety is in c).
+std::vector<double> profile(const BackanalysisResult& r, int axis) {
+  const size_t n = axis == 0 ? r.axis0.size() : r.axis1.size(), m = axis == 0 ? r.axis1.size() : r.axis0.size();
+  std::vector<double> out(n);
+  for (size_t k = 0; k < n; ++k) {
+    const auto at = [&](size_t i) { return axis == 0 ? r.map[k][i] : r.map[i][k]; };
+    size_t best = 0;
+    for (size_t i = 1; i < m; ++i)
+      if (at(i) < at(best)) best = i;
+    double v = at(best);
+    if (best > 0 && best + 1 < m) {
+      const double a = at(best - 1), b = at(best), c = at(best + 1), curvature = a - 2 * b + c;
+      if (curvature > 0) v = std::max(0.0, b - (a - c) * (a - c) / (8 * curvature));
+    }
+    out[k] = v;
+  }
+  return out;
+}
+
+/// The data constrain only a line when, along one parameter, the profile stays within one
+/// standard deviation of the optimum (misfit + 1 per unit weight) over at least 40 % of the
+/// search range: many values of that parameter explain the data equally well.
+void judgeConstraint(const io::BackanalysisJob& job, BackanalysisResult& r) {
+  double weights = 0;
+  for (const auto& o : job.observations) weights += o.weight;
+  const std::vector<double> p0 = profile(r, 0), p1 = profile(r, 1);
+  double best = r.misfit;
+  for (double v : p0) best = std::min(best, v);
+  for (double v : p1) best = std::min(best, v);
+  const auto flatSpan = [&](const std::vector<double>& p) {
+    int first = -1, last = -1;
+    for (size_t k = 0; k < p.size(); ++k)
+      if (p[k] <= best + weights) {
+        if (first < 0) first = static_cast<int>(k);
+        last = static_cast<int>(k);
+      }
+    return first < 0 ? 0.0 : double(last - first) / (p.size() - 1);
+  };
+  const double span0 = flatSpan(p0), span1 = flatSpan(p1);
+  r.lineOnly = std::max(span0, span1) >= 0.4;
+  std::ostringstream s;
+  if (r.lineOnly)
+    s << "The observations constrain only a line of (" << r.names[0] << ", " << r.names[1] << ") pairs, not both: "
+      << "within one standard deviation of the best fit, " << r.names[span0 >= span1 ? 0 : 1] << " ranges over "
+      << static_cast<int>(100 * std::max(span0, span1)) << " % of its search range (see misfit_map.png). "
+      << "The estimate is one point of that line; add an observation that separates the two (a displacement or "
+         "velocity history) or fix one of them.";
+  else
+    s << "The observations constrain both " << r.names[0] << " and " << r.names[1]
+      << ": within one standard deviation of the best fit they span " << static_cast<int>(100 * span0) << " % and "
+      << static_cast<int>(100 * span1) << " % of their search ranges.";
+  r.statement = s.str();
+}
+
+}  // namespace
+
+model::Scene sceneAt(const io::BackanalysisJob& job, const std::vector<double>& x) {
+  std::vector<io::CaseOverride> overrides;
+  for (size_t i = 0; i < x.size(); ++i)
+    if (!job.parameters[i].jsonPath.empty()) overrides.push_back({job.parameters[i].jsonPath, x[i]});
+  model::Scene s = io::readCase(job.casePath, overrides);
+  for (size_t i = 0; i < x.size(); ++i) {
+    const io::ParameterSpec& p = job.parameters[i];
+    if (p.joint.empty()) continue;
+    model::JointProperties& j = s.joints[jointNamed(s, p.joint, job.jobPath)];
+    if (p.property == "cohesion") j.cohesion = x[i];
+    else if (p.property == "friction_angle") j.frictionAngle = degToRad(x[i]);
+    else j.tensileStrength = x[i];
+  }
+  return s;
+}
+
+double misfitAt(const io::BackanalysisJob& job, const std::vector<double>& x, int* runs) {
+  const model::Scene scene = sceneAt(job, x);
+  double total = 0;
+  bool needTrace = false;
+  for (const auto& o : job.observations) needTrace |= o.kind != io::ObservationSpec::Kind::FactorOfSafety;
+  io::RunOutcome run;
+  if (needTrace) {
+    run = io::runScene(scene, {});
+    if (runs) ++*runs;
+  }
+  for (const auto& o : job.observations) {
+    double sum = 0;
+    int count = 0;
+    if (o.kind == io::ObservationSpec::Kind::FactorOfSafety) {
+      std::vector<int> joints;
+      for (const auto& n : o.joints) joints.push_back(jointNamed(scene, n, job.jobPath));
+      SearchSettings s;
+      s.threads = 1;
+      const FactorOfSafetyResult f = factorOfSafety(scene, joints, 0.2 * o.sigma, s);
+      if (runs) *runs += f.runs;
+      const double d = ((f.found ? f.factor : 0.0) - o.target) / o.sigma;
+      sum = d * d;
+      count = 1;
+    } else if (!run.completed) {
+      sum = 1e6;  // a run that did not converge explains nothing
+      count = 1;
+    } else {
+      model::Expectation e;
+      e.monitor = o.monitor;
+      e.quantity = o.kind == io::ObservationSpec::Kind::Runout ? "displacement" : o.quantity;
+      if (run.trace.monitorIndex(o.monitor) < 0)
+        throw InputError(job.jobPath, "observations", "no monitor \"" + o.monitor + "\" in the case");
+      if (o.kind == io::ObservationSpec::Kind::Runout) {
+        const double d = (io::measure(run.trace, e) - o.target) / o.sigma;
+        sum = d * d;
+        count = 1;
+      } else {
+        for (size_t k = 0; k < o.times.size(); ++k) {
+          e.time = o.times[k];
+          const double d = (io::measure(run.trace, e) - o.values[k]) / o.sigma;
+          sum += d * d;
+          ++count;
+        }
+      }
+    }
+    total += o.weight * sum / std::max(1, count);
+  }
+  return total;
+}
+
+BackanalysisResult runBackanalysis(const io::BackanalysisJob& job) {
+  const auto t0 = std::chrono::steady_clock::now();
+  BackanalysisResult r;
+  for (const auto& p : job.parameters) r.names.push_back(p.name);
+  std::atomic<int> runs{0};
+  const std::function<double(const std::vector<double>&)> f = [&](const std::vector<double>& u) {
+    int n = 0;
+    const double v = misfitAt(job, physical(job, u), &n);
+    runs += n;
+    return v;
+  };
+  std::vector<double> u(job.parameters.size(), 0.5);
+  for (size_t i = 0; i < u.size(); ++i)
+    if (job.parameters[i].hasStart)
+      u[i] = (job.parameters[i].start - job.parameters[i].min) / (job.parameters[i].max - job.parameters[i].min);
+  double best = HUGE_VAL;
+  if (!job.optimiser.global.empty()) {
+    const MinimiserResult g = minimise(job.optimiser.global, f, u, job.optimiser.globalEvaluations, job.optimiser.xtolRel);
+    r.globalStatus = job.optimiser.global + ": " + g.status;
+    r.evaluations += g.evaluations;
+    u = g.x;
+    best = g.value;
+  }
+  if (!job.optimiser.local.empty()) {
+    const MinimiserResult l = minimise(job.optimiser.local, f, u, job.optimiser.localEvaluations, job.optimiser.xtolRel);
+    r.localStatus = job.optimiser.local + ": " + l.status;
+    r.evaluations += l.evaluations;
+    if (l.value <= best) u = l.x, best = l.value;
+  }
+  r.estimate = physical(job, u);
+  r.misfit = best;
+
+  if (job.parameters.size() == 2 && job.gridPoints >= 3) {
+    const int n = job.gridPoints;
+    for (int i = 0; i < n; ++i) {
+      r.axis0.push_back(job.parameters[0].min + (job.parameters[0].max - job.parameters[0].min) * i / (n - 1));
+      r.axis1.push_back(job.parameters[1].min + (job.parameters[1].max - job.parameters[1].min) * i / (n - 1));
+    }
+    r.map.assign(n, std::vector<double>(n, 0));
+    std::atomic<int> next{0};
+    const auto work = [&] {
+      for (int k = next++; k < n * n; k = next++) {
+        int m = 0;
+        r.map[k / n][k % n] = misfitAt(job, {r.axis0[k / n], r.axis1[k % n]}, &m);
+        runs += m;
+      }
+    };
+    std::vector<std::thread> pool;
+    for (int t = 1; t < std::max(1, job.threads); ++t) pool.emplace_back(work);
+    work();
+    for (auto& t : pool) t.join();
+    judgeConstraint(job, r);
+  }
+  r.forwardRuns = runs;
+  r.wallTime = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return r;
+}
+
+}  // namespace ddaslope::calibration

@@ -1,0 +1,176 @@
+#include "ddaslope/io/job_reader.hpp"
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "ddaslope/core/errors.hpp"
+
+namespace ddaslope::io {
+namespace {
+
+using nlohmann::json;
+namespace fs = std::filesystem;
+
+class JobReader {
+ public:
+  explicit JobReader(std::string file) : file_(std::move(file)) {}
+  [[noreturn]] void fail(const std::string& path, const std::string& msg) const { throw InputError(file_, path, msg); }
+  void onlyKeys(const json& j, const std::string& path, const std::set<std::string>& allowed) const {
+    if (!j.is_object()) fail(path, "expected an object");
+    for (const auto& [k, v] : j.items())
+      if (!allowed.count(k)) fail(path.empty() ? k : path + "." + k, "unknown key '" + k + "'");
+  }
+  double number(const json& j, const std::string& path) const {
+    if (!j.is_number() || !std::isfinite(j.get<double>())) fail(path, "expected a finite number");
+    return j.get<double>();
+  }
+  std::string string(const json& j, const std::string& path) const {
+    if (!j.is_string()) fail(path, "expected a string");
+    return j.get<std::string>();
+  }
+  const json& required(const json& j, const std::string& path, const std::string& key) const {
+    if (!j.contains(key)) fail(path.empty() ? key : path + "." + key, "required key is missing");
+    return j.at(key);
+  }
+  fs::path resolve(const std::string& relative) const { return fs::path(file_).parent_path() / relative; }
+
+  /// Two-column series (time, value) from a CSV with a header row.
+  void readSeries(const std::string& csv, const std::string& timeColumn, const std::string& valueColumn,
+                  const std::string& path, ObservationSpec& o) const {
+    const fs::path p = resolve(csv);
+    std::ifstream in(p);
+    if (!in) fail(path, "cannot open the observations file " + p.string());
+    std::string line;
+    std::getline(in, line);
+    std::vector<std::string> header;
+    for (std::stringstream ss(line); std::getline(ss, line, ',');) header.push_back(line);
+    int ti = -1, vi = -1;
+    for (size_t i = 0; i < header.size(); ++i) {
+      if (header[i] == timeColumn) ti = static_cast<int>(i);
+      if (header[i] == valueColumn) vi = static_cast<int>(i);
+    }
+    if (ti < 0 || vi < 0)
+      fail(path, "columns '" + timeColumn + "' and '" + valueColumn + "' expected in the header of " + p.string());
+    for (int row = 2; std::getline(in, line); ++row) {
+      if (line.empty()) continue;
+      std::vector<std::string> cells;
+      for (std::stringstream ss(line); std::getline(ss, line, ',');) cells.push_back(line);
+      try {
+        o.times.push_back(std::stod(cells.at(ti)));
+        o.values.push_back(std::stod(cells.at(vi)));
+      } catch (const std::exception&) {
+        throw InputError(p.string(), "row " + std::to_string(row), "expected numbers in columns '" + timeColumn + "' and '" + valueColumn + "'");
+      }
+    }
+    if (o.times.empty()) fail(path, "no observations in " + p.string());
+  }
+
+ private:
+  std::string file_;
+};
+
+}  // namespace
+
+BackanalysisJob readJob(const std::string& path) {
+  const JobReader r(path);
+  std::ifstream in(path);
+  if (!in) throw InputError(path, "", "cannot open the file");
+  json doc;
+  try {
+    doc = json::parse(in);
+  } catch (const json::parse_error& e) {
+    r.fail("", std::string("invalid JSON: ") + e.what());
+  }
+  r.onlyKeys(doc, "", {"description", "case", "parameters", "observations", "optimiser", "grid_points", "threads"});
+  BackanalysisJob job;
+  job.jobPath = path;
+  job.casePath = r.resolve(r.string(r.required(doc, "", "case"), "case")).string();
+
+  const json& params = r.required(doc, "", "parameters");
+  if (!params.is_array() || params.empty()) r.fail("parameters", "expected a non-empty array");
+  for (size_t i = 0; i < params.size(); ++i) {
+    const std::string p = "parameters[" + std::to_string(i) + "]";
+    const json& j = params[i];
+    r.onlyKeys(j, p, {"name", "joint", "property", "path", "min", "max", "start"});
+    ParameterSpec s;
+    s.name = r.string(r.required(j, p, "name"), p + ".name");
+    if (j.contains("path")) {
+      s.jsonPath = r.string(j.at("path"), p + ".path");
+    } else {
+      s.joint = r.string(r.required(j, p, "joint"), p + ".joint");
+      s.property = r.string(r.required(j, p, "property"), p + ".property");
+      if (s.property != "cohesion" && s.property != "friction_angle" && s.property != "tensile_strength")
+        r.fail(p + ".property", "expected cohesion, friction_angle or tensile_strength, found \"" + s.property + "\"");
+    }
+    s.min = r.number(r.required(j, p, "min"), p + ".min");
+    s.max = r.number(r.required(j, p, "max"), p + ".max");
+    if (!(s.max > s.min)) r.fail(p + ".max", "expected max > min");
+    if (s.property == "friction_angle" && (s.min < 0 || s.max >= 90))
+      r.fail(p, "friction angle bounds must lie in [0, 90) degrees");
+    if (j.contains("start")) {
+      s.start = r.number(j.at("start"), p + ".start");
+      s.hasStart = true;
+      if (s.start < s.min || s.start > s.max) r.fail(p + ".start", "expected a start within [min, max]");
+    }
+    job.parameters.push_back(s);
+  }
+
+  const json& obs = r.required(doc, "", "observations");
+  if (!obs.is_array() || obs.empty()) r.fail("observations", "expected a non-empty array");
+  for (size_t i = 0; i < obs.size(); ++i) {
+    const std::string p = "observations[" + std::to_string(i) + "]";
+    const json& j = obs[i];
+    r.onlyKeys(j, p, {"type", "label", "monitor", "quantity", "csv", "time_column", "value_column", "target", "joints",
+                      "sigma", "weight"});
+    ObservationSpec o;
+    const std::string type = r.string(r.required(j, p, "type"), p + ".type");
+    o.label = j.contains("label") ? r.string(j.at("label"), p + ".label") : type;
+    o.weight = j.contains("weight") ? r.number(j.at("weight"), p + ".weight") : 1.0;
+    if (!j.contains("sigma")) r.fail(p + ".sigma", "required key is missing (the measurement uncertainty scales the misfit)");
+    o.sigma = r.number(j.at("sigma"), p + ".sigma");
+    if (!(o.sigma > 0)) r.fail(p + ".sigma", "expected sigma > 0");
+    if (type == "series") {
+      o.kind = ObservationSpec::Kind::Series;
+      o.monitor = r.string(r.required(j, p, "monitor"), p + ".monitor");
+      if (j.contains("quantity")) o.quantity = r.string(j.at("quantity"), p + ".quantity");
+      r.readSeries(r.string(r.required(j, p, "csv"), p + ".csv"),
+                   j.contains("time_column") ? r.string(j.at("time_column"), p + ".time_column") : "time",
+                   r.string(r.required(j, p, "value_column"), p + ".value_column"), p + ".csv", o);
+    } else if (type == "factor_of_safety") {
+      o.kind = ObservationSpec::Kind::FactorOfSafety;
+      o.target = r.number(r.required(j, p, "target"), p + ".target");
+      if (j.contains("joints"))
+        for (size_t k = 0; k < j.at("joints").size(); ++k)
+          o.joints.push_back(r.string(j.at("joints")[k], p + ".joints[" + std::to_string(k) + "]"));
+    } else if (type == "runout") {
+      o.kind = ObservationSpec::Kind::Runout;
+      o.monitor = r.string(r.required(j, p, "monitor"), p + ".monitor");
+      o.target = r.number(r.required(j, p, "target"), p + ".target");
+    } else {
+      r.fail(p + ".type", "expected series, factor_of_safety or runout, found \"" + type + "\"");
+    }
+    job.observations.push_back(o);
+  }
+
+  if (doc.contains("optimiser")) {
+    const json& o = doc.at("optimiser");
+    r.onlyKeys(o, "optimiser", {"global", "local", "global_evaluations", "local_evaluations", "xtol_rel"});
+    if (o.contains("global")) job.optimiser.global = r.string(o.at("global"), "optimiser.global");
+    if (o.contains("local")) job.optimiser.local = r.string(o.at("local"), "optimiser.local");
+    if (o.contains("global_evaluations"))
+      job.optimiser.globalEvaluations = static_cast<int>(r.number(o.at("global_evaluations"), "optimiser.global_evaluations"));
+    if (o.contains("local_evaluations"))
+      job.optimiser.localEvaluations = static_cast<int>(r.number(o.at("local_evaluations"), "optimiser.local_evaluations"));
+    if (o.contains("xtol_rel")) job.optimiser.xtolRel = r.number(o.at("xtol_rel"), "optimiser.xtol_rel");
+  }
+  if (doc.contains("grid_points")) job.gridPoints = static_cast<int>(r.number(doc.at("grid_points"), "grid_points"));
+  if (doc.contains("threads")) job.threads = static_cast<int>(r.number(doc.at("threads"), "threads"));
+  return job;
+}
+
+}  // namespace ddaslope::io

@@ -1,0 +1,57 @@
+// Every study in calibration/ (job.json, observations, expected.json) runs and meets the result
+// it expects (issue #4).
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include <nlohmann/json.hpp>
+
+#include "ddaslope/calibration/backanalysis.hpp"
+#include "ddaslope/calibration/strength_search.hpp"
+#include "ddaslope/io/job_reader.hpp"
+
+namespace fs = std::filesystem;
+using namespace ddaslope;
+using nlohmann::json;
+
+namespace {
+std::vector<std::string> studies() {
+  std::vector<std::string> out;
+  for (const auto& e : fs::directory_iterator(fs::path(DDASLOPE_SOURCE_DIR) / "calibration"))
+    if (e.is_directory() && fs::exists(e.path() / "job.json") && fs::exists(e.path() / "expected.json"))
+      out.push_back(e.path().string());
+  std::sort(out.begin(), out.end());
+  return out;
+}
+}  // namespace
+
+class CalibrationStudy : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(CalibrationStudy, MeetsItsExpectedResult) {
+  const fs::path dir = GetParam();
+  const io::BackanalysisJob job = io::readJob((dir / "job.json").string());
+  const json expected = json::parse(std::ifstream(dir / "expected.json"));
+  const calibration::BackanalysisResult r = calibration::runBackanalysis(job);
+  SCOPED_TRACE(r.statement);
+  if (expected.contains("estimates"))
+    for (const auto& [name, e] : expected.at("estimates").items()) {
+      const auto it = std::find(r.names.begin(), r.names.end(), name);
+      ASSERT_NE(it, r.names.end()) << name;
+      const double got = r.estimate[it - r.names.begin()], want = e.at("value").get<double>();
+      const double tol = e.contains("relative_tolerance") ? e.at("relative_tolerance").get<double>() * std::abs(want)
+                                                          : e.at("absolute_tolerance").get<double>();
+      EXPECT_NEAR(got, want, tol) << name;
+    }
+  if (expected.contains("constrains_only_a_line"))
+    EXPECT_EQ(r.lineOnly, expected.at("constrains_only_a_line").get<bool>());
+  if (expected.contains("factor_of_safety_at_estimate")) {
+    const json& e = expected.at("factor_of_safety_at_estimate");
+    const auto f = calibration::factorOfSafety(calibration::sceneAt(job, r.estimate), {}, 0.002);
+    ASSERT_TRUE(f.found) << f.message;
+    EXPECT_NEAR(f.factor, e.at("value").get<double>(), e.at("relative_tolerance").get<double>() * e.at("value").get<double>());
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Studies, CalibrationStudy, ::testing::ValuesIn(studies()),
+                         [](const auto& info) { return fs::path(info.param).filename().string(); });
