@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "ddaslope/calibration/strength_search.hpp"
+#include "ddaslope/io/case_reader.hpp"
 #include "scene_builders.hpp"
 
 using namespace ddaslope;
@@ -113,4 +114,29 @@ TEST(CriticalStrength, CurveOfPlanarFailureMatchesClosedForm) {
     if (expected == 0) EXPECT_EQ(pt.cohesion.critical, 0);
     else EXPECT_NEAR(pt.cohesion.critical, expected, 0.01 * expected);
   }
+}
+
+// Two-wedge limit equilibrium (the idealisation used for Vajont): an active block on a 40° plane
+// thrusts through a vertical joint (friction δ = 40°) on a passive block sliding on a flat toe.
+// Active block: P = W_a (sin α − tan φ cos α) / ((sin α − tan φ cos α) tan δ + cos α + tan φ sin α);
+// passive block: P = W_p / (cot φ − tan δ). The critical φ makes them equal; DDA's critical
+// friction of calibration/two_block_slide must match it within 0.1°.
+TEST(CriticalStrength, TwoWedgeSlideMatchesLimitEquilibrium) {
+  const model::Scene s = io::readCase(std::string(DDASLOPE_SOURCE_DIR) + "/calibration/two_block_slide/case.json");
+  const double wa = 2400 * 9.81 * s.blocks[1].moments.area, wp = 2400 * 9.81 * s.blocks[2].moments.area;
+  const double a = 40 * M_PI / 180, td = std::tan(40 * M_PI / 180);
+  const auto imbalance = [&](double phi) {
+    const double t = std::tan(phi), k = std::sin(a) - t * std::cos(a);
+    const double needed = wa * k / (k * td + std::cos(a) + t * std::sin(a));
+    const double capacity = wp / (1 / t - td);
+    return needed - capacity;
+  };
+  double lo = 1 * M_PI / 180, hi = 30 * M_PI / 180;  // imbalance > 0 at lo (fails), < 0 at hi
+  for (int i = 0; i < 60; ++i) (imbalance(0.5 * (lo + hi)) > 0 ? lo : hi) = 0.5 * (lo + hi);
+  const double limitEquilibrium = 0.5 * (lo + hi) * 180 / M_PI;
+  int surface = 0;
+  while (s.joints[surface].name != "sliding_surface") ++surface;
+  const calibration::CriticalResult r = calibration::criticalFriction(s, surface, 0, 0.01);
+  ASSERT_TRUE(r.found) << r.message;
+  EXPECT_NEAR(r.critical, limitEquilibrium, 0.1);
 }
