@@ -140,3 +140,22 @@ TEST(CriticalStrength, TwoWedgeSlideMatchesLimitEquilibrium) {
   ASSERT_TRUE(r.found) << r.message;
   EXPECT_NEAR(r.critical, limitEquilibrium, 0.1);
 }
+
+// Trials that differ only in joint strength may share the first equilibrium stage (it holds
+// every contact, so strength does not enter it). Sharing must not change a verdict: A2 with
+// cohesion just above and below c_cr = 36.40 kPa (benchmarks.md B1), from one shared state.
+TEST(Verdict, SharedEquilibriumGivesTheSameVerdicts) {
+  InclineSpec spec{40, 10, 5, 20, 0, 2000, 10};
+  spec.duration = 0.5;
+  const model::Scene base = scenes::makeIncline(spec);
+  const solver::HeldEquilibrium held = solver::Simulation(base).holdEquilibrium();
+  for (double c : {0.99 * 36397, 1.01 * 36397}) {
+    model::Scene s = base;
+    s.joints[0].cohesion = c;
+    const calibration::TrialResult own = calibration::judgeStability(s);
+    const calibration::TrialResult shared = calibration::judgeStability(s, {}, &held);
+    EXPECT_EQ(own.stable, c > 36397) << c;
+    EXPECT_EQ(shared.stable, own.stable) << c;
+    if (own.stable) EXPECT_NEAR(shared.maxDisplacement, own.maxDisplacement, 1e-6);
+  }
+}

@@ -3,6 +3,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <optional>
 #include <sstream>
 #include <thread>
 
@@ -101,14 +102,17 @@ model::Scene sceneAt(const io::BackanalysisJob& job, const std::vector<double>& 
   return s;
 }
 
-double misfitAt(const io::BackanalysisJob& job, const std::vector<double>& x, int* runs) {
+double misfitAt(const io::BackanalysisJob& job, const std::vector<double>& x, int* runs,
+                const solver::HeldEquilibrium* shared) {
   const model::Scene scene = sceneAt(job, x);
   double total = 0;
   bool needTrace = false;
   for (const auto& o : job.observations) needTrace |= o.kind != io::ObservationSpec::Kind::FactorOfSafety;
   io::RunOutcome run;
   if (needTrace) {
-    run = io::runScene(scene, {});
+    io::RunOptions options;
+    options.sharedEquilibrium = shared;
+    run = io::runScene(scene, options);
     if (runs) ++*runs;
   }
   for (const auto& o : job.observations) {
@@ -156,9 +160,18 @@ BackanalysisResult runBackanalysis(const io::BackanalysisJob& job) {
   BackanalysisResult r;
   for (const auto& p : job.parameters) r.names.push_back(p.name);
   std::atomic<int> runs{0};
+  // When every parameter is a joint strength, all trials share the first equilibrium stage.
+  bool strengthsOnly = true;
+  for (const auto& p : job.parameters) strengthsOnly &= p.jsonPath.empty();
+  std::optional<solver::HeldEquilibrium> held;
+  if (strengthsOnly) {
+    const model::Scene base = sceneAt(job, physical(job, std::vector<double>(job.parameters.size(), 0.5)));
+    if (base.settings.initialEquilibrium) held = solver::Simulation(base).holdEquilibrium();
+  }
+  const solver::HeldEquilibrium* shared = held ? &*held : nullptr;
   const std::function<double(const std::vector<double>&)> f = [&](const std::vector<double>& u) {
     int n = 0;
-    const double v = misfitAt(job, physical(job, u), &n);
+    const double v = misfitAt(job, physical(job, u), &n, shared);
     runs += n;
     return v;
   };
@@ -194,7 +207,7 @@ BackanalysisResult runBackanalysis(const io::BackanalysisJob& job) {
     const auto work = [&] {
       for (int k = next++; k < n * n; k = next++) {
         int m = 0;
-        r.map[k / n][k % n] = misfitAt(job, {r.axis0[k / n], r.axis1[k % n]}, &m);
+        r.map[k / n][k % n] = misfitAt(job, {r.axis0[k / n], r.axis1[k % n]}, &m, shared);
         runs += m;
       }
     };

@@ -3,6 +3,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <optional>
 #include <thread>
 
 #include "ddaslope/calibration/bisection.hpp"
@@ -25,6 +26,14 @@ struct CountedVerdict {
   }
 };
 
+/// Stage 1 of the equilibrium, computed once for a search whose trials differ only in joint
+/// strengths (it holds every contact, so strengths do not enter it).
+std::optional<solver::HeldEquilibrium> sharedEquilibrium(const model::Scene& scene) {
+  if (!scene.settings.initialEquilibrium) return std::nullopt;
+  solver::Simulation sim(scene);
+  return sim.holdEquilibrium();
+}
+
 template <class Result>
 void copyBracket(const BisectionResult& b, Result& r) {
   r.found = b.bracketed;
@@ -38,11 +47,12 @@ void copyBracket(const BisectionResult& b, Result& r) {
 CriticalResult criticalCohesion(const model::Scene& scene, int joint, double frictionDeg, double width,
                                 const SearchSettings& s, double initialGuess) {
   const auto t0 = std::chrono::steady_clock::now();
+  const auto held = sharedEquilibrium(scene);
   CountedVerdict stableAt{[&](double c) {
     model::Scene trial = scene;
     trial.joints[joint].cohesion = c;
     trial.joints[joint].frictionAngle = degToRad(frictionDeg);
-    return judgeStability(trial, s.verdict).stable;
+    return judgeStability(trial, s.verdict, held ? &*held : nullptr).stable;
   }};
   const std::function<bool(double)> f = std::ref(stableAt);
   CriticalResult r;
@@ -72,11 +82,12 @@ CriticalResult criticalCohesion(const model::Scene& scene, int joint, double fri
 CriticalResult criticalFriction(const model::Scene& scene, int joint, double cohesion, double width,
                                 const SearchSettings& s) {
   const auto t0 = std::chrono::steady_clock::now();
+  const auto held = sharedEquilibrium(scene);
   CountedVerdict stableAt{[&](double phiDeg) {
     model::Scene trial = scene;
     trial.joints[joint].cohesion = cohesion;
     trial.joints[joint].frictionAngle = degToRad(phiDeg);
-    return judgeStability(trial, s.verdict).stable;
+    return judgeStability(trial, s.verdict, held ? &*held : nullptr).stable;
   }};
   const BisectionResult b = bisect(std::ref(stableAt), 0.0, 89.9, width, s.threads);
   CriticalResult r;
@@ -119,6 +130,7 @@ FactorOfSafetyResult factorOfSafety(const model::Scene& scene, const std::vector
   std::vector<int> reduced = joints;
   if (reduced.empty())
     for (size_t j = 0; j < scene.joints.size(); ++j) reduced.push_back(static_cast<int>(j));
+  const auto held = sharedEquilibrium(scene);
   CountedVerdict stableAt{[&](double f) {
     model::Scene trial = scene;
     for (int j : reduced) {
@@ -126,7 +138,7 @@ FactorOfSafetyResult factorOfSafety(const model::Scene& scene, const std::vector
       trial.joints[j].tensileStrength = scene.joints[j].tensileStrength / f;
       trial.joints[j].frictionAngle = std::atan(std::tan(scene.joints[j].frictionAngle) / f);
     }
-    return judgeStability(trial, s.verdict).stable;
+    return judgeStability(trial, s.verdict, held ? &*held : nullptr).stable;
   }};
   FactorOfSafetyResult r;
   // Bracket from F = 1 by factors of 1.5 (stable: raise F; failing: lower it).

@@ -5,7 +5,8 @@
 
 namespace ddaslope::calibration {
 
-TrialResult judgeStability(const model::Scene& scene, const VerdictSettings& settings) {
+TrialResult judgeStability(const model::Scene& scene, const VerdictSettings& settings,
+                           const solver::HeldEquilibrium* shared) {
   DDASLOPE_ASSERT(!scene.monitors.empty(), "a stability verdict needs at least one monitor");
   solver::Simulation sim(scene);
   const double threshold =
@@ -25,7 +26,7 @@ TrialResult judgeStability(const model::Scene& scene, const VerdictSettings& set
     return r.maxDisplacement > threshold;
   };
   try {
-    sim.bringToEquilibrium();
+    sim.bringToEquilibrium(shared);
     double midSpeed = -1;
     const double half = 0.5 * scene.settings.duration;
     while (!passedThreshold()) {

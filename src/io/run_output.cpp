@@ -147,7 +147,7 @@ RunOutcome runScene(const model::Scene& scene, const RunOptions& opt) {
     }
   };
   try {
-    solver::runAnalysis(sim, observe);
+    solver::runAnalysis(sim, observe, opt.sharedEquilibrium);
     o.completed = true;
   } catch (const NonConvergenceError& e) {
     o.failure = e.what();

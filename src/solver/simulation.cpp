@@ -442,10 +442,7 @@ bool Simulation::settle(Regime regime, double& dt, double largestDt) {
   return false;
 }
 
-void Simulation::bringToEquilibrium() {
-  if (!scene_.settings.initialEquilibrium) return;
-  // Only blocks supported (a fixed block or a fixed point, reached through closed contacts)
-  // take part; others are held.
+std::vector<bool> Simulation::unsupportedBlocks() const {
   const size_t n = scene_.blocks.size();
   std::vector<bool> reached(n, false);
   std::vector<int> frontier;
@@ -467,11 +464,15 @@ void Simulation::bringToEquilibrium() {
       }
     }
   }
-  std::vector<Vec6> initialVelocity;
-  for (const model::Block& b : scene_.blocks) initialVelocity.push_back(b.velocity);
   std::vector<bool> held(n);
   for (size_t b = 0; b < n; ++b) held[b] = !reached[b];
-  markActiveBlocks(held);
+  return held;
+}
+
+HeldEquilibrium Simulation::holdEquilibrium() {
+  HeldEquilibrium h;
+  h.held = unsupportedBlocks();
+  markActiveBlocks(h.held);
   if (nActive_ > 0) {
     // Static steps whose inertia term is 1e-8 of the contact stiffness: only a regularisation,
     // so a step solves the static problem almost exactly. A mechanism (a block free to turn)
@@ -479,20 +480,54 @@ void Simulation::bringToEquilibrium() {
     double maxMass = 0;
     for (const model::Block& b : scene_.blocks)
       if (!b.fixed) maxMass = std::max(maxMass, scene_.materials[b.material].density * b.moments.area);
-    double dt = std::sqrt(2e8 * maxMass / penalty_);
-    stats_.equilibriumConverged = settle(Regime::HeldEquilibrium, dt, dt);
+    h.dt = std::sqrt(2e8 * maxMass / penalty_);
+    const int before = stats_.equilibriumSteps;
+    h.converged = settle(Regime::HeldEquilibrium, h.dt, h.dt);
+    h.steps = stats_.equilibriumSteps - before;
+  }
+  h.blocks = scene_.blocks;
+  h.monitors = scene_.monitors;
+  h.pointLoads = scene_.pointLoads;
+  h.fixedPoints = scene_.fixedPoints;
+  h.contacts = contacts_;
+  markActiveBlocks({});
+  return h;
+}
+
+void Simulation::bringToEquilibrium(const HeldEquilibrium* shared) {
+  if (!scene_.settings.initialEquilibrium) return;
+  std::vector<Vec6> initialVelocity;
+  for (const model::Block& b : scene_.blocks) initialVelocity.push_back(b.velocity);
+  HeldEquilibrium own;
+  if (shared) {
+    DDASLOPE_ASSERT(shared->blocks.size() == scene_.blocks.size() && shared->monitors.size() == scene_.monitors.size(),
+                    "a shared equilibrium must come from the same scene");
+    scene_.blocks = shared->blocks;
+    scene_.monitors = shared->monitors;
+    scene_.pointLoads = shared->pointLoads;
+    scene_.fixedPoints = shared->fixedPoints;
+    contacts_ = shared->contacts;
+    // The joints (strengths) are this scene's own; contacts keep their joint index.
+  } else {
+    own = holdEquilibrium();
+    shared = &own;
+  }
+  stats_.equilibriumConverged = shared->converged;
+  markActiveBlocks(shared->held);
+  if (nActive_ > 0) {
+    detectContacts(false);
     const model::Scene heldScene = scene_;
     const contact::ContactSet heldContacts = contacts_;
     // Releasing every held contact at once in one huge static step rarely converges: start the
     // relaxation at the analysis Δt and let it grow.
-    double relaxDt = std::min(dt, scene_.settings.timeStep);
-    stats_.relaxationConverged = settle(Regime::Relaxation, relaxDt, dt);
+    double relaxDt = std::min(shared->dt, scene_.settings.timeStep);
+    stats_.relaxationConverged = settle(Regime::Relaxation, relaxDt, shared->dt);
     if (!stats_.relaxationConverged) {
       scene_ = heldScene;
       contacts_ = heldContacts;
     }
   }
-  for (size_t b = 0; b < n; ++b) scene_.blocks[b].velocity = initialVelocity[b];
+  for (size_t b = 0; b < scene_.blocks.size(); ++b) scene_.blocks[b].velocity = initialVelocity[b];
   markActiveBlocks({});
   detectContacts(false);
 }
@@ -537,8 +572,8 @@ Vec2 Simulation::monitorVelocity(int m) const {
   return b.tAt(mon.point.current) * b.velocity;
 }
 
-void runAnalysis(Simulation& sim, const StepObserver& observe) {
-  sim.bringToEquilibrium();
+void runAnalysis(Simulation& sim, const StepObserver& observe, const HeldEquilibrium* shared) {
+  sim.bringToEquilibrium(shared);
   observe(sim, StepRecord{});
   while (!sim.finished()) observe(sim, sim.advance());
 }

@@ -7,6 +7,7 @@
 
 #include "ddaslope/io/job_reader.hpp"
 #include "ddaslope/model/scene.hpp"
+#include "ddaslope/solver/simulation.hpp"
 
 namespace ddaslope::calibration {
 
@@ -31,8 +32,10 @@ struct BackanalysisResult {
 /// The job's case with the parameter values x (physical units) applied.
 model::Scene sceneAt(const io::BackanalysisJob& job, const std::vector<double>& x);
 
-/// Misfit of one parameter vector (physical units); counts forward runs in `runs`.
-double misfitAt(const io::BackanalysisJob& job, const std::vector<double>& x, int* runs = nullptr);
+/// Misfit of one parameter vector (physical units); counts forward runs in `runs`. `shared`: the
+/// first equilibrium stage, when the parameters are joint strengths only.
+double misfitAt(const io::BackanalysisJob& job, const std::vector<double>& x, int* runs = nullptr,
+                const solver::HeldEquilibrium* shared = nullptr);
 
 BackanalysisResult runBackanalysis(const io::BackanalysisJob& job);
 

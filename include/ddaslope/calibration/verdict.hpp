@@ -1,6 +1,7 @@
 #pragma once
 // Stability verdict of one forward run: the function the bisection and back-analysis loops search.
 #include "ddaslope/model/scene.hpp"
+#include "ddaslope/solver/simulation.hpp"
 
 namespace ddaslope::calibration {
 
@@ -28,7 +29,9 @@ struct TrialResult {
   const char* reason = "";     ///< which rule decided a failing verdict
 };
 
-/// Runs the scene (equilibrium first) until its duration or until rule (a) fires.
-TrialResult judgeStability(const model::Scene& scene, const VerdictSettings& settings = {});
+/// Runs the scene (equilibrium first, from `shared` when given: see solver::HeldEquilibrium)
+/// until its duration or until rule (a) fires.
+TrialResult judgeStability(const model::Scene& scene, const VerdictSettings& settings = {},
+                           const solver::HeldEquilibrium* shared = nullptr);
 
 }  // namespace ddaslope::calibration

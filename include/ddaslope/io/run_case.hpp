@@ -42,6 +42,8 @@ struct RunOptions {
   std::string casePath;                  ///< named in summary.json
   bool progress = false;                 ///< progress line on stderr
   bool verbose = false;                  ///< equilibrium steps and Δt cuts on stderr
+  /// Start the equilibrium's second stage from this state (see solver::HeldEquilibrium).
+  const solver::HeldEquilibrium* sharedEquilibrium = nullptr;
 };
 
 /// Runs to the scene's duration. Non-convergence is returned, not thrown; the partial history is

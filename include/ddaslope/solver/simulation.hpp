@@ -48,6 +48,20 @@ struct RunStatistics {
   PhaseTimes times;
 };
 
+/// The scene after the first equilibrium stage (every initial contact held). It does not depend
+/// on joint strengths, so trials that differ only in strength can start from one shared copy.
+struct HeldEquilibrium {
+  std::vector<model::Block> blocks;
+  std::vector<model::Monitor> monitors;
+  std::vector<model::PointLoad> pointLoads;
+  std::vector<model::FixedPoint> fixedPoints;
+  contact::ContactSet contacts;
+  std::vector<bool> held;  ///< blocks not supported, kept still during equilibrium
+  double dt = 0;           ///< the static step the stage ended with
+  bool converged = true;
+  int steps = 0;
+};
+
 class Simulation {
  public:
   explicit Simulation(model::Scene scene);
@@ -58,7 +72,11 @@ class Simulation {
   /// exceeds their strength (the heel of a block on a slope) slip quasi-statically and hand it
   /// to their neighbours. If stage 2 finds no rest (the scene is failing), the stage-1 state is
   /// kept and the analysis starts from it. Blocks not resting on a fixed block are held still.
-  void bringToEquilibrium();
+  /// `shared`: start stage 2 from this stage-1 state (from holdEquilibrium() of a scene that
+  /// differs from this one at most in joint strengths) instead of computing stage 1.
+  void bringToEquilibrium(const HeldEquilibrium* shared = nullptr);
+  /// Runs stage 1 only and returns its state (the scene is left in it).
+  HeldEquilibrium holdEquilibrium();
   /// One accepted step. Throws NonConvergenceError once maxStepCuts cuts have failed.
   StepRecord advance();
   bool finished() const;
@@ -87,6 +105,8 @@ class Simulation {
 
   void detectContacts(bool initial);
   void markActiveBlocks(const std::vector<bool>& held);
+  /// Blocks that rest on no fixed block or fixed point through closed contacts.
+  std::vector<bool> unsupportedBlocks() const;
   /// Static steps in `regime` until at rest (implied acceleration < 1e-6 g); false if the scene
   /// travels more than g2·w0 (failing) or the step budget runs out.
   bool settle(Regime regime, double& dt, double largestDt);
@@ -122,6 +142,6 @@ class Simulation {
 
 /// Runs a scene from equilibrium to its duration; `observe` sees t = 0 and every step.
 using StepObserver = std::function<void(const Simulation&, const StepRecord&)>;
-void runAnalysis(Simulation& sim, const StepObserver& observe);
+void runAnalysis(Simulation& sim, const StepObserver& observe, const HeldEquilibrium* shared = nullptr);
 
 }  // namespace ddaslope::solver
