@@ -135,6 +135,22 @@ def main():
         "expected": [{"monitor": "wedge", "quantity": "displacement", "at_most": 0.01,
                       "source": f"C: FS = {fs:.4f} > 1, the wedge holds"}]})
 
+    # C with water: the same slope with its tension crack full of water, draining to the toe.
+    zw = h - xc * t
+    u, v = 9810 * zw * length / 2, 9810 * zw * zw / 2
+    fs_w = (c * length + (w * math.cos(math.radians(psi)) - u - v * math.sin(math.radians(psi))) * math.tan(math.radians(phi))) / \
+           (w * math.sin(math.radians(psi)) + v * math.cos(math.radians(psi)))
+    wet = json.load(open(os.path.join(CASES, "planar_failure.json")))
+    wet["description"] = (f"C with water (Hoek & Bray): the planar failure of planar_failure.json with its tension crack "
+                          f"full of water (zw = {zw:.3f} m), draining to the toe along the sliding plane: a phreatic line "
+                          f"from the toe to the crack's water surface. U = gw zw A/2 = {u/1e3:.1f} kN/m on the plane, "
+                          f"V = gw zw^2/2 = {v/1e3:.1f} kN/m in the crack; FS = (c A + (W cos psi - U - V sin psi) tan phi)"
+                          f"/(W sin psi + V cos psi) = {fs_w:.4f}: the wedge slides. Try: ddaslope fos cases/planar_failure_water.json")
+    wet["water"] = {"phreatic_line": [[0, 0], [xc, r(xc * t + zw)]], "unit_weight": 9810}
+    wet["expected"] = [{"monitor": "wedge", "quantity": "displacement", "at_least": 0.1,
+                        "source": f"C with water: FS = {fs_w:.4f} < 1, the wedge slides"}]
+    write("planar_failure_water.json", wet)
+
     # A6: toppling. Rigid rotation about the downslope corner: torque W (b cos a - h sin a)/2,
     # I = m (b^2 + h^2)/3, so the initial angular acceleration is known in closed form.
     alpha, b, h, g = 30.0, 10.0, 25.0, 9.81

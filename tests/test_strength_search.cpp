@@ -19,6 +19,7 @@ namespace {
 /// assume).
 struct Planar {
   model::Scene scene;
+  double crackDepthToPlane = 0;  ///< depth of the tension crack from the crest to the plane (m)
   double weight = 0;   ///< W (N/m)
   double length = 0;   ///< A, length of the sliding plane (m)
   double psi = 0;      ///< rad
@@ -46,7 +47,17 @@ Planar planar(double psiDeg, double c, double phiDeg) {
   s.monitors.push_back({"wedge", {1, c0, c0}});
   s.settings.duration = 1.0;
   s.settings.timeStep = 1e-3;
-  return {s, 2600 * 9.81 * block.moments.area, xc / std::cos(psi), psi};
+  return {s, h - xc * t, 2600 * 9.81 * block.moments.area, xc / std::cos(psi), psi};
+}
+
+/// The same with water standing zw m deep in the tension crack and draining to the toe along the
+/// plane (Hoek & Bray's assumption): a phreatic line from the toe (0, 0) to the crack's water
+/// surface, flat beyond it. FS = (c A + (W cos ψ − U − V sin ψ) tan φ)/(W sin ψ + V cos ψ),
+/// U = γw zw A / 2 on the plane, V = γw zw² / 2 in the crack.
+double hoekBrayWithWater(const Planar& p, double c, double phi, double zw) {
+  const double u = 9810 * zw * p.length / 2, v = 9810 * zw * zw / 2;
+  return (c * p.length + (p.weight * std::cos(p.psi) - u - v * std::sin(p.psi)) * std::tan(phi)) /
+         (p.weight * std::sin(p.psi) + v * std::cos(p.psi));
 }
 
 }  // namespace
@@ -157,5 +168,20 @@ TEST(Verdict, SharedEquilibriumGivesTheSameVerdicts) {
     EXPECT_EQ(own.stable, c > 36397) << c;
     EXPECT_EQ(shared.stable, own.stable) << c;
     if (own.stable) EXPECT_NEAR(shared.maxDisplacement, own.maxDisplacement, 1e-6);
+  }
+}
+
+// C with a water-filled tension crack: strength reduction within 2 % of Hoek & Bray with water
+// (benchmarks.md §C) for the crack half and completely full.
+TEST(StrengthReduction, PlanarFailureWithWaterInTheTensionCrack) {
+  for (const double fill : {0.5, 1.0}) {
+    Planar p = planar(35, 25e3, 30);
+    const double zw = fill * p.crackDepthToPlane, xc = 20, planeAtCrack = xc * std::tan(p.psi);
+    p.scene.water.line = {{0, 0}, {xc, planeAtCrack + zw}};
+    const double expected = hoekBrayWithWater(p, 25e3, 30 * M_PI / 180, zw);
+    const calibration::FactorOfSafetyResult r = calibration::factorOfSafety(p.scene, {}, 0.005);
+    SCOPED_TRACE("zw " + std::to_string(zw));
+    ASSERT_TRUE(r.found) << r.message;
+    EXPECT_NEAR(r.factor, expected, 0.02 * expected);
   }
 }

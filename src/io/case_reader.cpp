@@ -279,6 +279,28 @@ void readJointPairs(const Reader& r, const json& doc, model::Scene& s, const std
   }
 }
 
+void readWater(const Reader& r, const json& doc, model::Scene& s) {
+  if (!doc.contains("water")) return;
+  const json& w = doc.at("water");
+  r.onlyKeys(w, "water", {"level", "phreatic_line", "unit_weight"});
+  s.water.unitWeight = r.optionalIn(w, "water", "unit_weight", 9810, 0, 1e6, true, false, "a unit weight > 0 N/m³");
+  if (w.contains("level") == w.contains("phreatic_line"))
+    r.fail("water", "expected exactly one of level (a horizontal water surface) or phreatic_line");
+  if (w.contains("level")) {
+    const double y = r.number(w.at("level"), "water.level");
+    s.water.line = {{0, y}, {1, y}};
+    return;
+  }
+  const json& line = w.at("phreatic_line");
+  if (!line.is_array() || line.size() < 2) r.fail("water.phreatic_line", "expected at least two points [x, y]");
+  for (size_t i = 0; i < line.size(); ++i) {
+    const Vec2 p = r.point(line[i], Reader::index("water.phreatic_line", i));
+    if (i > 0 && p.x() <= s.water.line.back().x())
+      r.fail(Reader::index("water.phreatic_line", i), "expected x increasing along the line");
+    s.water.line.push_back(p);
+  }
+}
+
 void readAnalysis(const Reader& r, const json& doc, model::Scene& s) {
   const json& a = r.required(doc, "", "analysis");
   const std::string p = "analysis";
@@ -358,7 +380,7 @@ model::Scene parseCase(const std::string& text, const std::string& file) {
     r.fail("", std::string("invalid JSON: ") + e.what());
   }
   r.onlyKeys(doc, "", {"description", "gravity", "materials", "joints", "default_joint", "joint_pairs",
-                       "blocks", "monitors", "point_loads", "fixed_points", "analysis", "expected"});
+                       "blocks", "monitors", "point_loads", "fixed_points", "water", "analysis", "expected"});
   model::Scene s;
   if (doc.contains("description")) s.description = r.string(doc.at("description"), "description");
   if (doc.contains("gravity")) s.gravity = r.point(doc.at("gravity"), "gravity");
@@ -368,6 +390,7 @@ model::Scene parseCase(const std::string& text, const std::string& file) {
   readBlocks(r, doc, s, materialIds);
   readJointPairs(r, doc, s, jointIds);
   readPointsAndLoads(r, doc, s);
+  readWater(r, doc, s);
   readAnalysis(r, doc, s);
   readExpectations(r, doc, s);
   return s;

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "ddaslope/assembly/block_terms.hpp"
+#include "ddaslope/assembly/water_terms.hpp"
 #include "ddaslope/contact/broad_phase.hpp"
 #include "ddaslope/contact/contact_law.hpp"
 #include "ddaslope/contact/narrow_phase.hpp"
@@ -182,6 +183,7 @@ void Simulation::assembleBlockTerms(double dt, Regime regime, std::vector<Mat6>&
     f[i] = assembly::bodyForce(blk.moments.area, mat.density * scene_.gravity) +
            assembly::initialStressForce(blk.moments.area, blk.stress);
     if (carryVelocity) f[i] += (2 / dt) * mass * blk.velocity;
+    if (scene_.water.active()) f[i] += assembly::waterForce(blk, scene_.water);
   }
   for (const model::PointLoad& l : scene_.pointLoads) {
     const int i = active_[l.point.block];

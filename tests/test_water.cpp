@@ -1,0 +1,53 @@
+// Water pressure against hydrostatics (Archimedes) and Hoek & Bray's planar failure with a
+// water-filled tension crack (benchmarks.md §C).
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "ddaslope/assembly/water_terms.hpp"
+
+using namespace ddaslope;
+
+namespace {
+model::WaterTable level(double y) {
+  model::WaterTable w;
+  w.line = {{0, y}, {1, y}};
+  return w;
+}
+model::Block polygon(std::vector<Vec2> v) {
+  model::Block b;
+  b.vertices = std::move(v);
+  b.moments = geometry::computeMoments(b.vertices);
+  return b;
+}
+}  // namespace
+
+// Vertical face submerged to depth H = 4 m: resultant γw H²/2, horizontal, pushing into the
+// block (hydrostatics). The face runs downward: the left face of a counter-clockwise block.
+TEST(Water, TriangularPressureOnAVerticalFace) {
+  const Vec2 r = assembly::edgeWaterResultant({0, 6}, {0, 0}, level(4));  // 2 m of it above water
+  EXPECT_NEAR(r.x(), 9810 * 16.0 / 2, 1e-6);
+  EXPECT_NEAR(r.y(), 0, 1e-9);
+}
+
+// Archimedes: a fully submerged polygon feels γw·area upward, through its centroid (no moment),
+// for any shape and orientation; a half-submerged one feels γw times its submerged area.
+TEST(Water, BuoyancyEqualsDisplacedWeight) {
+  const model::Block b = polygon({{1, -5}, {4, -6}, {6, -3}, {3, -1}, {0, -2}});
+  const Vec6 f = assembly::waterForce(b, level(0));
+  EXPECT_NEAR(f[0], 0, 1e-6);
+  EXPECT_NEAR(f[1], 9810 * b.moments.area, 1e-6 * 9810 * b.moments.area);
+  EXPECT_NEAR(f[2], 0, 1e-6 * 9810 * b.moments.area);
+  const model::Block sq = polygon({{0, -1}, {2, -1}, {2, 1}, {0, 1}});
+  EXPECT_NEAR(assembly::waterForce(sq, level(0))[1], 9810 * 2.0, 1e-6);
+}
+
+// A sloping phreatic line h(x) = x: on the top edge y = −1, 0 ≤ x ≤ 2 of a block below it, the
+// pressure is γw (x + 1) and the resultant ∫ γw (x + 1) dx = 4 γw pushes down.
+TEST(Water, SlopingPhreaticLineFollowsTheHead) {
+  model::WaterTable sloping;
+  sloping.line = {{0, 0}, {2, 2}};
+  const Vec2 r = assembly::edgeWaterResultant({2, -1}, {0, -1}, sloping);
+  EXPECT_NEAR(r.y(), -9810 * 4.0, 1e-6);
+  EXPECT_NEAR(r.x(), 0, 1e-9);
+}
