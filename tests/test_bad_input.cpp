@@ -269,3 +269,19 @@ TEST(CaseReader, OverrideByJsonPath) {
     EXPECT_EQ(e.jsonPath(), "materials.granite.density");
   }
 }
+
+// --snapshots writes one PNG per requested time (checked by its signature).
+TEST(Cli, SnapshotsArePngPictures) {
+  const std::string path = std::string(DDASLOPE_SOURCE_DIR) + "/cases/sliding_block_40deg.json";
+  const fs::path out = fs::temp_directory_path() / ("ddaslope_snap_" + std::to_string(::getpid()));
+  std::string err;
+  ASSERT_EQ(runCli("run " + path + " --quiet --duration 0.5 --snapshots 0,0.25,0.5 --out " + out.string(), &err), 0) << err;
+  for (const char* name : {"snapshot_00.png", "snapshot_01.png", "snapshot_02.png"}) {
+    std::ifstream f(out / name, std::ios::binary);
+    char sig[8] = {};
+    f.read(sig, 8);
+    EXPECT_EQ(std::string(sig + 1, 3), "PNG") << name;
+  }
+  EXPECT_FALSE(fs::exists(out / "snapshot_03.png"));
+  fs::remove_all(out);
+}

@@ -78,7 +78,7 @@ int compareContactsCommand(bool deformable, const std::string& csvPath) {
 }
 
 int runCommand(const std::string& casePath, const std::string& outDir, const Overrides& o, bool quiet,
-               bool verbose) {
+               bool verbose, const std::vector<double>& snapshots) {
   ddaslope::model::Scene scene = ddaslope::io::readCase(casePath);
   applyOverrides(scene, o);
   ddaslope::io::RunOptions opt;
@@ -86,6 +86,7 @@ int runCommand(const std::string& casePath, const std::string& outDir, const Ove
   opt.casePath = casePath;
   opt.progress = !quiet && !verbose && isatty(STDERR_FILENO);
   opt.verbose = verbose;
+  opt.snapshotTimes = snapshots;
   const ddaslope::io::RunOutcome r = ddaslope::io::runScene(scene, opt);
   if (!r.completed) {
     std::cerr << "ddaslope: " << casePath << ": non-convergence: " << r.failure << "\n"
@@ -300,6 +301,8 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"edge", "vertex"}));
   run->add_flag("--quiet", quiet, "no progress on stderr");
   run->add_flag("--verbose", verbose, "log equilibrium steps and time-step cuts on stderr");
+  std::vector<double> snapshots;
+  run->add_option("--snapshots", snapshots, "times (s) of PNG pictures snapshot_NN.png in --out, e.g. 0,0.5,1")->delimiter(',');
 
   CLI::App* check = app.add_subcommand("check", "validate a case file without running it");
   check->add_option("case", casePath, "case file (JSON)")->required();
@@ -352,7 +355,7 @@ int main(int argc, char** argv) {
     return app.exit(e) == 0 ? kExitOk : kExitBadInput;
   }
   try {
-    if (run->parsed()) return runCommand(casePath, outDir, overrides, quiet, verbose);
+    if (run->parsed()) return runCommand(casePath, outDir, overrides, quiet, verbose, snapshots);
     if (check->parsed()) return checkCommand(casePath);
     if (compare->parsed()) return compareContactsCommand(deformable, csvPath);
     if (critical->parsed()) return criticalCommand(casePath, overrides, crit);

@@ -1,6 +1,7 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <algorithm>
 #include <fstream>
 #include <iostream>
 
@@ -8,6 +9,7 @@
 
 #include "ddaslope/core/errors.hpp"
 #include "ddaslope/io/run_case.hpp"
+#include "ddaslope/io/scene_picture.hpp"
 
 namespace ddaslope::io {
 namespace {
@@ -130,6 +132,10 @@ RunOutcome runScene(const model::Scene& scene, const RunOptions& opt) {
   std::optional<HistoryWriter> history;
   if (opt.outputDir) history.emplace(*opt.outputDir, o.trace.monitorIds);
   solver::Simulation sim(scene);
+  const PictureFrame frame = frameScene(scene);
+  std::vector<double> snapshots = opt.snapshotTimes;
+  std::sort(snapshots.begin(), snapshots.end());
+  size_t nextSnapshot = 0;
   if (opt.verbose) sim.setLog([](const std::string& line) { std::fprintf(stderr, "  %s\n", line.c_str()); });
   const double duration = scene.settings.duration;
   double lastShown = -1;
@@ -137,6 +143,12 @@ RunOutcome runScene(const model::Scene& scene, const RunOptions& opt) {
     std::vector<MonitorSample> row;
     for (size_t m = 0; m < s.scene().monitors.size(); ++m) row.push_back(sampleOf(s, static_cast<int>(m)));
     if (history) history->row(r, row);
+    while (opt.outputDir && nextSnapshot < snapshots.size() && r.time >= snapshots[nextSnapshot] - 1e-12) {
+      char name[64];
+      std::snprintf(name, sizeof name, "/snapshot_%02zu.png", nextSnapshot);
+      writeScenePicture(s, frame, *opt.outputDir + name, opt.casePath);
+      ++nextSnapshot;
+    }
     o.trace.steps.push_back(r);
     o.trace.samples.push_back(std::move(row));
     if (opt.progress && (r.time - lastShown >= duration / 100 || r.time >= duration)) {

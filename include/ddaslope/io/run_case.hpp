@@ -42,6 +42,9 @@ struct RunOptions {
   std::string casePath;                  ///< named in summary.json
   bool progress = false;                 ///< progress line on stderr
   bool verbose = false;                  ///< equilibrium steps and Δt cuts on stderr
+  /// Times (s) at which to write snapshot_<k>.png pictures into outputDir (the first step at or
+  /// after each time; t = 0 is the state after equilibrium).
+  std::vector<double> snapshotTimes;
   /// Start the equilibrium's second stage from this state (see solver::HeldEquilibrium).
   const solver::HeldEquilibrium* sharedEquilibrium = nullptr;
 };

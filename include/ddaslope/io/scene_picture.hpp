@@ -1,0 +1,24 @@
+#pragma once
+// Pictures of a running scene (PNG through cairo): blocks coloured by displacement, contact
+// states marked, monitors, water. One file per requested time.
+#include <string>
+#include <vector>
+
+#include "ddaslope/geometry/polygon.hpp"
+#include "ddaslope/solver/simulation.hpp"
+
+namespace ddaslope::io {
+
+struct PictureFrame {
+  geometry::Aabb view;                  ///< world window, fixed for all pictures of a run
+  std::vector<Vec2> initialCentroids;   ///< per block, to colour by displacement
+};
+
+/// Frames the whole scene (its bounding box with a 5 % margin) as it is now.
+PictureFrame frameScene(const model::Scene& scene);
+
+/// Draws the simulation's current state to `path` (PNG, 1000 px wide).
+void writeScenePicture(const solver::Simulation& sim, const PictureFrame& frame, const std::string& path,
+                       const std::string& title);
+
+}  // namespace ddaslope::io

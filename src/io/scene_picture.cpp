@@ -1,0 +1,126 @@
+#include "ddaslope/io/scene_picture.hpp"
+
+#include <cairo.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "ddaslope/core/errors.hpp"
+
+namespace ddaslope::io {
+
+PictureFrame frameScene(const model::Scene& scene) {
+  PictureFrame f;
+  f.view = geometry::boundingBox(scene.blocks.front().vertices);
+  for (const model::Block& b : scene.blocks) {
+    const geometry::Aabb bb = geometry::boundingBox(b.vertices);
+    f.view.lo = f.view.lo.cwiseMin(bb.lo);
+    f.view.hi = f.view.hi.cwiseMax(bb.hi);
+    f.initialCentroids.push_back(b.moments.centroid);
+  }
+  const Vec2 margin = 0.05 * (f.view.hi - f.view.lo);
+  f.view.lo -= margin;
+  f.view.hi += margin;
+  return f;
+}
+
+void writeScenePicture(const solver::Simulation& sim, const PictureFrame& frame, const std::string& path,
+                       const std::string& title) {
+  const model::Scene& scene = sim.scene();
+  const double worldW = frame.view.hi.x() - frame.view.lo.x(), worldH = frame.view.hi.y() - frame.view.lo.y();
+  const int width = 1000, top = 40, bottom = 50;
+  const double scale = (width - 40) / worldW;
+  const int height = static_cast<int>(worldH * scale) + top + bottom;
+  const auto px = [&](const Vec2& p) {
+    return std::pair{20 + (p.x() - frame.view.lo.x()) * scale, top + (frame.view.hi.y() - p.y()) * scale};
+  };
+  std::vector<double> moved(scene.blocks.size(), 0);
+  double maxMoved = 0;
+  for (size_t b = 0; b < scene.blocks.size(); ++b) {
+    moved[b] = (scene.blocks[b].moments.centroid - frame.initialCentroids[b]).norm();
+    if (!scene.blocks[b].fixed) maxMoved = std::max(maxMoved, moved[b]);
+  }
+  const auto ramp = [](double t, double* c) {  // blue (still) → yellow → red (moved most)
+    const double k[3][3] = {{0.35, 0.55, 0.85}, {0.98, 0.85, 0.30}, {0.85, 0.20, 0.15}};
+    t = std::clamp(t, 0.0, 1.0) * 2;
+    const int i = std::min(1, static_cast<int>(t));
+    for (int a = 0; a < 3; ++a) c[a] = k[i][a] + (k[i + 1][a] - k[i][a]) * (t - i);
+  };
+  cairo_surface_t* surface = cairo_image_surface_create(CAIRO_FORMAT_RGB24, width, height);
+  cairo_t* cr = cairo_create(surface);
+  cairo_set_source_rgb(cr, 1, 1, 1);
+  cairo_paint(cr);
+  // Water below the phreatic line.
+  if (scene.water.active()) {
+    cairo_set_source_rgba(cr, 0.55, 0.75, 0.95, 0.5);
+    const int steps = 200;
+    for (int i = 0; i <= steps; ++i) {
+      const double x = frame.view.lo.x() + worldW * i / steps;
+      const auto [sx, sy] = px({x, std::min(scene.water.headAt(x), frame.view.hi.y())});
+      i == 0 ? cairo_move_to(cr, sx, sy) : cairo_line_to(cr, sx, sy);
+    }
+    const auto [rx, ry] = px({frame.view.hi.x(), frame.view.lo.y()});
+    const auto [lx, ly] = px(frame.view.lo);
+    cairo_line_to(cr, rx, ry);
+    cairo_line_to(cr, lx, ly);
+    cairo_close_path(cr);
+    cairo_fill(cr);
+  }
+  // Blocks.
+  cairo_set_line_width(cr, 1.2);
+  for (size_t b = 0; b < scene.blocks.size(); ++b) {
+    const model::Block& blk = scene.blocks[b];
+    for (size_t k = 0; k < blk.vertices.size(); ++k) {
+      const auto [x, y] = px(blk.vertices[k]);
+      k == 0 ? cairo_move_to(cr, x, y) : cairo_line_to(cr, x, y);
+    }
+    cairo_close_path(cr);
+    double c[3] = {0.78, 0.78, 0.78};
+    if (!blk.fixed) ramp(maxMoved > 0 ? moved[b] / maxMoved : 0, c);
+    cairo_set_source_rgb(cr, c[0], c[1], c[2]);
+    cairo_fill_preserve(cr);
+    cairo_set_source_rgb(cr, 0.15, 0.15, 0.15);
+    cairo_stroke(cr);
+  }
+  // Contacts: green locked, orange sliding (open contacts are not drawn).
+  for (const contact::Contact& c : sim.contacts().contacts()) {
+    if (!c.closed()) continue;
+    const auto [x, y] = px(scene.blocks[c.key().vertexBlock].vertices[c.key().vertex]);
+    if (c.state == contact::ContactState::Locked) cairo_set_source_rgb(cr, 0.1, 0.6, 0.2);
+    else cairo_set_source_rgb(cr, 0.95, 0.5, 0.0);
+    cairo_new_path(cr);
+    cairo_arc(cr, x, y, 3.5, 0, 2 * M_PI);
+    cairo_fill(cr);
+  }
+  // Monitors: red crosses.
+  cairo_set_source_rgb(cr, 0.85, 0.0, 0.0);
+  cairo_set_line_width(cr, 2);
+  for (const model::Monitor& m : scene.monitors) {
+    const auto [x, y] = px(m.point.current);
+    cairo_move_to(cr, x - 5, y - 5);
+    cairo_line_to(cr, x + 5, y + 5);
+    cairo_move_to(cr, x - 5, y + 5);
+    cairo_line_to(cr, x + 5, y - 5);
+    cairo_stroke(cr);
+  }
+  cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
+  cairo_set_font_size(cr, 15);
+  cairo_set_source_rgb(cr, 0, 0, 0);
+  cairo_move_to(cr, 20, 26);
+  cairo_show_text(cr, title.c_str());
+  char legend[200];
+  std::snprintf(legend, sizeof legend,
+                "t = %.4g s   colour: block displacement, blue 0 to red %.3g m   contacts: green locked, orange sliding   x: monitors",
+                sim.time(), maxMoved);
+  cairo_set_font_size(cr, 12);
+  cairo_move_to(cr, 20, height - 18);
+  cairo_show_text(cr, legend);
+  cairo_destroy(cr);
+  const cairo_status_t st = cairo_surface_write_to_png(surface, (path + ".tmp").c_str());
+  cairo_surface_destroy(surface);
+  if (st != CAIRO_STATUS_SUCCESS || std::rename((path + ".tmp").c_str(), path.c_str()) != 0)
+    throw InputError(path, "", "cannot write the picture");
+}
+
+}  // namespace ddaslope::io
