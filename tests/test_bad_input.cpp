@@ -285,3 +285,14 @@ TEST(Cli, SnapshotsArePngPictures) {
   EXPECT_FALSE(fs::exists(out / "snapshot_03.png"));
   fs::remove_all(out);
 }
+
+// Water: exactly one description, and a level series whose CSV exists, with increasing times.
+TEST(CaseReader, WaterErrors) {
+  json d = minimal();
+  d["water"] = {{"level", 2.0}, {"phreatic_line", json::array({json::array({0, 1}), json::array({1, 1})})}};
+  expectError(d, "water", "exactly one of");
+  d["water"] = {{"phreatic_line", json::array({json::array({1, 1}), json::array({0, 1})})}};
+  expectError(d, "water.phreatic_line[1]", "x increasing");
+  d["water"] = {{"level_series", {{"csv", "no_such_levels.csv"}}}};
+  expectError(d, "water.level_series.csv", "cannot open the CSV file");
+}

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "ddaslope/assembly/water_terms.hpp"
+#include "scene_builders.hpp"
 
 using namespace ddaslope;
 
@@ -50,4 +51,33 @@ TEST(Water, SlopingPhreaticLineFollowsTheHead) {
   const Vec2 r = assembly::edgeWaterResultant({2, -1}, {0, -1}, sloping);
   EXPECT_NEAR(r.y(), -9810 * 4.0, 1e-6);
   EXPECT_NEAR(r.x(), 0, 1e-9);
+}
+
+// A reservoir level history (load history): a 2 × 1 m block hanging on a fixed point at its
+// centroid, water rising from below it (t = 0) past mid-height (t = 1 s) to above it (t = 2 s).
+// In static mode the fixed point's penalty spring carries the weight less the buoyancy of the
+// submerged part: stretch (W − γw A_sub)/p (Archimedes and Hooke), within 1e-3 of W/p.
+TEST(Water, RisingReservoirUnloadsAHangingBlock) {
+  model::Scene s;
+  s.materials.push_back({"rock", 2600, 5e9, 0.25});
+  s.joints.push_back({"j", 0.5, 0, 0});
+  model::Block b;
+  b.id = "block";
+  b.vertices = {{0, 0}, {2, 0}, {2, 1}, {0, 1}};
+  b.moments = geometry::computeMoments(b.vertices);
+  s.blocks = {b};
+  const Vec2 c = b.moments.centroid;
+  s.monitors.push_back({"centre", {0, c, c}});
+  s.fixedPoints.push_back({{0, c, c}});
+  s.water.seriesTimes = {0, 2};
+  s.water.seriesLevels = {-0.5, 1.5};  // rises 1 m/s: bottom reached at 0.5 s, top at 1.5 s
+  s.water.line = {{0, -0.5}, {1, -0.5}};
+  s.settings.mode = model::AnalysisMode::Static;
+  s.settings.duration = 2.0;
+  const io::Trace t = scenes::runTrace(s);
+  const double w = 2600 * 9.81 * 2, p = s.normalPenalty();
+  for (const auto& [time, submerged] : {std::pair{1.0, 1.0}, std::pair{2.0, 2.0}}) {
+    const double expected = -(w - 9810 * submerged) / p;
+    EXPECT_NEAR(scenes::measureAt(t, "centre", "uy", time), expected, 1e-3 * w / p) << "t = " << time;
+  }
 }

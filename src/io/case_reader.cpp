@@ -1,6 +1,7 @@
 #include "ddaslope/io/case_reader.hpp"
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <set>
 #include <sstream>
@@ -9,6 +10,7 @@
 
 #include "ddaslope/core/errors.hpp"
 #include "ddaslope/geometry/polygon.hpp"
+#include "ddaslope/io/csv_series.hpp"
 
 namespace ddaslope::io {
 namespace {
@@ -112,6 +114,8 @@ class Reader {
     if (!j.is_array() || j.size() != 2) fail(path, "expected a point [x, y], found " + typeName(j));
     return {number(j[0], index(path, 0)), number(j[1], index(path, 1))};
   }
+
+  const std::string& file() const { return file_; }
 
  private:
   std::string file_;
@@ -282,10 +286,28 @@ void readJointPairs(const Reader& r, const json& doc, model::Scene& s, const std
 void readWater(const Reader& r, const json& doc, model::Scene& s) {
   if (!doc.contains("water")) return;
   const json& w = doc.at("water");
-  r.onlyKeys(w, "water", {"level", "phreatic_line", "unit_weight"});
+  r.onlyKeys(w, "water", {"level", "phreatic_line", "level_series", "unit_weight"});
   s.water.unitWeight = r.optionalIn(w, "water", "unit_weight", 9810, 0, 1e6, true, false, "a unit weight > 0 N/m³");
-  if (w.contains("level") == w.contains("phreatic_line"))
-    r.fail("water", "expected exactly one of level (a horizontal water surface) or phreatic_line");
+  const int given = w.contains("level") + w.contains("phreatic_line") + w.contains("level_series");
+  if (given != 1)
+    r.fail("water", "expected exactly one of level (a horizontal water surface), phreatic_line or level_series");
+  if (w.contains("level_series")) {
+    const json& ls = w.at("level_series");
+    r.onlyKeys(ls, "water.level_series", {"csv", "time_column", "level_column"});
+    const std::string csv = r.string(r.required(ls, "water.level_series", "csv"), "water.level_series.csv");
+    const auto column = [&](const char* key, const char* def) {
+      return ls.contains(key) ? r.string(ls.at(key), std::string("water.level_series.") + key) : std::string(def);
+    };
+    const io::Series series =
+        readCsvColumns((std::filesystem::path(r.file()).parent_path() / csv).string(), column("time_column", "time"),
+                       column("level_column", "level"), r.file(), "water.level_series.csv");
+    for (size_t i = 1; i < series.x.size(); ++i)
+      if (!(series.x[i] > series.x[i - 1])) r.fail("water.level_series.csv", "expected times increasing in " + csv);
+    s.water.seriesTimes = series.x;
+    s.water.seriesLevels = series.y;
+    s.water.line = {{0, series.y.front()}, {1, series.y.front()}};
+    return;
+  }
   if (w.contains("level")) {
     const double y = r.number(w.at("level"), "water.level");
     s.water.line = {{0, y}, {1, y}};

@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "ddaslope/core/errors.hpp"
+#include "ddaslope/io/csv_series.hpp"
 
 namespace ddaslope::io {
 namespace {
@@ -42,32 +43,9 @@ class JobReader {
   /// Two-column series (time, value) from a CSV with a header row.
   void readSeries(const std::string& csv, const std::string& timeColumn, const std::string& valueColumn,
                   const std::string& path, ObservationSpec& o) const {
-    const fs::path p = resolve(csv);
-    std::ifstream in(p);
-    if (!in) fail(path, "cannot open the observations file " + p.string());
-    std::string line;
-    std::getline(in, line);
-    std::vector<std::string> header;
-    for (std::stringstream ss(line); std::getline(ss, line, ',');) header.push_back(line);
-    int ti = -1, vi = -1;
-    for (size_t i = 0; i < header.size(); ++i) {
-      if (header[i] == timeColumn) ti = static_cast<int>(i);
-      if (header[i] == valueColumn) vi = static_cast<int>(i);
-    }
-    if (ti < 0 || vi < 0)
-      fail(path, "columns '" + timeColumn + "' and '" + valueColumn + "' expected in the header of " + p.string());
-    for (int row = 2; std::getline(in, line); ++row) {
-      if (line.empty()) continue;
-      std::vector<std::string> cells;
-      for (std::stringstream ss(line); std::getline(ss, line, ',');) cells.push_back(line);
-      try {
-        o.times.push_back(std::stod(cells.at(ti)));
-        o.values.push_back(std::stod(cells.at(vi)));
-      } catch (const std::exception&) {
-        throw InputError(p.string(), "row " + std::to_string(row), "expected numbers in columns '" + timeColumn + "' and '" + valueColumn + "'");
-      }
-    }
-    if (o.times.empty()) fail(path, "no observations in " + p.string());
+    const Series series = readCsvColumns(resolve(csv).string(), timeColumn, valueColumn, file_, path);
+    o.times = series.x;
+    o.values = series.y;
   }
 
  private:

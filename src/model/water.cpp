@@ -12,6 +12,22 @@ double WaterTable::headAt(double x) const {
   return a.y() + (b.y() - a.y()) * (x - a.x()) / (b.x() - a.x());
 }
 
+double WaterTable::levelAt(double t) const {
+  if (t <= seriesTimes.front()) return seriesLevels.front();
+  if (t >= seriesTimes.back()) return seriesLevels.back();
+  const size_t k = std::upper_bound(seriesTimes.begin(), seriesTimes.end(), t) - seriesTimes.begin();
+  const double w = (t - seriesTimes[k - 1]) / (seriesTimes[k] - seriesTimes[k - 1]);
+  return seriesLevels[k - 1] + w * (seriesLevels[k] - seriesLevels[k - 1]);
+}
+
+WaterTable WaterTable::at(double t) const {
+  if (seriesTimes.empty()) return *this;
+  WaterTable w = *this;
+  const double y = levelAt(t);
+  w.line = {{0, y}, {1, y}};
+  return w;
+}
+
 double WaterTable::pressureAt(const Vec2& p) const {
   return std::max(0.0, unitWeight * (headAt(p.x()) - p.y()));
 }

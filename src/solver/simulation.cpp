@@ -172,6 +172,8 @@ void Simulation::assembleBlockTerms(double dt, Regime regime, std::vector<Mat6>&
   f.assign(nActive_, Vec6::Zero());
   const bool carryVelocity =
       regime == Regime::Analysis && scene_.settings.mode == model::AnalysisMode::Dynamic;
+  // Water (and any load history) at the end of the step; equilibrium is found at t = 0.
+  const model::WaterTable water = scene_.water.at(regime == Regime::Analysis ? time_ + dt : 0.0);
   for (size_t b = 0; b < scene_.blocks.size(); ++b) {
     const int i = active_[b];
     if (i < 0) continue;
@@ -183,7 +185,7 @@ void Simulation::assembleBlockTerms(double dt, Regime regime, std::vector<Mat6>&
     f[i] = assembly::bodyForce(blk.moments.area, mat.density * scene_.gravity) +
            assembly::initialStressForce(blk.moments.area, blk.stress);
     if (carryVelocity) f[i] += (2 / dt) * mass * blk.velocity;
-    if (scene_.water.active()) f[i] += assembly::waterForce(blk, scene_.water);
+    if (water.active()) f[i] += assembly::waterForce(blk, water);
   }
   for (const model::PointLoad& l : scene_.pointLoads) {
     const int i = active_[l.point.block];
