@@ -16,6 +16,7 @@
 #include "ddaslope/calibration/strength_search.hpp"
 #include "ddaslope/io/json_record.hpp"
 #include "ddaslope/io/line_plot.hpp"
+#include "ddaslope/io/scene_picture.hpp"
 #include "ddaslope/core/errors.hpp"
 #include "ddaslope/io/case_reader.hpp"
 #include "ddaslope/io/run_case.hpp"
@@ -281,6 +282,26 @@ int backanalyseCommand(const std::string& jobPath, const std::string& outDir, bo
   return kExitOk;
 }
 
+int cutCommand(const std::string& casePath, const std::string& outDir) {
+  const ddaslope::model::Scene scene = ddaslope::io::readCase(casePath);
+  const std::string text = ddaslope::io::expandSection(casePath);
+  std::filesystem::create_directories(outDir);
+  const std::string blocks = outDir + "/blocks.json", picture = outDir + "/section.png";
+  {
+    std::ofstream out(blocks + ".tmp");
+    out << text;
+  }
+  std::filesystem::rename(blocks + ".tmp", blocks);
+  const ddaslope::solver::Simulation sim(scene);
+  ddaslope::io::writeScenePicture(sim, ddaslope::io::frameScene(scene), picture, casePath + " (cut)");
+  int slide = 0;
+  for (const auto& b : scene.blocks) slide += !b.fixed;
+  std::printf("%s: %zu blocks (%d free, %zu fixed), %zu contacts at t = 0\n  wrote %s and %s\n", casePath.c_str(),
+              scene.blocks.size(), slide, scene.blocks.size() - slide, sim.contacts().contacts().size(), blocks.c_str(),
+              picture.c_str());
+  return kExitOk;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -313,6 +334,11 @@ int main(int argc, char** argv) {
       "compare-contacts", "critical cohesion of a block on an incline, edge vs vertex treatment vs closed form (27 slopes)");
   compare->add_flag("--deformable", deformable, "deformable rock blocks (E = 5 GPa) instead of stiff ones");
   compare->add_option("--csv", csvPath, "also write the table as CSV");
+
+  std::string cutOut = "out/cut";
+  CLI::App* cut = app.add_subcommand("cut", "cut the blocks of a case's slope section; write them as a plain case file and a picture");
+  cut->add_option("case", casePath, "case file (JSON) with a section")->required();
+  cut->add_option("--out", cutOut, "output directory")->capture_default_str();
 
   CriticalOptions crit;
   CLI::App* critical = app.add_subcommand("critical", "critical cohesion (at a friction angle) or friction angle (at a cohesion) of one joint, by bisection");
@@ -359,6 +385,7 @@ int main(int argc, char** argv) {
     if (check->parsed()) return checkCommand(casePath);
     if (compare->parsed()) return compareContactsCommand(deformable, csvPath);
     if (critical->parsed()) return criticalCommand(casePath, overrides, crit);
+    if (cut->parsed()) return cutCommand(casePath, cutOut);
     if (ba->parsed()) return backanalyseCommand(jobPath, baOut, baJson);
     if (fos->parsed()) return fosCommand(casePath, overrides, fosJoints, fosWidth, fosJson, fosThreads);
   } catch (const ddaslope::InputError& e) {

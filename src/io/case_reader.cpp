@@ -11,6 +11,7 @@
 #include "ddaslope/core/errors.hpp"
 #include "ddaslope/geometry/polygon.hpp"
 #include "ddaslope/io/csv_series.hpp"
+#include "ddaslope/model/section.hpp"
 
 namespace ddaslope::io {
 namespace {
@@ -170,11 +171,83 @@ void readJoints(const Reader& r, const json& doc, model::Scene& s, std::map<std:
   }
 }
 
+/// Blocks cut from a slope section (docs/case-format.md, "section").
+void readSection(const Reader& r, const json& doc, model::Scene& s, const std::map<std::string, int>& materialIds,
+                 const std::map<std::string, int>& jointIds) {
+  if (!doc.contains("section")) return;
+  const std::string p = "section";
+  const json& j = doc.at(p);
+  r.onlyKeys(j, p, {"ground", "sliding_surface", "base_depth", "material", "base_material", "sliding_joint", "joints",
+                    "joint_sets"});
+  const auto polyline = [&](const char* key) {
+    const json& a = r.required(j, p, key);
+    if (!a.is_array()) r.fail(p + "." + key, "expected an array of points [x, y]");
+    std::vector<Vec2> pts;
+    for (size_t i = 0; i < a.size(); ++i) pts.push_back(r.point(a[i], Reader::index(p + "." + key, i)));
+    return pts;
+  };
+  model::SectionSpec spec;
+  spec.ground = polyline("ground");
+  spec.slidingSurface = polyline("sliding_surface");
+  spec.baseDepth = r.number(r.required(j, p, "base_depth"), p + ".base_depth");
+  if (j.contains("joints")) {
+    const json& js = j.at("joints");
+    if (!js.is_array()) r.fail(p + ".joints", "expected an array of joints [[x1, y1], [x2, y2]]");
+    for (size_t i = 0; i < js.size(); ++i) {
+      const std::string q = Reader::index(p + ".joints", i);
+      if (!js[i].is_array() || js[i].size() != 2) r.fail(q, "expected two points [[x1, y1], [x2, y2]]");
+      spec.joints.emplace_back(r.point(js[i][0], q + "[0]"), r.point(js[i][1], q + "[1]"));
+    }
+  }
+  if (j.contains("joint_sets")) {
+    const json& sets = j.at("joint_sets");
+    if (!sets.is_array()) r.fail(p + ".joint_sets", "expected an array");
+    for (size_t i = 0; i < sets.size(); ++i) {
+      const std::string q = Reader::index(p + ".joint_sets", i);
+      r.onlyKeys(sets[i], q, {"angle", "spacing", "origin"});
+      model::JointSet set;
+      set.angleDeg = r.number(r.required(sets[i], q, "angle"), q + ".angle");
+      set.spacing = r.number(r.required(sets[i], q, "spacing"), q + ".spacing");
+      set.origin = r.point(r.required(sets[i], q, "origin"), q + ".origin");
+      spec.jointSets.push_back(set);
+    }
+  }
+  const auto materialOf = [&](const char* key, const std::string& def) {
+    const std::string m = j.contains(key) ? r.string(j.at(key), p + "." + key) : def;
+    if (!materialIds.count(m)) r.fail(p + "." + key, "unknown material \"" + m + "\" (not in materials)");
+    return materialIds.at(m);
+  };
+  const int material = materialOf("material", "");
+  const std::string materialName = r.string(j.at("material"), p + ".material");
+  const int baseMaterial = materialOf("base_material", materialName);
+  model::SectionBlocks blocks;
+  try {
+    blocks = model::cutSection(spec);
+  } catch (const InputError& e) {
+    r.fail(p + "." + e.jsonPath(), e.message());
+  }
+  const int baseIndex = static_cast<int>(s.blocks.size());
+  blocks.base.material = baseMaterial;
+  s.blocks.push_back(blocks.base);
+  for (model::Block& b : blocks.slide) {
+    b.material = material;
+    s.blocks.push_back(b);
+  }
+  if (j.contains("sliding_joint")) {
+    const std::string jn = r.string(j.at("sliding_joint"), p + ".sliding_joint");
+    if (!jointIds.count(jn)) r.fail(p + ".sliding_joint", "unknown joint \"" + jn + "\" (not in joints)");
+    for (size_t k = 0; k < blocks.slide.size(); ++k) s.pairJoints[{baseIndex, baseIndex + 1 + static_cast<int>(k)}] = jointIds.at(jn);
+  }
+}
+
 void readBlocks(const Reader& r, const json& doc, model::Scene& s,
                 const std::map<std::string, int>& materialIds) {
+  if (!doc.contains("blocks") && !s.blocks.empty()) return;  // all blocks come from the section
   const json& blocks = r.required(doc, "", "blocks");
-  if (!blocks.is_array() || blocks.empty()) r.fail("blocks", "expected a non-empty array of blocks, found " + typeName(blocks));
+  if (!blocks.is_array() || (blocks.empty() && s.blocks.empty()))
+    r.fail("blocks", "expected a non-empty array of blocks, found " + typeName(blocks));
   std::set<std::string> seen;
+  for (const auto& b : s.blocks) seen.insert(b.id);
   for (size_t b = 0; b < blocks.size(); ++b) {
     const std::string p = Reader::index("blocks", b);
     const json& jb = blocks[b];
@@ -401,7 +474,7 @@ model::Scene parseCase(const std::string& text, const std::string& file) {
   } catch (const json::parse_error& e) {
     r.fail("", std::string("invalid JSON: ") + e.what());
   }
-  r.onlyKeys(doc, "", {"description", "gravity", "materials", "joints", "default_joint", "joint_pairs",
+  r.onlyKeys(doc, "", {"description", "gravity", "materials", "joints", "default_joint", "joint_pairs", "section",
                        "blocks", "monitors", "point_loads", "fixed_points", "water", "analysis", "expected"});
   model::Scene s;
   if (doc.contains("description")) s.description = r.string(doc.at("description"), "description");
@@ -409,6 +482,7 @@ model::Scene parseCase(const std::string& text, const std::string& file) {
   std::map<std::string, int> materialIds, jointIds;
   readMaterials(r, doc, s, materialIds);
   readJoints(r, doc, s, jointIds);
+  readSection(r, doc, s, materialIds, jointIds);
   readBlocks(r, doc, s, materialIds);
   readJointPairs(r, doc, s, jointIds);
   readPointsAndLoads(r, doc, s);
@@ -464,6 +538,35 @@ model::Scene readCase(const std::string& path, const std::vector<CaseOverride>& 
     *at = o.value;
   }
   return parseCase(doc.dump(), path);
+}
+
+std::string expandSection(const std::string& path) {
+  const model::Scene scene = readCase(path);
+  std::ifstream in(path);
+  nlohmann::ordered_json doc = nlohmann::ordered_json::parse(in);
+  doc.erase("section");
+  nlohmann::ordered_json blocks = nlohmann::ordered_json::array();
+  for (const model::Block& b : scene.blocks) {
+    nlohmann::ordered_json jb;
+    jb["id"] = b.id;
+    jb["material"] = scene.materials[b.material].name;
+    if (b.fixed) jb["fixed"] = true;
+    nlohmann::ordered_json v = nlohmann::ordered_json::array();
+    for (const Vec2& p : b.vertices) v.push_back({p.x(), p.y()});
+    jb["vertices"] = v;
+    if (b.velocity.head<2>().norm() > 0) jb["velocity"] = {b.velocity[0], b.velocity[1]};
+    if (b.velocity[2] != 0) jb["angular_velocity"] = b.velocity[2];
+    blocks.push_back(jb);
+  }
+  doc["blocks"] = blocks;
+  if (!scene.pairJoints.empty()) {
+    nlohmann::ordered_json pairs = nlohmann::ordered_json::array();
+    for (const auto& [pair, joint] : scene.pairJoints)
+      pairs.push_back({{"blocks", {scene.blocks[pair.first].id, scene.blocks[pair.second].id}},
+                       {"joint", scene.joints[joint].name}});
+    doc["joint_pairs"] = pairs;
+  }
+  return doc.dump(2) + "\n";
 }
 
 model::Scene readCase(const std::string& path) {

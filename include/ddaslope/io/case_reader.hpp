@@ -9,6 +9,10 @@ namespace ddaslope::io {
 
 /// Throws InputError (file, JSON path, expected vs found) on any bad input.
 model::Scene readCase(const std::string& path);
+/// The case with its `section` cut into explicit blocks (and the joint pairs along the sliding
+/// surface): a plain case file, as `ddaslope cut` writes it.
+std::string expandSection(const std::string& path);
+
 /// Same, from text already loaded (`file` names it in errors).
 model::Scene parseCase(const std::string& text, const std::string& file);
 

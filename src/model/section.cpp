@@ -1,0 +1,130 @@
+#include "ddaslope/model/section.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "ddaslope/core/errors.hpp"
+#include "ddaslope/geometry/cutting.hpp"
+
+namespace ddaslope::model {
+namespace {
+
+[[noreturn]] void fail(const std::string& path, const std::string& msg) { throw InputError("", path, msg); }
+
+double groundAt(const std::vector<Vec2>& g, double x) {
+  if (x <= g.front().x()) return g.front().y();
+  for (size_t i = 1; i < g.size(); ++i)
+    if (x <= g[i].x() && g[i].x() > g[i - 1].x())
+      return g[i - 1].y() + (g[i].y() - g[i - 1].y()) * (x - g[i - 1].x()) / (g[i].x() - g[i - 1].x());
+  return g.back().y();
+}
+
+Block makeBlock(std::string id, bool fixed, std::vector<Vec2> v) {
+  Block b;
+  b.id = std::move(id);
+  b.fixed = fixed;
+  geometry::orientCounterClockwise(v);
+  b.vertices = std::move(v);
+  b.moments = geometry::computeMoments(b.vertices);
+  return b;
+}
+
+/// Splits every piece by the line; pieces it misses stay whole.
+void cutAll(std::vector<std::vector<Vec2>>& pieces, const Vec2& p, const Vec2& d, const std::string& path,
+            double minArea) {
+  std::vector<std::vector<Vec2>> next;
+  for (const auto& piece : pieces) {
+    const int crossings = geometry::lineCrossings(piece, p, d);
+    if (crossings <= 1) {
+      next.push_back(piece);
+      continue;
+    }
+    if (crossings > 2)
+      fail(path, "this joint would cut a non-convex piece of the slide mass into more than two blocks; "
+                 "split the mass with other joints first or shorten the section");
+    for (const auto& part : {geometry::clipToLeft(piece, p, d), geometry::clipToLeft(piece, p, -d)})
+      if (part.size() >= 3 && std::abs(geometry::signedArea(part)) > minArea) next.push_back(part);
+  }
+  pieces = std::move(next);
+}
+
+}  // namespace
+
+SectionBlocks cutSection(const SectionSpec& s) {
+  if (s.ground.size() < 2) fail("ground", "expected at least two points");
+  for (size_t i = 1; i < s.ground.size(); ++i)
+    if (s.ground[i].x() < s.ground[i - 1].x()) fail("ground[" + std::to_string(i) + "]", "expected x non-decreasing");
+  if (s.slidingSurface.size() < 2) fail("sliding_surface", "expected at least two points");
+  for (size_t i = 1; i < s.slidingSurface.size(); ++i)
+    if (s.slidingSurface[i].x() <= s.slidingSurface[i - 1].x())
+      fail("sliding_surface[" + std::to_string(i) + "]", "expected x increasing from crown to toe");
+  const Vec2 crown = s.slidingSurface.front(), toe = s.slidingSurface.back();
+  if (crown.x() < s.ground.front().x() || toe.x() > s.ground.back().x())
+    fail("sliding_surface", "expected the sliding surface within the ground's x range");
+  double size = 0, lowest = INFINITY, highest = -INFINITY;
+  for (const Vec2& p : s.ground) lowest = std::min(lowest, p.y()), highest = std::max(highest, p.y());
+  for (const Vec2& p : s.slidingSurface) lowest = std::min(lowest, p.y()), highest = std::max(highest, p.y());
+  size = std::max(s.ground.back().x() - s.ground.front().x(), highest - lowest);
+  const double tol = 1e-9 * size;
+  for (size_t i = 1; i + 1 < s.slidingSurface.size(); ++i)
+    if (s.slidingSurface[i].y() >= groundAt(s.ground, s.slidingSurface[i].x()) - tol)
+      fail("sliding_surface[" + std::to_string(i) + "]", "expected the sliding surface below the ground between crown and toe");
+  if (!(s.baseDepth > 0)) fail("base_depth", "expected a depth > 0 m");
+
+  // Slide mass: the ground from crown to toe, back along the sliding surface.
+  std::vector<Vec2> mass{crown};
+  for (const Vec2& g : s.ground)
+    if (g.x() > crown.x() + tol && g.x() < toe.x() - tol) mass.push_back(g);
+  for (size_t i = s.slidingSurface.size(); i-- > 1;) mass.push_back(s.slidingSurface[i]);
+  mass = geometry::cleanPolygon(mass, tol);
+  if (mass.size() < 3 || !geometry::isSimple(mass)) fail("sliding_surface", "the slide mass between ground and sliding surface is not a simple polygon");
+
+  // Base: the ground outside the slide, the sliding surface, and a bottom baseDepth below.
+  const double bottom = lowest - s.baseDepth;
+  std::vector<Vec2> base;
+  for (const Vec2& g : s.ground)
+    if (g.x() < crown.x() - tol) base.push_back(g);
+  for (const Vec2& p : s.slidingSurface) base.push_back(p);
+  for (const Vec2& g : s.ground)
+    if (g.x() > toe.x() + tol) base.push_back(g);
+  base.push_back({s.ground.back().x(), bottom});
+  base.push_back({s.ground.front().x(), bottom});
+  base = geometry::cleanPolygon(base, tol);
+  if (base.size() < 3 || !geometry::isSimple(base)) fail("ground", "the base below the ground and sliding surface is not a simple polygon");
+
+  // Internal joints cut the mass.
+  std::vector<std::vector<Vec2>> pieces{mass};
+  const double minArea = 1e-9 * size * size;
+  for (size_t i = 0; i < s.joints.size(); ++i) {
+    const Vec2 d = s.joints[i].second - s.joints[i].first;
+    if (d.norm() <= tol) fail("joints[" + std::to_string(i) + "]", "expected two distinct points");
+    cutAll(pieces, s.joints[i].first, d, "joints[" + std::to_string(i) + "]", minArea);
+  }
+  const geometry::Aabb box = geometry::boundingBox(mass);
+  for (size_t i = 0; i < s.jointSets.size(); ++i) {
+    const JointSet& js = s.jointSets[i];
+    const std::string path = "joint_sets[" + std::to_string(i) + "]";
+    if (!(js.spacing > 0)) fail(path + ".spacing", "expected a spacing > 0 m");
+    const double a = degToRad(js.angleDeg);
+    const Vec2 d(std::cos(a), std::sin(a)), n(-d.y(), d.x());
+    // Offsets (along n) of the lines that can cross the mass's bounding box.
+    double lo = INFINITY, hi = -INFINITY;
+    for (const Vec2& c : {box.lo, box.hi, Vec2(box.lo.x(), box.hi.y()), Vec2(box.hi.x(), box.lo.y())}) {
+      const double o = n.dot(c - js.origin);
+      lo = std::min(lo, o), hi = std::max(hi, o);
+    }
+    const long first = static_cast<long>(std::ceil(lo / js.spacing)), last = static_cast<long>(std::floor(hi / js.spacing));
+    if (last - first > 10000) fail(path + ".spacing", "expected fewer than 10000 joints across the slide mass");
+    for (long k = first; k <= last; ++k) cutAll(pieces, js.origin + (k * js.spacing) * n, d, path, minArea);
+  }
+  std::sort(pieces.begin(), pieces.end(), [](const auto& p, const auto& q) {
+    return geometry::computeMoments(p).centroid.x() < geometry::computeMoments(q).centroid.x();
+  });
+  SectionBlocks out;
+  out.base = makeBlock("base", true, base);
+  for (size_t k = 0; k < pieces.size(); ++k) out.slide.push_back(makeBlock("slide_" + std::to_string(k + 1), false, pieces[k]));
+  return out;
+}
+
+}  // namespace ddaslope::model

@@ -1,0 +1,72 @@
+// Blocks cut from a slope section: areas are conserved (the cut pieces tile the slide mass)
+// and the pieces are where the joints put them.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "ddaslope/core/errors.hpp"
+#include "ddaslope/geometry/cutting.hpp"
+#include "ddaslope/model/section.hpp"
+
+using namespace ddaslope;
+
+namespace {
+/// A 100 m wide section: level ground at y = 20, a sliding surface from (10, 20) down to a flat
+/// seat at y = 5 and up to (90, 20): slide mass area = 80·15 − 2·(½·10·15) = 1050 m².
+model::SectionSpec basin() {
+  model::SectionSpec s;
+  s.ground = {{0, 20}, {100, 20}};
+  s.slidingSurface = {{10, 20}, {20, 5}, {80, 5}, {90, 20}};
+  s.baseDepth = 10;
+  return s;
+}
+}  // namespace
+
+TEST(Section, SlideMassAndBaseTileTheSection) {
+  const model::SectionBlocks b = model::cutSection(basin());
+  ASSERT_EQ(b.slide.size(), 1u);
+  EXPECT_NEAR(b.slide[0].moments.area, 1050, 1e-9);
+  // Base: 100 × (20 − (5 − 10)) minus the mass.
+  EXPECT_NEAR(b.base.moments.area, 100 * 25 - 1050, 1e-9);
+  EXPECT_TRUE(b.base.fixed);
+}
+
+TEST(Section, JointsCutTheMassConservingArea) {
+  model::SectionSpec s = basin();
+  s.joints.push_back({{50, 5}, {50, 20}});  // one explicit vertical joint, extended as a line
+  s.jointSets.push_back({90, 10, {0, 0}});  // vertical lines every 10 m (x = 10, 20, …, 90)
+  const model::SectionBlocks b = model::cutSection(s);
+  // The seven lines x = 20 … 80 cut the mass (x = 50 twice: the explicit joint and the set cut
+  // nothing new the second time); x = 10 and 90 touch its corners only: 8 pieces.
+  ASSERT_EQ(b.slide.size(), 8u);
+  double total = 0;
+  for (const auto& blk : b.slide) total += blk.moments.area;
+  EXPECT_NEAR(total, 1050, 1e-8);
+  EXPECT_NEAR(b.slide[3].moments.area, 150, 1e-9);  // a full 10 × 15 column in the middle
+  EXPECT_LT(b.slide.front().moments.centroid.x(), b.slide.back().moments.centroid.x());
+}
+
+TEST(Section, BadSectionsAreReported) {
+  model::SectionSpec s = basin();
+  s.slidingSurface[1] = {20, 25};  // above the ground
+  try {
+    model::cutSection(s);
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.jsonPath(), "sliding_surface[1]");
+  }
+  s = basin();
+  s.baseDepth = 0;
+  EXPECT_THROW(model::cutSection(s), InputError);
+}
+
+TEST(Cutting, HalfPlaneClipOfASquare) {
+  const std::vector<Vec2> sq{{0, 0}, {2, 0}, {2, 2}, {0, 2}};
+  const auto left = geometry::clipToLeft(sq, {1, 0}, {0, 1});  // keep x ≤ 1
+  EXPECT_NEAR(std::abs(geometry::signedArea(left)), 2.0, 1e-14);
+  EXPECT_EQ(geometry::lineCrossings(sq, {1, 0}, {0, 1}), 2);
+  EXPECT_EQ(geometry::lineCrossings(sq, {5, 0}, {0, 1}), 0);
+  // A U-shaped polygon crossed by a horizontal line through both arms: 4 crossings.
+  const std::vector<Vec2> u{{0, 0}, {3, 0}, {3, 3}, {2, 3}, {2, 1}, {1, 1}, {1, 3}, {0, 3}};
+  EXPECT_EQ(geometry::lineCrossings(u, {0, 2}, {1, 0}), 4);
+}
