@@ -85,7 +85,9 @@ void vertexOnEdges(const Poly& V, const Poly& E, const Region& region, const Nar
       if ((p - a).norm() < s.searchDistance || (p - b).norm() < s.searchDistance) continue;
       if (clearance(V, v, E, e) < minClearance) continue;
       ContactCandidate c = makeCandidate(V, v, E, e, s.parallelTolerance);
-      if (c.gap < -s.searchDistance) continue;  // behind the edge: not this edge's contact
+      // Deeper than a step can carry a vertex (0.4 of the search distance): behind the edge, not
+      // this edge's contact.
+      if (c.gap < -0.5 * s.searchDistance) continue;
       out.push_back(c);
     }
   }
@@ -105,7 +107,12 @@ void vertexToVertex(const Poly& A, const Poly& B, const Region& region, const Na
   const double minClearance = -std::sin(s.parallelTolerance);
   for (int p = 0; p < A.n(); ++p) {
     if (!region.contains(A.at(p))) continue;
-    for (int q = 0; q < B.n(); ++q) {
+    // Only the nearest vertex of B can be the corner P touches: with blocks not much larger than
+    // the search distance, farther corners are within reach too and would give false contacts.
+    int nearest = -1;
+    for (int q = 0; q < B.n(); ++q)
+      if (nearest < 0 || (A.at(p) - B.at(q)).squaredNorm() < (A.at(p) - B.at(nearest)).squaredNorm()) nearest = q;
+    for (int q = nearest; q == nearest; ++q) {
       if ((A.at(p) - B.at(q)).norm() >= s.searchDistance) continue;
       const bool pConvex = A.convex(p), qConvex = B.convex(q);
       if (!pConvex && !qConvex) continue;
@@ -123,7 +130,8 @@ void vertexToVertex(const Poly& A, const Poly& B, const Region& region, const Na
       std::erase_if(options, [&](const Option& o) { return o.clearance < minClearance; });
       if (options.empty()) continue;
       auto emit = [&](const Option& o) {
-        out.push_back(makeCandidate(*o.vertexPoly, o.v, *o.edgePoly, o.e, s.parallelTolerance));
+        const ContactCandidate c = makeCandidate(*o.vertexPoly, o.v, *o.edgePoly, o.e, s.parallelTolerance);
+        if (c.gap >= -0.5 * s.searchDistance) out.push_back(c);
       };
       if (!qConvex || !pConvex) {
         // A convex corner in a reflex corner touches both of its edges.

@@ -282,14 +282,26 @@ void readBlocks(const Reader& r, const json& doc, model::Scene& s,
   }
 }
 
-/// A point on a named block, checked to lie inside it.
+/// A point on a named block, checked to lie inside it. Without "block", the block that contains
+/// the point (a free one before a fixed one): handy when blocks are cut from a section.
 model::BlockPoint blockPoint(const Reader& r, const json& j, const std::string& p, const model::Scene& s) {
-  const std::string id = r.string(r.required(j, p, "block"), p + ".block");
+  model::BlockPoint bp;
+  bp.initial = bp.current = r.point(r.required(j, p, "point"), p + ".point");
+  if (!j.contains("block")) {
+    int found = -1;
+    for (size_t b = 0; b < s.blocks.size(); ++b) {
+      const geometry::Aabb box = geometry::boundingBox(s.blocks[b].vertices);
+      if (!geometry::containsPoint(s.blocks[b].vertices, bp.initial, 1e-9 * (box.hi - box.lo).maxCoeff())) continue;
+      if (found < 0 || (s.blocks[found].fixed && !s.blocks[b].fixed)) found = static_cast<int>(b);
+    }
+    if (found < 0) r.fail(p + ".point", "point lies in no block");
+    bp.block = found;
+    return bp;
+  }
+  const std::string id = r.string(j.at("block"), p + ".block");
   const int b = s.blockIndex(id);
   if (b < 0) r.fail(p + ".block", "unknown block \"" + id + "\"");
-  model::BlockPoint bp;
   bp.block = b;
-  bp.initial = bp.current = r.point(r.required(j, p, "point"), p + ".point");
   const geometry::Aabb box = geometry::boundingBox(s.blocks[b].vertices);
   if (!geometry::containsPoint(s.blocks[b].vertices, bp.initial, 1e-9 * (box.hi - box.lo).maxCoeff()))
     r.fail(p + ".point", "point lies outside block \"" + id + "\"");

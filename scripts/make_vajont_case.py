@@ -1,0 +1,69 @@
+#!/usr/bin/env python3
+"""Writes cases/vajont.json from ../shared/data/vajont/case.json (the Vajont 1963 section of Boon,
+Houlsby & Utili's 2-D model, with reconstructed break points). Run: python3 scripts/make_vajont_case.py
+[--datum 630] [--kink 650]. Every number's provenance is in the shared data's README."""
+import argparse, json, math, os
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+SHARED = os.path.join(HERE, "..", "..", "shared", "data", "vajont", "case.json")
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--datum", type=float, default=630.0, help="m a.s.l. of y = 0 (reconstructed: 600-630)")
+    ap.add_argument("--kink", type=float, default=650.0, help="x of the upper slip-surface kink x_b (560-700)")
+    ap.add_argument("--reservoir", type=float, default=700.42, help="reservoir level, m a.s.l.")
+    ap.add_argument("--spacing", type=float, default=50.0,
+                    help="vertical joints every this many m (kinematic freedom); 0: only J1 and J2 at the kinks (3 blocks)")
+    ap.add_argument("--out", default=os.path.join(HERE, "..", "cases", "vajont.json"))
+    a = ap.parse_args()
+    data = json.load(open(SHARED))
+    cs = data["cross_section"]
+    ground = [[p["x"], p["y"]] for p in cs["ground_surface"]]
+    ground += [[p["x"], p["y"]] for p in cs["valley_floor_and_opposite_bank"]["points"]]
+    dips = cs["sliding_surface"]["segment_dips_deg"]
+    crown = [0.0, 566.2]
+    back, middle = math.radians(dips["upper_back"]["value"]), math.radians(dips["middle"]["value"])
+    kink = [a.kink, round(crown[1] - a.kink * math.tan(back), 3)]
+    seat_x = round(kink[0] + kink[1] / math.tan(middle), 3)
+    surface = [crown, kink, [seat_x, 0.0], [1215.0, 0.0]]
+    rho = data["material"]["density_kg_m3"]["value"]
+    case = {
+        "description": (
+            "Vajont (Vaiont) rockslide, 9 Oct 1963, section of Boon, Houlsby & Utili (2014) 2-D DEM model "
+            "(BOON2D script, quoted planes); ground surface quoted, sliding-surface dips quoted (37.49, 13.5, 0 deg), "
+            f"break points reconstructed (upper kink x_b = {a.kink:g} m chosen in 560-700 to match the quoted volume); "
+            f"internal joints: vertical, every {a.spacing:g} m through the upper kink, plus J2 at the lower kink "
+            "(reconstructed: rigid blocks need this kinematic freedom to follow the chair-shaped surface, see docs/vajont.md). "
+            "Density 2395.5 kg/m3 quoted "
+            "(BOON2D). Internal joints phi = 40 deg quoted (BOON2D rock friction); sliding surface c = 0 (Boon), phi to be "
+            f"back-analysed. Reservoir {a.reservoir} m a.s.l. at failure (Doc. 76-bis p207), datum y = 0 at "
+            f"{a.datum:g} m a.s.l. (reconstructed, 600-630). Young's modulus 10 GPa assumed (not in the sources). "
+            "Source data and labels: ../shared/data/vajont (README, case.json). Regenerate: scripts/make_vajont_case.py"),
+        "gravity": [0, -9.81],
+        "materials": {"rock": {"density": rho, "young_modulus": 10e9, "poisson_ratio": 0.25}},
+        "joints": {"sliding_surface": {"friction_angle": 22.0, "cohesion": 0},
+                   "internal": {"friction_angle": data["material"]["rock_joint_friction_deg"]["value_2D"], "cohesion": 0}},
+        "default_joint": "internal",
+        "section": {
+            "ground": ground,
+            "sliding_surface": surface,
+            "base_depth": 100,
+            "material": "rock",
+            "sliding_joint": "sliding_surface",
+            "joints": [[[seat_x, 0.0], [seat_x, 100.0]]] + ([] if a.spacing > 0 else [[[a.kink, kink[1]], [a.kink, kink[1] + 100]]]),
+            "joint_sets": [{"angle": 90, "spacing": a.spacing, "origin": [a.kink, 0.0]}] if a.spacing > 0 else [],
+        },
+        "monitors": [{"id": "crown", "point": [400, 330]}, {"id": "toe", "point": [1100, 40]}],
+        "water": {"level": round(a.reservoir - a.datum, 3)},
+        "analysis": {"duration": 10.0, "time_step": 0.01},
+        "expected": [{"monitor": "toe", "quantity": "displacement", "at_most": 0.1,
+                      "source": "phi = 22 deg lies above the back-analysed critical friction (docs/vajont.md): the slope holds"}],
+    }
+    with open(a.out, "w") as f:
+        json.dump(case, f, indent=2)
+        f.write("\n")
+
+
+if __name__ == "__main__":
+    main()
