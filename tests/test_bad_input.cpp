@@ -296,3 +296,20 @@ TEST(CaseReader, WaterErrors) {
   d["water"] = {{"level_series", {{"csv", "no_such_levels.csv"}}}};
   expectError(d, "water.level_series.csv", "cannot open the CSV file");
 }
+
+// --set overrides a case number by JSON path; a malformed one is bad input (exit 2).
+TEST(Cli, SetOverridesACaseNumber) {
+  const std::string path = std::string(DDASLOPE_SOURCE_DIR) + "/cases/stable_block_40deg.json";
+  const fs::path out = fs::temp_directory_path() / ("ddaslope_set_" + std::to_string(::getpid()));
+  std::string err;
+  // φ = 30° on the 40° plane: the stable block now slides (A2's frictional law).
+  ASSERT_EQ(runCli("run " + path + " --quiet --duration 0.5 --set joints.interface.friction_angle=30 --out " + out.string(), &err), 0) << err;
+  const json summary = json::parse(std::ifstream(out / "summary.json"));
+  const json& m = summary["monitors"]["centre"];
+  EXPECT_GT(std::hypot(m["ux"].get<double>(), m["uy"].get<double>()), 0.1);
+  EXPECT_EQ(runCli("run " + path + " --set joints.interface.friction_angle --out " + out.string(), &err), 2);
+  EXPECT_NE(err.find("json.path=number"), std::string::npos) << err;
+  EXPECT_EQ(runCli("run " + path + " --set joints.nothing.friction_angle=3 --out " + out.string(), &err), 2);
+  EXPECT_NE(err.find("joints.nothing.friction_angle"), std::string::npos) << err;
+  fs::remove_all(out);
+}

@@ -32,7 +32,30 @@ struct Overrides {
   double timeStep = 0;
   double duration = 0;
   std::string contactTreatment;
+  std::vector<std::string> settings;  ///< "json.path=value", applied before the case is read
 };
+
+/// "path=value" → an override; a malformed one is bad input.
+ddaslope::io::CaseOverride parseSetting(const std::string& text) {
+  const size_t eq = text.find('=');
+  double v = 0;
+  try {
+    if (eq == std::string::npos) throw std::invalid_argument("");
+    size_t used = 0;
+    v = std::stod(text.substr(eq + 1), &used);
+    if (used != text.size() - eq - 1) throw std::invalid_argument("");
+  } catch (const std::exception&) {
+    throw ddaslope::InputError("--set", text, "expected json.path=number, e.g. joints.clay.friction_angle=20");
+  }
+  return {text.substr(0, eq), v};
+}
+
+/// Reads the case with the --set overrides and any extra ones (a sweep's value).
+ddaslope::model::Scene loadCase(const std::string& casePath, const Overrides& o,
+                                std::vector<ddaslope::io::CaseOverride> extra = {}) {
+  for (const auto& s : o.settings) extra.push_back(parseSetting(s));
+  return ddaslope::io::readCase(casePath, extra);
+}
 
 void applyOverrides(ddaslope::model::Scene& scene, const Overrides& o) {
   if (o.timeStep > 0) scene.settings.timeStep = o.timeStep;
@@ -80,7 +103,7 @@ int compareContactsCommand(bool deformable, const std::string& csvPath) {
 
 int runCommand(const std::string& casePath, const std::string& outDir, const Overrides& o, bool quiet,
                bool verbose, const std::vector<double>& snapshots) {
-  ddaslope::model::Scene scene = ddaslope::io::readCase(casePath);
+  ddaslope::model::Scene scene = loadCase(casePath, o);
   applyOverrides(scene, o);
   ddaslope::io::RunOptions opt;
   opt.outputDir = outDir;
@@ -181,7 +204,7 @@ int curveCommand(const std::string& casePath, const ddaslope::model::Scene& scen
 }
 
 int criticalCommand(const std::string& casePath, const Overrides& o, const CriticalOptions& opt) {
-  ddaslope::model::Scene scene = ddaslope::io::readCase(casePath);
+  ddaslope::model::Scene scene = loadCase(casePath, o);
   applyOverrides(scene, o);
   const int joint = jointIndex(scene, opt.joint, casePath);
   if (!opt.curve.empty()) return curveCommand(casePath, scene, joint, opt);
@@ -215,25 +238,72 @@ int criticalCommand(const std::string& casePath, const Overrides& o, const Criti
   return r.found ? kExitOk : kExitNonConvergence;
 }
 
-int fosCommand(const std::string& casePath, const Overrides& o, const std::vector<std::string>& jointNames,
-               double width, bool json, int threads) {
-  ddaslope::model::Scene scene = ddaslope::io::readCase(casePath);
-  applyOverrides(scene, o);
+struct FosOptions {
+  std::vector<std::string> joints;
+  double width = 0.005;
+  bool json = false;
+  int threads = 2;
+  std::string sweep;  ///< "json.path=min:max:n"
+  std::string outDir = "out/fos";
+};
+
+ddaslope::calibration::FactorOfSafetyResult factorFor(const ddaslope::model::Scene& scene, const std::string& casePath,
+                                                      const FosOptions& opt) {
   std::vector<int> joints;
-  for (const auto& n : jointNames) joints.push_back(jointIndex(scene, n, casePath));
+  for (const auto& n : opt.joints) joints.push_back(jointIndex(scene, n, casePath));
   ddaslope::calibration::SearchSettings s;
-  s.threads = threads;
-  const auto r = ddaslope::calibration::factorOfSafety(scene, joints, width, s);
-  if (json) {
+  s.threads = opt.threads;
+  return ddaslope::calibration::factorOfSafety(scene, joints, opt.width, s);
+}
+
+/// F at n values of one case number (e.g. the reservoir level): CSV and PNG in opt.outDir.
+int fosSweep(const std::string& casePath, const Overrides& o, const FosOptions& opt) {
+  const size_t eq = opt.sweep.find('=');
+  double lo = 0, hi = 0;
+  int n = 0;
+  if (eq == std::string::npos || std::sscanf(opt.sweep.c_str() + eq + 1, "%lf:%lf:%d", &lo, &hi, &n) != 3 || n < 2)
+    throw ddaslope::InputError("--sweep", opt.sweep, "expected json.path=min:max:n with n ≥ 2");
+  const std::string path = opt.sweep.substr(0, eq);
+  std::filesystem::create_directories(opt.outDir);
+  const std::string csv = opt.outDir + "/fos_sweep.csv", png = opt.outDir + "/fos_sweep.png";
+  std::ofstream out(csv + ".tmp");
+  out << path << ",factor_of_safety,stable_at,failing_at,found,forward_runs,wall_time_s\n";
+  ddaslope::io::PlotSeries series{"F", {}, {}, true};
+  bool all = true;
+  for (int i = 0; i < n; ++i) {
+    const double v = lo + (hi - lo) * i / (n - 1);
+    const ddaslope::model::Scene scene = loadCase(casePath, o, {{path, v}});
+    const auto r = factorFor(scene, casePath, opt);
+    out << v << "," << r.factor << "," << r.stableEnd << "," << r.failingEnd << "," << r.found << "," << r.runs << ","
+        << r.wallTime << "\n";
+    std::printf("  %s = %-10g F = %s (%d forward runs, %.1f s)\n", path.c_str(), v,
+                r.found ? std::to_string(r.factor).c_str() : r.message.c_str(), r.runs, r.wallTime);
+    series.x.push_back(v);
+    series.y.push_back(r.found ? r.factor : NAN);
+    all &= r.found;
+  }
+  out.close();
+  std::filesystem::rename(csv + ".tmp", csv);
+  ddaslope::io::writePng({"Strength-reduction factor of safety: " + casePath, path, "F", {series}}, png);
+  std::printf("wrote %s and %s\n", csv.c_str(), png.c_str());
+  return all ? kExitOk : kExitNonConvergence;
+}
+
+int fosCommand(const std::string& casePath, const Overrides& o, const FosOptions& opt) {
+  if (!opt.sweep.empty()) return fosSweep(casePath, o, opt);
+  ddaslope::model::Scene scene = loadCase(casePath, o);
+  applyOverrides(scene, o);
+  const auto r = factorFor(scene, casePath, opt);
+  if (opt.json) {
     ddaslope::io::JsonRecord j;
     j.set("case", casePath).set("found", r.found).set("factor_of_safety", r.factor);
-    j.set("bracket", std::vector<double>{r.stableEnd, r.failingEnd}).set("width", width);
+    j.set("bracket", std::vector<double>{r.stableEnd, r.failingEnd}).set("width", opt.width);
     j.set("forward_runs", r.runs).set("rounds", r.rounds).set("wall_time_s", r.wallTime).set("message", r.message);
     std::printf("%s\n", j.dump().c_str());
   } else if (r.found) {
     std::printf("factor of safety (strength reduction on %s): %.4f (stable at %.4f, failing at %.4f)\n",
-                jointNames.empty() ? "all joints" : "the named joints", r.factor, r.stableEnd, r.failingEnd);
-    std::printf("%d forward runs in %d rounds of %d, %.2f s wall\n", r.runs, r.rounds, threads, r.wallTime);
+                opt.joints.empty() ? "all joints" : "the named joints", r.factor, r.stableEnd, r.failingEnd);
+    std::printf("%d forward runs in %d rounds of %d, %.2f s wall\n", r.runs, r.rounds, opt.threads, r.wallTime);
   } else {
     std::fprintf(stderr, "ddaslope: %s: no factor of safety found after %d forward runs: %s\n", casePath.c_str(),
                  r.runs, r.message.c_str());
@@ -321,6 +391,7 @@ int main(int argc, char** argv) {
                   "override analysis.contact_treatment: edge (one state per edge-to-edge contact) or vertex (original DDA)")
       ->check(CLI::IsMember({"edge", "vertex"}));
   run->add_flag("--quiet", quiet, "no progress on stderr");
+  run->add_option("--set", overrides.settings, "json.path=value: override a number of the case (repeatable)");
   run->add_flag("--verbose", verbose, "log equilibrium steps and time-step cuts on stderr");
   std::vector<double> snapshots;
   run->add_option("--snapshots", snapshots, "times (s) of PNG pictures snapshot_NN.png in --out, e.g. 0,0.5,1")->delimiter(',');
@@ -352,21 +423,22 @@ int main(int argc, char** argv) {
   critical->add_option("--time-step", overrides.timeStep, "override analysis.time_step (s)");
   critical->add_option("--contact-treatment", overrides.contactTreatment, "edge or vertex")->check(CLI::IsMember({"edge", "vertex"}));
   critical->add_flag("--json", crit.json, "print the result as JSON");
+  critical->add_option("--set", overrides.settings, "json.path=value: override a number of the case (repeatable)");
   critical->add_option("--curve", crit.curve, "φmin:φmax:n: the critical (c, φ) curve as CSV and PNG in --out");
   critical->add_option("--out", crit.outDir, "output directory for --curve")->capture_default_str();
 
-  std::vector<std::string> fosJoints;
-  double fosWidth = 0.005;
-  bool fosJson = false;
-  int fosThreads = 2;
+  FosOptions fosOpt;
   CLI::App* fos = app.add_subcommand("fos", "strength-reduction factor of safety: largest F with c/F, atan(tan φ/F) stable");
   fos->add_option("case", casePath, "case file (JSON)")->required();
-  fos->add_option("--joints", fosJoints, "joints to reduce (default: all)")->delimiter(',');
-  fos->add_option("--width", fosWidth, "final bracket width of F")->capture_default_str();
-  fos->add_option("--threads", fosThreads, "trial factors per round, run at once")->capture_default_str();
+  fos->add_option("--joints", fosOpt.joints, "joints to reduce (default: all)")->delimiter(',');
+  fos->add_option("--width", fosOpt.width, "final bracket width of F")->capture_default_str();
+  fos->add_option("--threads", fosOpt.threads, "trial factors per round, run at once")->capture_default_str();
+  fos->add_option("--sweep", fosOpt.sweep, "json.path=min:max:n: F at n values of one case number (CSV and PNG in --out)");
+  fos->add_option("--out", fosOpt.outDir, "output directory for --sweep")->capture_default_str();
+  fos->add_option("--set", overrides.settings, "json.path=value: override a number of the case (repeatable)");
   fos->add_option("--time-step", overrides.timeStep, "override analysis.time_step (s)");
   fos->add_option("--contact-treatment", overrides.contactTreatment, "edge or vertex")->check(CLI::IsMember({"edge", "vertex"}));
-  fos->add_flag("--json", fosJson, "print the result as JSON");
+  fos->add_flag("--json", fosOpt.json, "print the result as JSON");
 
   std::string jobPath, baOut = "out/backanalysis";
   bool baJson = false;
@@ -387,7 +459,7 @@ int main(int argc, char** argv) {
     if (critical->parsed()) return criticalCommand(casePath, overrides, crit);
     if (cut->parsed()) return cutCommand(casePath, cutOut);
     if (ba->parsed()) return backanalyseCommand(jobPath, baOut, baJson);
-    if (fos->parsed()) return fosCommand(casePath, overrides, fosJoints, fosWidth, fosJson, fosThreads);
+    if (fos->parsed()) return fosCommand(casePath, overrides, fosOpt);
   } catch (const ddaslope::InputError& e) {
     std::cerr << "ddaslope: error: " << e.what() << "\n";
     return kExitBadInput;
