@@ -56,7 +56,9 @@ def main():
         },
         "monitors": [{"id": "crown", "point": [400, 330]}, {"id": "toe", "point": [1100, 40]}],
         "water": {"level": round(a.reservoir - a.datum, 3)},
-        "analysis": {"duration": 10.0, "time_step": 0.01},
+        # Verdict for a 1.2 km slide of 26 blocks: stable runs move up to ~0.7 m while the mass
+        # settles and come to rest; failing ones keep accelerating (docs/vajont.md).
+        "analysis": {"duration": 20.0, "time_step": 0.01, "failure_displacement": 5.0},
         "expected": [{"monitor": "toe", "quantity": "displacement", "at_most": 0.1,
                       "source": "phi = 22 deg lies above the back-analysed critical friction (docs/vajont.md): the slope holds"}],
     }

@@ -415,7 +415,7 @@ void readAnalysis(const Reader& r, const json& doc, model::Scene& s) {
                     "shear_penalty_ratio", "max_displacement_ratio", "open_close_max_iterations",
                     "friction_tolerance", "max_step_cuts", "step_cut_factor", "initial_equilibrium",
                     "equilibrium_max_steps", "edge_parallel_tolerance", "initial_contact_tolerance",
-                    "contact_state_tolerance", "contact_treatment"});
+                    "contact_state_tolerance", "contact_treatment", "failure_displacement", "resting_speed"});
   model::AnalysisSettings& st = s.settings;
   st.duration = r.numberIn(r.required(a, p, "duration"), p + ".duration", 0, 1e9, true, false, "a duration > 0 s");
   st.timeStep = r.numberIn(r.required(a, p, "time_step"), p + ".time_step", 0, 1e6, true, false, "a time step > 0 s");
@@ -423,6 +423,8 @@ void readAnalysis(const Reader& r, const json& doc, model::Scene& s) {
                                                                                  : model::AnalysisMode::Dynamic;
   st.plane = r.choice(a, p, "plane", "strain", {"strain", "stress"}) == "stress" ? model::PlaneMode::Stress
                                                                               : model::PlaneMode::Strain;
+  st.failureDisplacement = r.optionalIn(a, p, "failure_displacement", 0, 0, 1e6, false, false, "a distance ≥ 0 m (0: 1e-3 of w0)");
+  st.restingSpeed = r.optionalIn(a, p, "resting_speed", 0, 0, 1e6, false, false, "a speed ≥ 0 m/s (0: automatic)");
   st.contactTreatment = r.choice(a, p, "contact_treatment", "edge", {"edge", "vertex"}) == "vertex"
                             ? model::ContactTreatment::Vertex
                             : model::ContactTreatment::Edge;

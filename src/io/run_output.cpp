@@ -114,7 +114,9 @@ void writeSummary(const fs::path& dir, const model::Scene& scene, const RunOptio
                    {"initial_equilibrium", s.initialEquilibrium},
                    {"edge_parallel_tolerance", s.edgeParallelToleranceDeg},
                    {"initial_contact_tolerance", s.initialContactTolerance},
-                   {"contact_state_tolerance", s.contactStateTolerance}};
+                   {"contact_state_tolerance", s.contactStateTolerance},
+                   {"failure_displacement", s.failureDisplacement},
+                   {"resting_speed", s.restingSpeed}};
   const fs::path tmp = dir / "summary.json.tmp";
   {
     std::ofstream out(tmp);

@@ -5,8 +5,9 @@
 
 namespace ddaslope::calibration {
 
-/// A run is failing when (a) a monitor moves more than `failureDisplacement` (the run stops
-/// there: its verdict is certain), or (b) at the end of the run a monitor still moves faster
+/// A run is failing when (a) a monitor moves more than `failureDisplacement` from where it is at
+/// t = 0, after the equilibrium (the quasi-static adjustment of a marginal slope while it comes to
+/// rest is not failure; the run stops there: its verdict is certain), or (b) at the end of the run a monitor still moves faster
 /// than `restingSpeed` and is not slowing down (its speed at the end is at least 90 % of its
 /// speed at half the duration). (b) catches slopes just past failure, whose acceleration is too
 /// small to reach (a) within the run; a stable scene is brought to rest before t = 0, so its
@@ -22,7 +23,7 @@ struct VerdictSettings {
 
 struct TrialResult {
   bool stable = true;
-  double maxDisplacement = 0;  ///< largest monitor displacement reached (m)
+  double maxDisplacement = 0;  ///< largest monitor displacement after t = 0 (m)
   double finalSpeed = 0;       ///< largest monitor speed at the end of the run (m/s)
   double timeReached = 0;      ///< simulated time when the trial stopped (s)
   bool converged = true;       ///< false if the run hit non-convergence (counted as failing)

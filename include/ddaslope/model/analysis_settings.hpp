@@ -38,6 +38,13 @@ struct AnalysisSettings {
   int openCloseMaxIterations = 30;
   /// Relative change of friction forces below which a sliding contact counts as converged.
   double frictionTolerance = 1e-4;
+  /// Stability verdict of the searches (docs/calibration.md): failing once a monitor moves this
+  /// far (m) after t = 0. 0: 1e-3 of w0. It must exceed the bounded transients of a stable scene
+  /// (decimetres for a kilometre-scale slide of many blocks) and be reached by a failing one.
+  double failureDisplacement = 0;
+  /// Verdict: a monitor still faster than this (m/s) at the end, and not slowing down, is
+  /// failing. 0: 1e-4 of the failure displacement per second.
+  double restingSpeed = 0;
   /// Round-off guard on contact states, as a fraction of w0: a contact changes state only when
   /// its criterion is passed by this displacement, or in force by the larger of penalty × it and
   /// 1e-9 of the largest contact force. Larger: fewer open-close iterations on unloaded
