@@ -1,0 +1,142 @@
+// The speed/accuracy trade, measured (issue #6): sweeps the time step, the displacement ratio g2
+// and the penalty over closed-form benchmarks and prints, per setting, the error against the
+// closed form and the wall time, as CSV; marks the Pareto front (no other setting is both faster
+// and more accurate) and writes a PNG of error against time.
+//   build/ddaslope_accuracy [--out DIR]
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "ddaslope/calibration/strength_search.hpp"
+#include "ddaslope/io/line_plot.hpp"
+#include "ddaslope/io/run_case.hpp"
+#include "ddaslope/model/incline_scene.hpp"
+
+using namespace ddaslope;
+
+namespace {
+
+struct Knobs {
+  double timeStep, g2, penaltyFactor;
+};
+
+struct Errors {
+  double sliding = 0, stable = 0, cohesion = 0, fos = 0, worst = 0, seconds = 0;
+};
+
+void apply(model::Scene& s, const Knobs& k) {
+  s.settings.timeStep = k.timeStep;
+  s.settings.maxDisplacementRatio = k.g2;
+  s.settings.penaltyFactor = k.penaltyFactor;
+}
+
+double measure(const io::Trace& t, const char* q, std::optional<double> time) {
+  model::Expectation e;
+  e.monitor = "centre";
+  e.quantity = q;
+  e.time = time;
+  return io::measure(t, e);
+}
+
+/// Hoek & Bray planar failure (the geometry of cases/planar_failure.json), FS closed form.
+std::pair<model::Scene, double> planar() {
+  const double h = 20, xc = 20, gap = 0.05, psi = 35 * M_PI / 180, t = std::tan(psi), cot60 = 1 / std::tan(M_PI / 3);
+  model::Scene s;
+  s.materials.push_back({"rock", 2600, 10e9, 0.25});
+  s.joints.push_back({"plane", 30 * M_PI / 180, 25e3, 0});
+  model::Block base, wedge;
+  base.fixed = true;
+  base.vertices = {{-10, -10}, {xc + 20, -10}, {xc + 20, h}, {xc + gap, h}, {xc + gap, (xc + gap) * t}, {0, 0}, {-5 * cot60, -5}, {-10, -5}};
+  wedge.vertices = {{0, 0}, {xc, xc * t}, {xc, h}, {h * cot60, h}};
+  for (auto* b : {&base, &wedge}) b->moments = geometry::computeMoments(b->vertices);
+  s.blocks = {base, wedge};
+  s.monitors.push_back({"centre", {1, wedge.moments.centroid, wedge.moments.centroid}});
+  const double w = 2600 * 9.81 * wedge.moments.area, a = xc / std::cos(psi);
+  return {s, (25e3 * a + w * std::cos(psi) * std::tan(M_PI / 6)) / (w * std::sin(psi))};
+}
+
+Errors evaluate(const Knobs& k) {
+  Errors e;
+  const auto t0 = std::chrono::steady_clock::now();
+  {  // A2 sliding block: displacement at 1 s against a/2.
+    model::InclineSpec spec{40, 10, 5, 20, 0, 2000, 10};
+    model::Scene s = model::makeInclineScene(spec);
+    apply(s, k);
+    const io::RunOutcome o = io::runScene(s, {});
+    const double want = model::slidingAcceleration(spec) / 2;
+    e.sliding = o.completed ? std::abs(measure(o.trace, "displacement", 1.0) - want) / want : 1.0;
+  }
+  {  // A3 stable block: largest displacement over 2 s relative to the block size b (exact: 0).
+    model::InclineSpec spec{40, 10, 10, 40.1, 0, 2000, 10};
+    spec.duration = 2;
+    model::Scene s = model::makeInclineScene(spec);
+    apply(s, k);
+    const io::RunOutcome o = io::runScene(s, {});
+    e.stable = o.completed ? measure(o.trace, "displacement", std::nullopt) / spec.b : 1.0;
+  }
+  {  // B1 critical cohesion of the A2 block against 36.40 kPa.
+    model::InclineSpec spec{40, 10, 5, 20, 0, 2000, 10};
+    spec.duration = 0.5;
+    model::Scene s = model::makeInclineScene(spec);
+    apply(s, k);
+    const auto r = calibration::criticalCohesion(s, 0, 20, 10);
+    const double want = model::criticalCohesion(spec);
+    e.cohesion = r.found ? std::abs(r.critical - want) / want : 1.0;
+  }
+  {  // C planar failure: strength-reduction F against Hoek & Bray.
+    auto [s, want] = planar();
+    apply(s, k);
+    const auto r = calibration::factorOfSafety(s, {}, 0.005);
+    e.fos = r.found ? std::abs(r.factor - want) / want : 1.0;
+  }
+  e.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  e.worst = std::max({e.sliding, e.stable, e.cohesion, e.fos});
+  return e;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::string out = "out/accuracy";
+  for (int i = 1; i < argc; ++i)
+    if (!std::strcmp(argv[i], "--out") && i + 1 < argc) out = argv[++i];
+  std::vector<Knobs> knobs;
+  for (double dt : {1e-2, 3e-3, 1e-3, 3e-4})
+    for (double g2 : {0.002, 0.005, 0.01})
+      for (double pf : {10.0, 40.0, 100.0}) knobs.push_back({dt, g2, pf});
+  std::vector<Errors> errors;
+  for (const Knobs& k : knobs) errors.push_back(evaluate(k));
+  std::filesystem::create_directories(out);
+  std::FILE* csv = std::fopen((out + "/accuracy.csv").c_str(), "w");
+  const char* header = "time_step,max_displacement_ratio,penalty_factor,sliding_error,stable_error,cohesion_error,fos_error,worst_error,wall_s,pareto\n";
+  std::fputs(header, csv);
+  std::fputs(header, stdout);
+  io::PlotSeries all{"settings", {}, {}, true}, front{"Pareto front", {}, {}, true};
+  for (size_t i = 0; i < knobs.size(); ++i) {
+    bool dominated = false;
+    for (size_t j = 0; j < knobs.size(); ++j)
+      dominated |= j != i && errors[j].worst <= errors[i].worst && errors[j].seconds <= errors[i].seconds &&
+                   (errors[j].worst < errors[i].worst || errors[j].seconds < errors[i].seconds);
+    const Errors& e = errors[i];
+    for (std::FILE* f : {csv, stdout})
+      std::fprintf(f, "%g,%g,%g,%.3e,%.3e,%.3e,%.3e,%.3e,%.3f,%d\n", knobs[i].timeStep, knobs[i].g2, knobs[i].penaltyFactor,
+                   e.sliding, e.stable, e.cohesion, e.fos, e.worst, e.seconds, !dominated);
+    all.x.push_back(e.seconds);
+    all.y.push_back(std::log10(std::max(e.worst, 1e-12)));
+    if (!dominated) {
+      front.x.push_back(e.seconds);
+      front.y.push_back(std::log10(std::max(e.worst, 1e-12)));
+    }
+  }
+  std::fclose(csv);
+  all.markers = true;
+  io::writePng({"Worst relative error against wall time (4 closed-form benchmarks)", "wall time (s)",
+                "log10 worst relative error", {all, front}},
+               out + "/accuracy.png");
+  std::fprintf(stderr, "wrote %s/accuracy.csv and accuracy.png\n", out.c_str());
+  return 0;
+}
