@@ -46,6 +46,11 @@ Simulation::Simulation(model::Scene scene)
   for (const model::Material& m : scene_.materials)
     elasticity_.push_back(assembly::elasticityMatrix(m.youngModulus, m.poissonRatio, scene_.settings.plane));
   markActiveBlocks({});
+  lightestPenetration_ = INFINITY;
+  for (const model::Block& b : scene_.blocks)
+    if (!b.fixed && scene_.gravity.norm() > 0)
+      lightestPenetration_ = std::min(lightestPenetration_, 1e-3 * scene_.materials[b.material].density *
+                                                                b.moments.area * scene_.gravity.norm() / penalty_);
   detectContacts(true);
 }
 
@@ -253,7 +258,9 @@ Simulation::Attempt Simulation::tryStep(double dt, Regime regime, bool freezeCyc
   std::vector<int> flips(a.contacts.size(), 0);
   // Round-off guard: the larger of the penalty force of a round-off displacement and 1e-9 of the
   // largest contact force of the last solve (forces are only known to that relative precision).
-  const double noise = scene_.settings.contactStateTolerance * w0_;
+  // The displacement stays below 1e-3 of the lightest block's own penetration under its weight,
+  // or a millimetre block in a 10 m model could never change state.
+  const double noise = std::min(scene_.settings.contactStateTolerance * w0_, lightestPenetration_);
   double largestForce = 0;
   for (const Contact& c : a.contacts) largestForce = std::max(largestForce, std::abs(c.normalForce));
   const contact::StateTolerance stateTolerance{std::max(penalty_ * noise, 1e-9 * largestForce), noise};

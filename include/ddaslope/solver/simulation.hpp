@@ -126,6 +126,7 @@ class Simulation {
   double w0_ = 1;
   double searchDistance_ = 0;
   double penalty_ = 0;
+  double lightestPenetration_ = INFINITY;  ///< 1e-3 of the lightest free block's W/p (m)
   double time_ = 0;
   std::vector<int> active_;  ///< dof block index per block, −1 when fixed or held
   int nActive_ = 0;
