@@ -57,28 +57,45 @@ model::Scene makeWall(int n) {
 
 double ms(double s, int steps) { return 1e3 * s / steps; }
 
+/// Resident memory of this process now (MB), from /proc/self/status.
+double residentMb() {
+  std::FILE* f = std::fopen("/proc/self/status", "r");
+  if (!f) return 0;
+  char line[256];
+  double kb = 0;
+  while (std::fgets(line, sizeof line, f))
+    if (std::sscanf(line, "VmRSS: %lf kB", &kb) == 1) break;
+  std::fclose(f);
+  return kb / 1024;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   int steps = 20;
+  model::ContactTreatment treatment = model::ContactTreatment::Edge;
   std::vector<int> sizes{10, 50, 100, 200, 500, 1000, 2000};
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--steps") && i + 1 < argc) steps = std::atoi(argv[++i]);
+    else if (!std::strcmp(argv[i], "--contact-treatment") && i + 1 < argc)
+      treatment = std::strcmp(argv[++i], "vertex") ? model::ContactTreatment::Edge : model::ContactTreatment::Vertex;
     else if (!std::strcmp(argv[i], "--sizes") && i + 1 < argc) {
       sizes.clear();
       std::stringstream ss(argv[++i]);
       for (std::string tok; std::getline(ss, tok, ',');) sizes.push_back(std::stoi(tok));
     } else {
-      std::fprintf(stderr, "usage: ddaslope_bench [--steps S] [--sizes 10,100,...]\n");
+      std::fprintf(stderr, "usage: ddaslope_bench [--steps S] [--sizes 10,100,...] [--contact-treatment edge|vertex]\n");
       return 2;
     }
   }
   std::printf("blocks,contacts,unknowns,equilibrium_ms,step_ms,broad_phase_ms,contacts_ms,assembly_ms,"
               "factorisation_ms,solve_ms,state_checks_ms,update_ms,iterations_per_step,factorisations_per_step,"
-              "cg_iterations_per_step,cuts\n");
+              "cg_iterations_per_step,cuts,resident_mb\n");
   std::vector<std::pair<int, double>> perStep;
   for (int n : sizes) {
-    solver::Simulation sim(makeWall(n));
+    model::Scene scene = makeWall(n);
+    scene.settings.contactTreatment = treatment;
+    solver::Simulation sim(scene);
     if (std::getenv("DDASLOPE_BENCH_VERBOSE")) sim.setLog([](const std::string& l) { std::fprintf(stderr, "%s\n", l.c_str()); });
     auto t0 = std::chrono::steady_clock::now();
     sim.bringToEquilibrium();
@@ -89,7 +106,7 @@ int main(int argc, char** argv) {
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     const solver::RunStatistics& a = sim.statistics();
     const auto d = [&](double solver::PhaseTimes::*f) { return ms(a.times.*f - before.times.*f, steps); };
-    std::printf("%d,%zu,%d,%.1f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.2f,%.2f,%.2f,%d\n", n,
+    std::printf("%d,%zu,%d,%.1f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.2f,%.2f,%.2f,%d,%.1f\n", n,
                 sim.contacts().contacts().size(), 6 * n, 1e3 * eq, ms(wall, steps),
                 d(&solver::PhaseTimes::broadPhase), d(&solver::PhaseTimes::contacts),
                 d(&solver::PhaseTimes::assembly), d(&solver::PhaseTimes::factorisation),
@@ -97,7 +114,7 @@ int main(int argc, char** argv) {
                 d(&solver::PhaseTimes::update), double(a.iterations - before.iterations) / steps,
                 double(a.factorisations - before.factorisations) / steps,
                 double(a.cgIterations - before.cgIterations) / steps,
-                a.cuts - before.cuts);
+                a.cuts - before.cuts, residentMb());
     std::fflush(stdout);
     perStep.emplace_back(n, wall / steps);
   }
