@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "ddaslope/calibration/strength_search.hpp"
+#include "ddaslope/io/case_reader.hpp"
 #include "ddaslope/io/line_plot.hpp"
 #include "ddaslope/io/run_case.hpp"
 #include "ddaslope/model/incline_scene.hpp"
@@ -25,7 +26,8 @@ struct Knobs {
 };
 
 struct Errors {
-  double sliding = 0, stable = 0, cohesion = 0, fos = 0, worst = 0, seconds = 0;
+  double sliding = 0, stable = 0, cohesion = 0, fos = 0, toppling = 0, twoBlock = 0, worst = 0, seconds = 0;
+  double twoBlockToe = 0;  ///< raw value; its error is taken against the finest setting
 };
 
 void apply(model::Scene& s, const Knobs& k) {
@@ -93,8 +95,26 @@ Errors evaluate(const Knobs& k) {
     const auto r = calibration::factorOfSafety(s, {}, 0.005);
     e.fos = r.found ? std::abs(r.factor - want) / want : 1.0;
   }
+  {  // A6 toppling: top-corner travel at 0.5 s against the small-angle rotation about the toe
+     // (the 3 % of the shipped case is the closed form's own approximation; here the error).
+    model::InclineSpec spec{30, 10, 25, 40, 0, 2600, 9.81};
+    spec.duration = 0.5;
+    model::Scene s = model::makeInclineScene(spec);
+    apply(s, k);
+    const io::RunOutcome o = io::runScene(s, {});
+    const double a = M_PI / 6, acc = 1.5 * 9.81 * (25 * std::sin(a) - 10 * std::cos(a)) / (100 + 625);
+    const double want = std::hypot(10.0, 25.0) * 0.5 * acc * 0.25;
+    model::Expectation top{"top", "displacement", 0.5};
+    e.toppling = o.completed ? std::abs(io::measure(o.trace, top) - want) / want : 1.0;
+  }
+  {  // Two-block slide (calibration/two_block_slide geometry at phi = 9 deg): toe travel at 2 s.
+    model::Scene s = io::readCase(std::string(DDASLOPE_SOURCE_DIR) + "/calibration/two_block_slide/case.json");
+    apply(s, k);
+    const io::RunOutcome o = io::runScene(s, {});
+    model::Expectation toe{"toe", "ux", 2.0};
+    e.twoBlockToe = o.completed ? io::measure(o.trace, toe) : NAN;
+  }
   e.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  e.worst = std::max({e.sliding, e.stable, e.cohesion, e.fos});
   return e;
 }
 
@@ -110,9 +130,23 @@ int main(int argc, char** argv) {
       for (double pf : {10.0, 40.0, 100.0}) knobs.push_back({dt, g2, pf});
   std::vector<Errors> errors;
   for (const Knobs& k : knobs) errors.push_back(evaluate(k));
+  // The two-block slide has no closed form: its error is against the finest setting (smallest Δt,
+  // then smallest g2, then largest penalty factor), which is the last in the sweep's order.
+  size_t finest = 0;
+  for (size_t i = 0; i < knobs.size(); ++i) {
+    const Knobs &a = knobs[i], &b = knobs[finest];
+    if (a.timeStep < b.timeStep || (a.timeStep == b.timeStep && (a.g2 < b.g2 || (a.g2 == b.g2 && a.penaltyFactor > b.penaltyFactor))))
+      finest = i;
+  }
+  for (Errors& e : errors) {
+    const double ref = errors[finest].twoBlockToe;
+    e.twoBlock = std::isfinite(e.twoBlockToe) ? std::abs(e.twoBlockToe - ref) / std::abs(ref) : 1.0;
+    e.worst = std::max({e.sliding, e.stable, e.cohesion, e.fos, e.toppling, e.twoBlock});
+  }
   std::filesystem::create_directories(out);
   std::FILE* csv = std::fopen((out + "/accuracy.csv").c_str(), "w");
-  const char* header = "time_step,max_displacement_ratio,penalty_factor,sliding_error,stable_error,cohesion_error,fos_error,worst_error,wall_s,pareto\n";
+  const char* header = "time_step,max_displacement_ratio,penalty_factor,sliding_error,stable_error,cohesion_error,fos_error,"
+                       "toppling_error,two_block_error_vs_finest,worst_error,wall_s,pareto\n";
   std::fputs(header, csv);
   std::fputs(header, stdout);
   io::PlotSeries all{"settings", {}, {}, true}, front{"Pareto front", {}, {}, true};
@@ -123,8 +157,9 @@ int main(int argc, char** argv) {
                    (errors[j].worst < errors[i].worst || errors[j].seconds < errors[i].seconds);
     const Errors& e = errors[i];
     for (std::FILE* f : {csv, stdout})
-      std::fprintf(f, "%g,%g,%g,%.3e,%.3e,%.3e,%.3e,%.3e,%.3f,%d\n", knobs[i].timeStep, knobs[i].g2, knobs[i].penaltyFactor,
-                   e.sliding, e.stable, e.cohesion, e.fos, e.worst, e.seconds, !dominated);
+      std::fprintf(f, "%g,%g,%g,%.3e,%.3e,%.3e,%.3e,%.3e,%.3e,%.3e,%.3f,%d\n", knobs[i].timeStep, knobs[i].g2,
+                   knobs[i].penaltyFactor, e.sliding, e.stable, e.cohesion, e.fos, e.toppling, e.twoBlock, e.worst,
+                   e.seconds, !dominated);
     all.x.push_back(e.seconds);
     all.y.push_back(std::log10(std::max(e.worst, 1e-12)));
     if (!dominated) {
@@ -134,7 +169,7 @@ int main(int argc, char** argv) {
   }
   std::fclose(csv);
   all.markers = true;
-  io::writePng({"Worst relative error against wall time (4 closed-form benchmarks)", "wall time (s)",
+  io::writePng({"Worst relative error against wall time (6 benchmarks)", "wall time (s)",
                 "log10 worst relative error", {all, front}},
                out + "/accuracy.png");
   std::fprintf(stderr, "wrote %s/accuracy.csv and accuracy.png\n", out.c_str());
