@@ -313,3 +313,21 @@ TEST(Cli, SetOverridesACaseNumber) {
   EXPECT_NE(err.find("joints.nothing.friction_angle"), std::string::npos) << err;
   fs::remove_all(out);
 }
+
+// Presets (docs/accuracy.md): "preset" sets Δt = c √(w0/g), g2 and the penalty factor; explicit
+// keys of the same analysis object win; an unknown name is bad input.
+TEST(CaseReader, PresetsAndExplicitKeys) {
+  json d = minimal();
+  d["analysis"].erase("time_step");
+  d["analysis"]["preset"] = "balanced";
+  const model::Scene s = io::parseCase(d.dump(), "case.json");
+  EXPECT_NEAR(s.settings.timeStep, 5.5e-4 * std::sqrt(s.modelHalfSize() / 9.81), 1e-15);
+  EXPECT_EQ(s.settings.maxDisplacementRatio, 0.005);
+  d["analysis"]["time_step"] = 0.002;
+  d["analysis"]["preset"] = "fast";
+  const model::Scene t = io::parseCase(d.dump(), "case.json");
+  EXPECT_EQ(t.settings.timeStep, 0.002);
+  EXPECT_EQ(t.settings.maxDisplacementRatio, 0.01);
+  d["analysis"]["preset"] = "quick";
+  expectError(d, "analysis.preset", "expected one of accurate, balanced, fast");
+}

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "ddaslope/io/run_case.hpp"
+#include "ddaslope/model/presets.hpp"
 #include "scene_builders.hpp"
 
 using namespace ddaslope;
@@ -149,4 +150,16 @@ TEST(BenchmarkA6, ToppingBlockRotatesAboutItsToe) {
   // and the penalty springs' compliance at the pivot.
   EXPECT_NEAR(at(t, "top", "displacement", 0.5), expected, 0.03 * expected);
   EXPECT_LT(at(t, "toe", "displacement", std::nullopt), 1e-3 * s.b);
+}
+
+// Every accuracy preset meets A2's closed form within 0.5 % (benchmarks.md A2).
+TEST(BenchmarkA2, EveryPresetMeetsTheClosedForm) {
+  InclineSpec s{40, 10, 5, 20, 0, 2000, 10};
+  s.duration = 1.0;
+  const double a = scenes::slidingAcceleration(s);
+  for (const char* name : {"fast", "balanced", "accurate"}) {
+    model::Scene sc = scenes::makeIncline(s);
+    model::applyPreset(sc.settings, *model::findPreset(name), sc.modelHalfSize(), sc.gravity.norm());
+    EXPECT_NEAR(at(run(sc), "centre", "displacement", 1.0), a / 2, 0.005 * a / 2) << name;
+  }
 }

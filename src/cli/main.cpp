@@ -17,6 +17,7 @@
 #include "ddaslope/io/json_record.hpp"
 #include "ddaslope/io/line_plot.hpp"
 #include "ddaslope/io/scene_picture.hpp"
+#include "ddaslope/model/presets.hpp"
 #include "ddaslope/core/errors.hpp"
 #include "ddaslope/io/case_reader.hpp"
 #include "ddaslope/io/run_case.hpp"
@@ -33,6 +34,7 @@ struct Overrides {
   double duration = 0;
   std::string contactTreatment;
   std::vector<std::string> settings;  ///< "json.path=value", applied before the case is read
+  std::string preset;                 ///< fast, balanced or accurate (docs/accuracy.md)
 };
 
 /// "path=value" → an override; a malformed one is bad input.
@@ -58,6 +60,9 @@ ddaslope::model::Scene loadCase(const std::string& casePath, const Overrides& o,
 }
 
 void applyOverrides(ddaslope::model::Scene& scene, const Overrides& o) {
+  if (!o.preset.empty())
+    ddaslope::model::applyPreset(scene.settings, *ddaslope::model::findPreset(o.preset), scene.modelHalfSize(),
+                                 scene.gravity.norm());
   if (o.timeStep > 0) scene.settings.timeStep = o.timeStep;
   if (o.duration > 0) scene.settings.duration = o.duration;
   if (!o.contactTreatment.empty())
@@ -272,7 +277,8 @@ int fosSweep(const std::string& casePath, const Overrides& o, const FosOptions& 
   bool all = true;
   for (int i = 0; i < n; ++i) {
     const double v = lo + (hi - lo) * i / (n - 1);
-    const ddaslope::model::Scene scene = loadCase(casePath, o, {{path, v}});
+    ddaslope::model::Scene scene = loadCase(casePath, o, {{path, v}});
+    applyOverrides(scene, o);
     const auto r = factorFor(scene, casePath, opt);
     out << v << "," << r.factor << "," << r.stableEnd << "," << r.failingEnd << "," << r.found << "," << r.runs << ","
         << r.wallTime << "\n";
@@ -392,6 +398,8 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"edge", "vertex"}));
   run->add_flag("--quiet", quiet, "no progress on stderr");
   run->add_option("--set", overrides.settings, "json.path=value: override a number of the case (repeatable)");
+  run->add_option("--preset", overrides.preset, "fast, balanced or accurate: Δt, g2 and penalty (docs/accuracy.md)")
+      ->check(CLI::IsMember({"fast", "balanced", "accurate"}));
   run->add_flag("--verbose", verbose, "log equilibrium steps and time-step cuts on stderr");
   std::vector<double> snapshots;
   run->add_option("--snapshots", snapshots, "times (s) of PNG pictures snapshot_NN.png in --out, e.g. 0,0.5,1")->delimiter(',');
@@ -424,6 +432,8 @@ int main(int argc, char** argv) {
   critical->add_option("--contact-treatment", overrides.contactTreatment, "edge or vertex")->check(CLI::IsMember({"edge", "vertex"}));
   critical->add_flag("--json", crit.json, "print the result as JSON");
   critical->add_option("--set", overrides.settings, "json.path=value: override a number of the case (repeatable)");
+  critical->add_option("--preset", overrides.preset, "fast, balanced or accurate: Δt, g2 and penalty (docs/accuracy.md)")
+      ->check(CLI::IsMember({"fast", "balanced", "accurate"}));
   critical->add_option("--curve", crit.curve, "φmin:φmax:n: the critical (c, φ) curve as CSV and PNG in --out");
   critical->add_option("--out", crit.outDir, "output directory for --curve")->capture_default_str();
 
@@ -436,6 +446,8 @@ int main(int argc, char** argv) {
   fos->add_option("--sweep", fosOpt.sweep, "json.path=min:max:n: F at n values of one case number (CSV and PNG in --out)");
   fos->add_option("--out", fosOpt.outDir, "output directory for --sweep")->capture_default_str();
   fos->add_option("--set", overrides.settings, "json.path=value: override a number of the case (repeatable)");
+  fos->add_option("--preset", overrides.preset, "fast, balanced or accurate: Δt, g2 and penalty (docs/accuracy.md)")
+      ->check(CLI::IsMember({"fast", "balanced", "accurate"}));
   fos->add_option("--time-step", overrides.timeStep, "override analysis.time_step (s)");
   fos->add_option("--contact-treatment", overrides.contactTreatment, "edge or vertex")->check(CLI::IsMember({"edge", "vertex"}));
   fos->add_flag("--json", fosOpt.json, "print the result as JSON");

@@ -11,6 +11,7 @@
 #include "ddaslope/core/errors.hpp"
 #include "ddaslope/geometry/polygon.hpp"
 #include "ddaslope/io/csv_series.hpp"
+#include "ddaslope/model/presets.hpp"
 #include "ddaslope/model/section.hpp"
 
 namespace ddaslope::io {
@@ -415,10 +416,16 @@ void readAnalysis(const Reader& r, const json& doc, model::Scene& s) {
                     "shear_penalty_ratio", "max_displacement_ratio", "open_close_max_iterations",
                     "friction_tolerance", "max_step_cuts", "step_cut_factor", "initial_equilibrium",
                     "equilibrium_max_steps", "edge_parallel_tolerance", "initial_contact_tolerance",
-                    "contact_state_tolerance", "contact_treatment", "failure_displacement", "resting_speed"});
+                    "contact_state_tolerance", "contact_treatment", "failure_displacement", "resting_speed", "preset"});
   model::AnalysisSettings& st = s.settings;
   st.duration = r.numberIn(r.required(a, p, "duration"), p + ".duration", 0, 1e9, true, false, "a duration > 0 s");
-  st.timeStep = r.numberIn(r.required(a, p, "time_step"), p + ".time_step", 0, 1e6, true, false, "a time step > 0 s");
+  // A preset sets Δt, g2 and the penalty from the model's size; explicit keys below still win.
+  if (a.contains("preset")) {
+    const std::string name = r.choice(a, p, "preset", "", {"fast", "balanced", "accurate"});
+    model::applyPreset(st, *model::findPreset(name), s.modelHalfSize(), s.gravity.norm());
+  }
+  if (!a.contains("preset") || a.contains("time_step"))
+    st.timeStep = r.numberIn(r.required(a, p, "time_step"), p + ".time_step", 0, 1e6, true, false, "a time step > 0 s");
   st.mode = r.choice(a, p, "mode", "dynamic", {"dynamic", "static"}) == "static" ? model::AnalysisMode::Static
                                                                                  : model::AnalysisMode::Dynamic;
   st.plane = r.choice(a, p, "plane", "strain", {"strain", "stress"}) == "stress" ? model::PlaneMode::Stress
