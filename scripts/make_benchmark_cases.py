@@ -174,6 +174,53 @@ def main():
              "source": "A6: the pivot does not slide (phi = 40 > alpha = 30)"},
         ]})
 
+    toppling_slope()
+
+
+def toppling_slope():
+    """D: the Alejano & Alonso block-toppling slope (benchmarks.md D), in two toe conditions."""
+    rho = 25e3 / 9.81  # 25 kN/m3
+    crest_x = 20 - 9.85 / math.tan(math.radians(30))  # basal joint at 30 deg from the toe to the top
+    source = ("Benchmark D (../shared/reference/benchmarks.md): the Alejano & Alonso block-toppling slope as "
+              "transcribed from the Rocscience RS2 joint verification manual. 9.85 m face at 58.65 deg from the toe "
+              "(20, 10) to the crest (14, 19.85); basal joint at 30 deg from the toe to "
+              f"({crest_x:.4f}, 19.85); columns between joints at 64 deg dipping into the slope, 1.6 m apart (the "
+              "transcription's 22 joints span the whole 30 x 19.85 m section; 12 cross the slide mass; the set is "
+              "placed through the toe); all joints phi = 31 deg, c = 0; rock 25 kN/m3, E = 20 GPa, nu = 0.3. "
+              "Published factors of safety: Goodman-Bray limit equilibrium 0.76, UDEC 0.87, RS2 0.86/0.82. "
+              "The rock below the basal joint is one fixed block here (the published models joint it too). ")
+    common = {
+        "gravity": [0, -9.81],
+        "materials": {"rock": {"density": r(rho), "young_modulus": 2e10, "poisson_ratio": 0.3}},
+        "joints": {"joint": {"friction_angle": 31, "cohesion": 0, "tensile_strength": 0}},
+        "default_joint": "joint",
+    }
+    section = {"sliding_surface": [[r(crest_x), 19.85], [20, 10]], "base_depth": 10, "material": "rock",
+               "sliding_joint": "joint", "joint_sets": [{"angle": 64, "spacing": 1.6, "origin": [20, 10]}]}
+    monitors = [{"id": "crest", "point": [13.8, 19.6]}, {"id": "toe", "point": [19.6, 10.4]}]
+    analysis = {"duration": 1.0, "time_step": 0.001, "failure_displacement": 0.05}
+    write("toppling_slope.json", {
+        "description": source + "Here the basal joint daylights 1 m above the bench (a step at the toe), so the toe "
+                       "column can slide out along it as Goodman & Bray assume. DDA factor of safety 0.866 "
+                       "(docs/calibration.md, benchmark D): at phi = 31 deg the slope topples. "
+                       "Try: ddaslope fos cases/toppling_slope.json",
+        **common,
+        "section": {"ground": [[0, 19.85], [14, 19.85], [20, 10], [20, 9], [30, 9]], **section},
+        "monitors": monitors, "analysis": analysis,
+        "expected": [{"monitor": "crest", "quantity": "displacement", "at_least": 0.05,
+                      "source": "D: published factors of safety 0.76-0.87 < 1, the slope fails at phi = 31 deg"}]})
+    write("toppling_slope_bench_toe.json", {
+        "description": source + "Here the basal joint ends exactly at the bench level, as transcribed: the bench "
+                       "blocks the toe column's path along the basal joint, the columns cannot slide out and the "
+                       "slope holds until phi falls below the 30 deg base (DDA factor of safety 1.044, "
+                       "docs/calibration.md, benchmark D). Compare cases/toppling_slope.json",
+        **common,
+        "section": {"ground": [[0, 19.85], [14, 19.85], [20, 10], [30, 10]], **section},
+        "monitors": monitors, "analysis": analysis,
+        "expected": [{"monitor": "crest", "quantity": "displacement", "at_most": 0.005,
+                      "source": "D with the toe obstructed: phi = 31 deg exceeds the 30 deg basal joint, and the toe "
+                                "column cannot leave along it, so the slope holds (docs/calibration.md)"}]})
+
 
 if __name__ == "__main__":
     main()

@@ -46,6 +46,25 @@ TEST(Section, JointsCutTheMassConservingArea) {
   EXPECT_LT(b.slide.front().moments.centroid.x(), b.slide.back().moments.centroid.x());
 }
 
+// A vertical step in the ground where the sliding surface meets it (a toe 1 m above a bench, as
+// cases/toppling_slope.json) stays in the base: areas by the shoelace formula. Ground (0, 20),
+// (10, 20), (20, 10), (20, 9), (30, 9); sliding surface from (0, 20) to the toe (20, 10).
+// Mass: the triangle (0, 20), (10, 20), (20, 10): ½·10·10 = 50 m². Base to y = −1: the section
+// below the ground, 10·21 + 10·(21 + 11)/2 + 10·10 = 470 m², minus the mass.
+TEST(Section, VerticalStepAtTheToeStaysInTheBase) {
+  model::SectionSpec s;
+  s.ground = {{0, 20}, {10, 20}, {20, 10}, {20, 9}, {30, 9}};
+  s.slidingSurface = {{0, 20}, {20, 10}};
+  s.baseDepth = 10;
+  const model::SectionBlocks b = model::cutSection(s);
+  ASSERT_EQ(b.slide.size(), 1u);
+  EXPECT_NEAR(b.slide[0].moments.area, 50, 1e-9);
+  EXPECT_NEAR(b.base.moments.area, 470 - 50, 1e-9);
+  bool stepCorner = false;
+  for (const Vec2& v : b.base.vertices) stepCorner |= (v - Vec2(20, 9)).norm() < 1e-12;
+  EXPECT_TRUE(stepCorner) << "the bench corner (20, 9) must be a vertex of the base";
+}
+
 TEST(Section, BadSectionsAreReported) {
   model::SectionSpec s = basin();
   s.slidingSurface[1] = {20, 25};  // above the ground

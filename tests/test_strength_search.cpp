@@ -185,3 +185,27 @@ TEST(StrengthReduction, PlanarFailureWithWaterInTheTensionCrack) {
     EXPECT_NEAR(r.factor, expected, 0.02 * expected);
   }
 }
+
+// D: the Alejano & Alonso toppling slope (benchmarks.md D, cases/toppling_slope.json). Published
+// strength-reduction factors: UDEC 0.87, RS2 0.86 and 0.82, Goodman-Bray limit equilibrium 0.76.
+// The numerical models spread by 6 %; DDA must land within 5 % of UDEC's 0.87 and above Goodman
+// & Bray on the same blocks (0.773, scripts/toppling_limit_equilibrium.py), as every published
+// numerical model lies above its limit equilibrium.
+TEST(StrengthReduction, TopplingSlopeMatchesPublishedDistinctElementResult) {
+  const model::Scene s = io::readCase(std::string(DDASLOPE_SOURCE_DIR) + "/cases/toppling_slope.json");
+  const calibration::FactorOfSafetyResult r = calibration::factorOfSafety(s, {}, 0.005);
+  ASSERT_TRUE(r.found) << r.message;
+  EXPECT_NEAR(r.factor, 0.87, 0.05 * 0.87);
+  EXPECT_GT(r.stableEnd, 0.773);
+}
+
+// D with the basal joint ending at the bench level: the bench blocks the toe column's path, so
+// the columns can leave only by sliding on the 30° basal joint itself, F = tan 31°/tan 30° =
+// 1.0407 (closed form of a block on a plane); the verdict's resolution is the 0.005 bracket.
+TEST(StrengthReduction, TopplingSlopeWithObstructedToeFailsOnlyByBaseSliding) {
+  const model::Scene s = io::readCase(std::string(DDASLOPE_SOURCE_DIR) + "/cases/toppling_slope_bench_toe.json");
+  const calibration::FactorOfSafetyResult r = calibration::factorOfSafety(s, {}, 0.005);
+  ASSERT_TRUE(r.found) << r.message;
+  const double slidingBound = std::tan(31 * M_PI / 180) / std::tan(30 * M_PI / 180);
+  EXPECT_NEAR(r.factor, slidingBound, 0.005);
+}

@@ -20,6 +20,31 @@ double groundAt(const std::vector<Vec2>& g, double x) {
   return g.back().y();
 }
 
+/// Where p lies on the polyline g, as i + t for the first segment [g_i, g_i+1] within tol of p
+/// (t in [0, 1]); -1 when p is not on it. Positions order ground vertices that share an x (a
+/// vertical step at the toe or crown) where x alone cannot.
+double positionOnPolyline(const std::vector<Vec2>& g, const Vec2& p, double tol) {
+  for (size_t i = 0; i + 1 < g.size(); ++i) {
+    const Vec2 d = g[i + 1] - g[i];
+    const double len2 = d.squaredNorm();
+    const double t = len2 > 0 ? std::clamp((p - g[i]).dot(d) / len2, 0.0, 1.0) : 0.0;
+    if ((g[i] + t * d - p).norm() <= tol) return static_cast<double>(i) + t;
+  }
+  return -1;
+}
+
+/// Ground vertex i lies before (upslope of) point p: by its position along the ground when p is
+/// on the ground, by x otherwise (a sliding surface may end a little off a digitised ground).
+bool groundVertexBefore(const std::vector<Vec2>& g, size_t i, const Vec2& p, double position, double tol) {
+  if (position >= 0) return static_cast<double>(i) < position - 1e-12 && (g[i] - p).norm() > tol;
+  return g[i].x() < p.x() - tol;
+}
+
+bool groundVertexAfter(const std::vector<Vec2>& g, size_t i, const Vec2& p, double position, double tol) {
+  if (position >= 0) return static_cast<double>(i) > position + 1e-12 && (g[i] - p).norm() > tol;
+  return g[i].x() > p.x() + tol;
+}
+
 Block makeBlock(std::string id, bool fixed, std::vector<Vec2> v) {
   Block b;
   b.id = std::move(id);
@@ -72,10 +97,15 @@ SectionBlocks cutSection(const SectionSpec& s) {
       fail("sliding_surface[" + std::to_string(i) + "]", "expected the sliding surface below the ground between crown and toe");
   if (!(s.baseDepth > 0)) fail("base_depth", "expected a depth > 0 m");
 
+  const double crownAt = positionOnPolyline(s.ground, crown, tol), toeAt = positionOnPolyline(s.ground, toe, tol);
+  const auto betweenCrownAndToe = [&](size_t i) {
+    return groundVertexAfter(s.ground, i, crown, crownAt, tol) && groundVertexBefore(s.ground, i, toe, toeAt, tol);
+  };
+
   // Slide mass: the ground from crown to toe, back along the sliding surface.
   std::vector<Vec2> mass{crown};
-  for (const Vec2& g : s.ground)
-    if (g.x() > crown.x() + tol && g.x() < toe.x() - tol) mass.push_back(g);
+  for (size_t i = 0; i < s.ground.size(); ++i)
+    if (betweenCrownAndToe(i)) mass.push_back(s.ground[i]);
   for (size_t i = s.slidingSurface.size(); i-- > 1;) mass.push_back(s.slidingSurface[i]);
   mass = geometry::cleanPolygon(mass, tol);
   if (mass.size() < 3 || !geometry::isSimple(mass)) fail("sliding_surface", "the slide mass between ground and sliding surface is not a simple polygon");
@@ -83,11 +113,11 @@ SectionBlocks cutSection(const SectionSpec& s) {
   // Base: the ground outside the slide, the sliding surface, and a bottom baseDepth below.
   const double bottom = lowest - s.baseDepth;
   std::vector<Vec2> base;
-  for (const Vec2& g : s.ground)
-    if (g.x() < crown.x() - tol) base.push_back(g);
+  for (size_t i = 0; i < s.ground.size(); ++i)
+    if (groundVertexBefore(s.ground, i, crown, crownAt, tol)) base.push_back(s.ground[i]);
   for (const Vec2& p : s.slidingSurface) base.push_back(p);
-  for (const Vec2& g : s.ground)
-    if (g.x() > toe.x() + tol) base.push_back(g);
+  for (size_t i = 0; i < s.ground.size(); ++i)
+    if (groundVertexAfter(s.ground, i, toe, toeAt, tol)) base.push_back(s.ground[i]);
   base.push_back({s.ground.back().x(), bottom});
   base.push_back({s.ground.front().x(), bottom});
   base = geometry::cleanPolygon(base, tol);
