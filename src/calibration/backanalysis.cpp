@@ -103,7 +103,7 @@ model::Scene sceneAt(const io::BackanalysisJob& job, const std::vector<double>& 
 }
 
 double misfitAt(const io::BackanalysisJob& job, const std::vector<double>& x, int* runs,
-                const solver::HeldEquilibrium* shared) {
+                const solver::HeldEquilibrium* shared, int searchThreads) {
   const model::Scene scene = sceneAt(job, x);
   double total = 0;
   bool needTrace = false;
@@ -122,7 +122,7 @@ double misfitAt(const io::BackanalysisJob& job, const std::vector<double>& x, in
       std::vector<int> joints;
       for (const auto& n : o.joints) joints.push_back(jointNamed(scene, n, job.jobPath));
       SearchSettings s;
-      s.threads = 1;
+      s.threads = std::max(1, searchThreads);
       const FactorOfSafetyResult f = factorOfSafety(scene, joints, 0.2 * o.sigma, s);
       if (runs) *runs += f.runs;
       const double d = ((f.found ? f.factor : 0.0) - o.target) / o.sigma;
@@ -171,7 +171,7 @@ BackanalysisResult runBackanalysis(const io::BackanalysisJob& job) {
   const solver::HeldEquilibrium* shared = held ? &*held : nullptr;
   const std::function<double(const std::vector<double>&)> f = [&](const std::vector<double>& u) {
     int n = 0;
-    const double v = misfitAt(job, physical(job, u), &n, shared);
+    const double v = misfitAt(job, physical(job, u), &n, shared, job.threads);
     runs += n;
     return v;
   };

@@ -33,9 +33,11 @@ struct BackanalysisResult {
 model::Scene sceneAt(const io::BackanalysisJob& job, const std::vector<double>& x);
 
 /// Misfit of one parameter vector (physical units); counts forward runs in `runs`. `shared`: the
-/// first equilibrium stage, when the parameters are joint strengths only.
+/// first equilibrium stage, when the parameters are joint strengths only. `searchThreads`: trial
+/// factors run at once by a factor-of-safety observation's search (1 when the caller already
+/// evaluates several points in parallel, as the misfit map does).
 double misfitAt(const io::BackanalysisJob& job, const std::vector<double>& x, int* runs = nullptr,
-                const solver::HeldEquilibrium* shared = nullptr);
+                const solver::HeldEquilibrium* shared = nullptr, int searchThreads = 1);
 
 BackanalysisResult runBackanalysis(const io::BackanalysisJob& job);
 
