@@ -15,12 +15,27 @@ def main():
     ap.add_argument("--reservoir", type=float, default=700.42, help="reservoir level, m a.s.l.")
     ap.add_argument("--spacing", type=float, default=50.0,
                     help="vertical joints every this many m (kinematic freedom); 0: only J1 and J2 at the kinks (3 blocks)")
+    ap.add_argument("--keep-valley-steps", action="store_true",
+                    help="keep the opposite bank's sub-metre vertical steps (walls to a sliding block)")
     ap.add_argument("--out", default=os.path.join(HERE, "..", "cases", "vajont.json"))
     a = ap.parse_args()
     data = json.load(open(SHARED))
     cs = data["cross_section"]
     ground = [[p["x"], p["y"]] for p in cs["ground_surface"]]
-    ground += [[p["x"], p["y"]] for p in cs["valley_floor_and_opposite_bank"]["points"]]
+    valley = [[p["x"], p["y"]] for p in cs["valley_floor_and_opposite_bank"]["points"]]
+    if not a.keep_valley_steps:
+        # The valley points are the upper envelope of Boon's five boundary blocks. Where two blocks
+        # meet, the envelope has a 0.2-4 m vertical step. To a sliding rigid block the step at the
+        # foot of the opposite bank is a wall, and it stopped every run-out there. The terrain it
+        # stands for is a continuous slope, so each step becomes one point at its mean height.
+        merged = []
+        for x, y in valley:
+            if merged and abs(merged[-1][0] - x) < 1e-9:
+                merged[-1][1] = round((merged[-1][1] + y) / 2, 3)
+            else:
+                merged.append([x, y])
+        valley = merged
+    ground += valley
     dips = cs["sliding_surface"]["segment_dips_deg"]
     crown = [0.0, 566.2]
     back, middle = math.radians(dips["upper_back"]["value"]), math.radians(dips["middle"]["value"])
@@ -35,6 +50,8 @@ def main():
             f"break points reconstructed (upper kink x_b = {a.kink:g} m chosen in 560-700 to match the quoted volume); "
             f"internal joints: vertical, every {a.spacing:g} m through the upper kink, plus J2 at the lower kink "
             "(reconstructed: rigid blocks need this kinematic freedom to follow the chair-shaped surface, see docs/vajont.md). "
+            "Valley floor and opposite bank: the upper envelope of Boon's boundary blocks, with its vertical steps "
+            "(0.3-4 m, where two blocks meet) replaced by one point at the mean height (reconstructed). "
             "Density 2395.5 kg/m3 quoted "
             "(BOON2D). Internal joints phi = 40 deg quoted (BOON2D rock friction); sliding surface c = 0 (Boon), phi to be "
             f"back-analysed. Reservoir {a.reservoir} m a.s.l. at failure (Doc. 76-bis p207), datum y = 0 at "
