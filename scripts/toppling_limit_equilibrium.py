@@ -44,6 +44,22 @@ def on_line(p, q, r, tol=1e-6):
     return abs(cross(d, sub(r, p))) <= tol * math.hypot(*d) * max(1.0, math.hypot(*sub(r, p)))
 
 
+def on_segment(p, q, r, tol=1e-6):
+    return on_line(p, q, r, tol) and min(p[0], q[0]) - tol <= r[0] <= max(p[0], q[0]) + tol
+
+
+def basal_direction(blocks):
+    """Unit vector down the straight basal joint: through the free blocks' vertices that lie on
+    the fixed base's boundary, from the highest-left to the lowest-right."""
+    base = [tuple(v) for v in next(b for b in blocks if b.get("fixed"))["vertices"]]
+    edges = [(base[k], base[(k + 1) % len(base)]) for k in range(len(base))]
+    on_base = sorted({tuple(v) for b in blocks if not b.get("fixed") for v in b["vertices"]
+                      if any(on_segment(p, q, tuple(v)) for p, q in edges)})
+    p0, p1 = on_base[0], on_base[-1]
+    length = math.hypot(*sub(p1, p0))
+    return ((p1[0] - p0[0]) / length, (p1[1] - p0[1]) / length)
+
+
 def columns(blocks, base_dir):
     """Free blocks ordered from the top (upslope) to the toe, each with its base corners
     (upslope O_up, downslope O) and the tops of its upslope and downslope joints."""
@@ -130,19 +146,7 @@ def main():
     args = ap.parse_args()
     with open(args.blocks) as f:
         blocks = json.load(f)["blocks"]
-    base = next(b for b in blocks if b.get("fixed"))
-    # The basal joint direction: downslope, from the crown to the toe along the base block's top.
-    cols0 = None
-    # Find the basal joint as the free blocks' common lowest edge direction: fit it from the
-    # lowest vertices of all free blocks (they lie on one straight line by construction).
-    pts = sorted({tuple(v) for b in blocks if not b.get("fixed") for v in b["vertices"]
-                  if any(on_line(tuple(base["vertices"][k]), tuple(base["vertices"][(k + 1) % len(base["vertices"])]),
-                                 tuple(v)) and min(base["vertices"][k][0], base["vertices"][(k + 1) % len(base["vertices"])][0]) - 1e-9
-                         <= v[0] <= max(base["vertices"][k][0], base["vertices"][(k + 1) % len(base["vertices"])][0]) + 1e-9
-                         for k in range(len(base["vertices"])))})
-    p0, p1 = pts[0], pts[-1]
-    L = math.hypot(*sub(p1, p0))
-    base_dir = ((p1[0] - p0[0]) / L, (p1[1] - p0[1]) / L)
+    base_dir = basal_direction(blocks)
     base_angle = -math.degrees(math.atan2(base_dir[1], base_dir[0]))
     cols0 = columns(blocks, base_dir)
     tan0 = math.tan(math.radians(args.phi))
