@@ -173,7 +173,7 @@ TEST(Cli, MinimalCaseRunsAndWritesHistoryAndSummary) {
   std::ifstream h(out / "history.csv");
   std::string header;
   std::getline(h, header);
-  EXPECT_EQ(header, "time,dt,iterations,m1_ux,m1_uy,m1_vx,m1_vy");
+  EXPECT_EQ(header, "time,dt,iterations,m1_ux,m1_uy,m1_vx,m1_vy,kinetic_energy,potential_energy,elastic_energy,load_work,energy_gain");
   const json summary = json::parse(std::ifstream(out / "summary.json"));
   EXPECT_EQ(summary["status"], "completed");
   EXPECT_EQ(summary["steps"], 1000);

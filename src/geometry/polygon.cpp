@@ -126,4 +126,10 @@ double distanceToSegment(const Vec2& p, const Vec2& a, const Vec2& b, double* t)
   return (p - (a + s * ab)).norm();
 }
 
+double perimeter(const std::vector<Vec2>& pts) {
+  double sum = 0;
+  for (size_t i = 0; i < pts.size(); ++i) sum += (pts[(i + 1) % pts.size()] - pts[i]).norm();
+  return sum;
+}
+
 }  // namespace ddaslope::geometry

@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -10,6 +11,19 @@ int Trace::monitorIndex(const std::string& id) const {
   for (size_t i = 0; i < monitorIds.size(); ++i)
     if (monitorIds[i] == id) return static_cast<int>(i);
   return -1;
+}
+
+double Trace::largestEnergyGain() const {
+  double gain = 0;
+  for (const solver::EnergyBudget& e : energy) gain = std::max(gain, e.mechanical() - energy.front().mechanical());
+  return gain;
+}
+
+double Trace::energyScale() const {
+  double scale = 0;
+  for (const solver::EnergyBudget& e : energy)
+    scale = std::max({scale, e.kinetic, energy.front().potential - e.potential});
+  return scale;
 }
 
 static double quantityOf(const MonitorSample& s, const std::string& q) {

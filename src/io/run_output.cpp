@@ -41,12 +41,14 @@ class HistoryWriter {
     if (!out_) throw InputError((dir / "history.csv").string(), "", "cannot write the output file");
     out_ << "time,dt,iterations";
     for (const auto& id : monitors) out_ << ',' << id << "_ux," << id << "_uy," << id << "_vx," << id << "_vy";
-    out_ << '\n';
+    out_ << ",kinetic_energy,potential_energy,elastic_energy,load_work,energy_gain\n";
   }
-  void row(const solver::StepRecord& r, const std::vector<MonitorSample>& s) {
+  void row(const solver::StepRecord& r, const std::vector<MonitorSample>& s, const solver::EnergyBudget& e,
+           double initialMechanical) {
     out_ << fmt(r.time) << ',' << fmt(r.dt) << ',' << r.iterations;
     for (const auto& m : s) out_ << ',' << fmt(m.ux) << ',' << fmt(m.uy) << ',' << fmt(m.vx) << ',' << fmt(m.vy);
-    out_ << '\n';
+    out_ << ',' << fmt(e.kinetic) << ',' << fmt(e.potential) << ',' << fmt(e.elastic) << ',' << fmt(e.loadWork)
+         << ',' << fmt(e.mechanical() - initialMechanical) << '\n';
   }
   void finish(bool completed) {
     out_.close();
@@ -81,6 +83,11 @@ void writeSummary(const fs::path& dir, const model::Scene& scene, const RunOptio
                       {"relaxed", st.relaxationConverged}};
   j["max_contacts"] = st.maxContacts;
   j["max_penetration_m"] = st.maxPenetration;
+  if (!o.trace.energy.empty())
+    j["energy_J_per_m"] = {{"mechanical_at_start", o.trace.energy.front().mechanical()},
+                           {"mechanical_at_end", o.trace.energy.back().mechanical()},
+                           {"largest_gain", o.trace.largestEnergyGain()},
+                           {"scale", o.trace.energyScale()}};
   j["symbolic_analyses"] = st.symbolicAnalyses;
   j["phase_times_s"] = {{"broad_phase", st.times.broadPhase}, {"contacts", st.times.contacts},
                         {"assembly", st.times.assembly},      {"factorisation", st.times.factorisation},
@@ -144,7 +151,8 @@ RunOutcome runScene(const model::Scene& scene, const RunOptions& opt) {
   const auto observe = [&](const solver::Simulation& s, const solver::StepRecord& r) {
     std::vector<MonitorSample> row;
     for (size_t m = 0; m < s.scene().monitors.size(); ++m) row.push_back(sampleOf(s, static_cast<int>(m)));
-    if (history) history->row(r, row);
+    o.trace.energy.push_back(s.energy());
+    if (history) history->row(r, row, o.trace.energy.back(), o.trace.energy.front().mechanical());
     while (opt.outputDir && nextSnapshot < snapshots.size() && r.time >= snapshots[nextSnapshot] - 1e-12) {
       char name[64];
       std::snprintf(name, sizeof name, "/snapshot_%02zu.png", nextSnapshot);

@@ -41,7 +41,16 @@ Simulation::Simulation(model::Scene scene)
     : scene_(std::move(scene)),
       stepSize_(scene_.settings.timeStep, scene_.settings.stepCutFactor) {
   w0_ = scene_.modelHalfSize();
-  searchDistance_ = 2.5 * scene_.settings.maxDisplacementRatio * w0_;
+  for (const model::Block& b : scene_.blocks) mass_.push_back(scene_.materials[b.material].density * b.moments.area);
+  // Shi's step limit g2·w0 scales with the model. In a kilometre slope with a 15 m wedge it
+  // exceeds the wedge, and the contact search (2.5 times the limit) then pairs corners farther
+  // apart than the blocks are wide: contacts metres deep appear from nowhere (the Vajont
+  // run-out ejected its toe wedge so). The limit is therefore also held to a tenth of the
+  // thinnest free block's thickness 2S/perimeter (half the side of a square).
+  stepLimit_ = scene_.settings.maxDisplacementRatio * w0_;
+  for (const model::Block& b : scene_.blocks)
+    if (!b.fixed) stepLimit_ = std::min(stepLimit_, 0.1 * 2 * b.moments.area / geometry::perimeter(b.vertices));
+  searchDistance_ = 2.5 * stepLimit_;
   penalty_ = scene_.normalPenalty();
   for (const model::Material& m : scene_.materials)
     elasticity_.push_back(assembly::elasticityMatrix(m.youngModulus, m.poissonRatio, scene_.settings.plane));
@@ -184,10 +193,12 @@ void Simulation::assembleBlockTerms(double dt, Regime regime, std::vector<Mat6>&
     if (i < 0) continue;
     const model::Block& blk = scene_.blocks[b];
     const model::Material& mat = scene_.materials[blk.material];
-    const Mat6 mass = mat.density * assembly::unitMassMatrix(blk.moments);
+    // ρ·S₀/S: a block's mass is its initial one however its area strains (Shi's ρ·S is not).
+    const double density = mass_[b] / blk.moments.area;
+    const Mat6 mass = density * assembly::unitMassMatrix(blk.moments);
     // Newmark β = 1/2, γ = 1 (Shi): K += 2M/Δt², F += 2M V/Δt.
     k[i] = assembly::elasticStiffness(blk.moments.area, elasticity_[blk.material]) + (2 / (dt * dt)) * mass;
-    f[i] = assembly::bodyForce(blk.moments.area, mat.density * scene_.gravity) +
+    f[i] = assembly::bodyForce(blk.moments.area, density * scene_.gravity) +
            assembly::initialStressForce(blk.moments.area, blk.stress);
     if (carryVelocity) f[i] += (2 / dt) * mass * blk.velocity;
     if (water.active()) f[i] += assembly::waterForce(blk, water);
@@ -371,11 +382,11 @@ Simulation::Attempt Simulation::tryStep(double dt, Regime regime, bool freezeCyc
   for (size_t b = 0; b < scene_.blocks.size(); ++b)
     if (active_[b] >= 0)
       worst = std::max(worst, scene_.blocks[b].maxVertexDisplacement(a.d.segment<6>(6 * active_[b])));
-  const double limit = scene_.settings.maxDisplacementRatio * w0_;
-  if (worst > limit) {
+  if (worst > stepLimit_) {
     a.converged = false;
     std::ostringstream msg;
-    msg << "largest vertex displacement " << worst << " m exceeds g2·w0 = " << limit << " m";
+    msg << "largest vertex displacement " << worst << " m exceeds the step limit " << stepLimit_
+        << " m (g2·w0, at most a tenth of the thinnest block)";
     a.failure = msg.str();
   }
   return a;
@@ -557,6 +568,7 @@ StepRecord Simulation::advance() {
     Attempt a = tryStep(dt, Regime::Analysis, cuts >= 2);
     if (a.converged) {
       if (a.frozeContacts) ++stats_.frozenSteps;
+      loadWork_ += loadWork(a.d, dt);
       commit(a, dt);
       time_ = (dt == remaining) ? scene_.settings.duration : time_ + dt;
       stepSize_.accepted(dt, cuts > 0);
@@ -575,6 +587,28 @@ StepRecord Simulation::advance() {
       << " time-step cuts (Δt tried from " << first << " s down to " << dt / scene_.settings.stepCutFactor
       << " s); last failure: " << failure;
   throw NonConvergenceError(msg.str());
+}
+
+double Simulation::loadWork(const Eigen::VectorXd& d, double dt) const {
+  double work = 0;
+  const model::WaterTable water = scene_.water.at(time_ + dt);
+  if (water.active())
+    for (size_t b = 0; b < scene_.blocks.size(); ++b)
+      if (active_[b] >= 0) work += assembly::waterForce(scene_.blocks[b], water).dot(d.segment<6>(6 * active_[b]));
+  for (const model::PointLoad& l : scene_.pointLoads) {
+    const int i = active_[l.point.block];
+    if (i >= 0)
+      work += assembly::pointForce(scene_.blocks[l.point.block].moments.centroid, l.point.current, l.at(time_ + dt))
+                  .dot(d.segment<6>(6 * i));
+  }
+  return work;
+}
+
+EnergyBudget Simulation::energy() const {
+  EnergyBudget e = storedEnergy(scene_, mass_, elasticity_, contacts_.contacts(), penalty_,
+                                penalty_ * scene_.settings.shearPenaltyRatio);
+  e.loadWork = loadWork_;
+  return e;
 }
 
 Vec2 Simulation::monitorVelocity(int m) const {

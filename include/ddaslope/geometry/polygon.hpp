@@ -32,6 +32,8 @@ void orientCounterClockwise(std::vector<Vec2>& pts);
 /// Point in polygon (boundary counts as inside within tol).
 bool containsPoint(const std::vector<Vec2>& pts, const Vec2& p, double tol);
 Aabb boundingBox(const std::vector<Vec2>& pts);
+/// Sum of the edge lengths of the closed polygon.
+double perimeter(const std::vector<Vec2>& pts);
 /// Distance from p to segment ab and the parameter t ∈ [0,1] of the closest point.
 double distanceToSegment(const Vec2& p, const Vec2& a, const Vec2& b, double* t);
 /// True when segments ab and cd share a point.

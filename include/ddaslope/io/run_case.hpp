@@ -18,6 +18,12 @@ struct Trace {
   std::vector<std::string> monitorIds;
   std::vector<solver::StepRecord> steps;
   std::vector<std::vector<MonitorSample>> samples;  ///< [row][monitor]
+  std::vector<solver::EnergyBudget> energy;         ///< [row]
+  /// Largest rise of the mechanical energy above its value at t = 0 (J/m): a spurious gain,
+  /// since a correct run only dissipates; and the energy scale it is judged against (the
+  /// largest of the kinetic energy and the potential energy released).
+  double largestEnergyGain() const;
+  double energyScale() const;
   int monitorIndex(const std::string& id) const;
 };
 

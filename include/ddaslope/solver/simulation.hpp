@@ -12,6 +12,7 @@
 #include "ddaslope/contact/contact_law.hpp"
 #include "ddaslope/contact/contact_set.hpp"
 #include "ddaslope/model/scene.hpp"
+#include "ddaslope/solver/energy.hpp"
 #include "ddaslope/solver/linear_solver.hpp"
 #include "ddaslope/solver/time_step.hpp"
 
@@ -87,6 +88,8 @@ class Simulation {
   double searchDistance() const { return searchDistance_; }
   const RunStatistics& statistics() const { return stats_; }
   const contact::ContactSet& contacts() const { return contacts_; }
+  /// The scene's mechanical energy now; load work counts from t = 0 (after the equilibrium).
+  EnergyBudget energy() const;
   /// Velocity of monitor m's point (m/s).
   Vec2 monitorVelocity(int m) const;
   /// Receives one line per equilibrium step and per Δt cut (diagnostics; off by default).
@@ -113,6 +116,8 @@ class Simulation {
   Attempt tryStep(double dt, Regime regime, bool freezeCycling);
   void assembleBlockTerms(double dt, Regime regime, std::vector<Mat6>& k, std::vector<Vec6>& f) const;
   void commit(const Attempt& a, double dt);
+  /// Work of water pressure and point loads over a step of displacements d (loads at its end).
+  double loadWork(const Eigen::VectorXd& d, double dt) const;
   contact::ContactStrength strengthOf(const contact::Contact& c) const;
   /// Finds the two halves of every edge-to-edge contact (partner_).
   void pairEdgeHalves();
@@ -124,10 +129,13 @@ class Simulation {
 
   model::Scene scene_;
   double w0_ = 1;
-  double searchDistance_ = 0;
+  std::vector<double> mass_;   ///< per block (kg/m), fixed at the start: ρ·S₀
+  double stepLimit_ = 0;       ///< largest vertex displacement in one step (m)
+  double searchDistance_ = 0;  ///< 2.5 × stepLimit_
   double penalty_ = 0;
   double lightestPenetration_ = INFINITY;  ///< 1e-3 of the lightest free block's W/p (m)
   double time_ = 0;
+  double loadWork_ = 0;  ///< work of water and point loads since t = 0 (J/m)
   std::vector<int> active_;  ///< dof block index per block, −1 when fixed or held
   int nActive_ = 0;
   contact::ContactSet contacts_;

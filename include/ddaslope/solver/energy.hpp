@@ -1,0 +1,29 @@
+#pragma once
+// The mechanical energy of a scene, for the energy-balance check (issue #6: no spurious gain).
+// Friction, the open-close law and the γ = 1 integrator only dissipate, so
+// kinetic + gravity potential + elastic − work of the other loads never rises in a correct run.
+#include <vector>
+
+#include "ddaslope/contact/contact_set.hpp"
+#include "ddaslope/model/scene.hpp"
+
+namespace ddaslope::solver {
+
+/// Energies per unit thickness (J/m).
+struct EnergyBudget {
+  double kinetic = 0;    ///< ½ Vᵀ M V summed over free blocks
+  double potential = 0;  ///< −Σ m g·x_c of free blocks (gravity; zero level at the origin)
+  double elastic = 0;    ///< block strain energy + contact springs (½ N²/p + ½ S²/p_s)
+  double loadWork = 0;   ///< work done on the blocks by water pressure and point loads
+  /// Kinetic + potential + elastic − load work: non-increasing in a dissipative run.
+  double mechanical() const { return kinetic + potential + elastic - loadWork; }
+};
+
+/// The stored energies of the scene's current state; `loadWork` is left 0 (the caller sums it).
+/// `mass[b]`: block b's mass (kg/m); the spring stiffnesses are those of every contact.
+EnergyBudget storedEnergy(const model::Scene& scene, const std::vector<double>& mass,
+                          const std::vector<Eigen::Matrix3d>& elasticity,
+                          const std::vector<contact::Contact>& contacts, double normalStiffness,
+                          double shearStiffness);
+
+}  // namespace ddaslope::solver
