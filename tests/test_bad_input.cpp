@@ -254,6 +254,9 @@ TEST(JobReader, BadJobs) {
   j = good;
   j["observations"][0]["type"] = "velocity";
   expectJobError(j, "observations[0].type", "series, factor_of_safety or runout");
+  j = good;
+  j["observations"][0] = {{"type", "runout"}, {"monitor", "block"}, {"target", 300}, {"sigma", 50}, {"quantity", "travel"}};
+  expectJobError(j, "observations[0].quantity", "ux, uy, vx, vy, displacement, speed, found \"travel\"");
 }
 
 // A case value varied by JSON path must exist and be a number.

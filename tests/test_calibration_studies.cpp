@@ -45,6 +45,15 @@ TEST_P(CalibrationStudy, MeetsItsExpectedResult) {
     }
   if (expected.contains("constrains_only_a_line"))
     EXPECT_EQ(r.lineOnly, expected.at("constrains_only_a_line").get<bool>());
+  // An observed range the simulated value at the estimate must fall in (what the data say).
+  if (expected.contains("fit_within"))
+    for (const auto& [label, range] : expected.at("fit_within").items()) {
+      const auto it = std::find_if(r.fit.begin(), r.fit.end(), [&](const auto& f) { return f.label == label; });
+      ASSERT_NE(it, r.fit.end()) << label;
+      ASSERT_TRUE(it->converged) << label;
+      EXPECT_GE(it->simulated, range.at(0).get<double>()) << label;
+      EXPECT_LE(it->simulated, range.at(1).get<double>()) << label;
+    }
   if (expected.contains("factor_of_safety_at_estimate")) {
     const json& e = expected.at("factor_of_safety_at_estimate");
     const auto f = calibration::factorOfSafety(calibration::sceneAt(job, r.estimate), {}, 0.002);

@@ -103,7 +103,8 @@ model::Scene sceneAt(const io::BackanalysisJob& job, const std::vector<double>& 
 }
 
 double misfitAt(const io::BackanalysisJob& job, const std::vector<double>& x, int* runs,
-                const solver::HeldEquilibrium* shared, int searchThreads) {
+                const solver::HeldEquilibrium* shared, int searchThreads, std::vector<ObservationFit>* fit) {
+  if (fit) fit->clear();
   const model::Scene scene = sceneAt(job, x);
   double total = 0;
   bool needTrace = false;
@@ -118,6 +119,7 @@ double misfitAt(const io::BackanalysisJob& job, const std::vector<double>& x, in
   for (const auto& o : job.observations) {
     double sum = 0;
     int count = 0;
+    ObservationFit met{o.label, NAN, o.target, o.sigma, o.kind == io::ObservationSpec::Kind::Series};
     if (o.kind == io::ObservationSpec::Kind::FactorOfSafety) {
       std::vector<int> joints;
       for (const auto& n : o.joints) joints.push_back(jointNamed(scene, n, job.jobPath));
@@ -125,20 +127,23 @@ double misfitAt(const io::BackanalysisJob& job, const std::vector<double>& x, in
       s.threads = std::max(1, searchThreads);
       const FactorOfSafetyResult f = factorOfSafety(scene, joints, 0.2 * o.sigma, s);
       if (runs) *runs += f.runs;
-      const double d = ((f.found ? f.factor : 0.0) - o.target) / o.sigma;
+      met.simulated = f.found ? f.factor : 0.0;
+      const double d = (met.simulated - o.target) / o.sigma;
       sum = d * d;
       count = 1;
     } else if (!run.completed) {
+      met.converged = false;
       sum = 1e6;  // a run that did not converge explains nothing
       count = 1;
     } else {
       model::Expectation e;
       e.monitor = o.monitor;
-      e.quantity = o.kind == io::ObservationSpec::Kind::Runout ? "displacement" : o.quantity;
+      e.quantity = o.quantity;
       if (run.trace.monitorIndex(o.monitor) < 0)
         throw InputError(job.jobPath, "observations", "no monitor \"" + o.monitor + "\" in the case");
       if (o.kind == io::ObservationSpec::Kind::Runout) {
-        const double d = (io::measure(run.trace, e) - o.target) / o.sigma;
+        met.simulated = io::measure(run.trace, e);
+        const double d = (met.simulated - o.target) / o.sigma;
         sum = d * d;
         count = 1;
       } else {
@@ -148,8 +153,11 @@ double misfitAt(const io::BackanalysisJob& job, const std::vector<double>& x, in
           sum += d * d;
           ++count;
         }
+        met.simulated = o.sigma * std::sqrt(sum / std::max(1, count));
+        met.observed = 0;
       }
     }
+    if (fit) fit->push_back(met);
     total += o.weight * sum / std::max(1, count);
   }
   return total;
@@ -169,10 +177,13 @@ BackanalysisResult runBackanalysis(const io::BackanalysisJob& job) {
     if (base.settings.initialEquilibrium) held = solver::Simulation(base).holdEquilibrium();
   }
   const solver::HeldEquilibrium* shared = held ? &*held : nullptr;
+  double bestSeen = HUGE_VAL;
   const std::function<double(const std::vector<double>&)> f = [&](const std::vector<double>& u) {
     int n = 0;
-    const double v = misfitAt(job, physical(job, u), &n, shared, job.threads);
+    std::vector<ObservationFit> fit;
+    const double v = misfitAt(job, physical(job, u), &n, shared, job.threads, &fit);
     runs += n;
+    if (v < bestSeen) bestSeen = v, r.fit = std::move(fit);  // the optimisers call f one at a time
     return v;
   };
   std::vector<double> u(job.parameters.size(), 0.5);

@@ -327,6 +327,14 @@ int backanalyseCommand(const std::string& jobPath, const std::string& outDir, bo
   j.set("misfit", r.misfit).set("evaluations", r.evaluations).set("forward_runs", r.forwardRuns);
   j.set("global_search", r.globalStatus).set("local_search", r.localStatus).set("wall_time_s", r.wallTime);
   if (!r.map.empty()) j.set("constrains_only_a_line", r.lineOnly).set("statement", r.statement);
+  for (const auto& f : r.fit) {
+    ddaslope::io::JsonRecord item;
+    item.set("observation", f.label);
+    if (!f.converged) item.set("simulated", "forward run did not converge");
+    else if (f.series) item.set("rms_residual", f.simulated);
+    else item.set("simulated", f.simulated).set("observed", f.observed);
+    j.append("fit_at_estimate", item.set("sigma", f.sigma));
+  }
   const std::string result = outDir + "/result.json";
   {
     std::ofstream out(result + ".tmp");
@@ -352,6 +360,11 @@ int backanalyseCommand(const std::string& jobPath, const std::string& outDir, bo
     for (size_t i = 0; i < r.names.size(); ++i) std::printf("  %s = %.6g\n", r.names[i].c_str(), r.estimate[i]);
     std::printf("  misfit %.4g after %d evaluations (%d forward runs), %.1f s wall\n  %s; %s\n", r.misfit, r.evaluations,
                 r.forwardRuns, r.wallTime, r.globalStatus.c_str(), r.localStatus.c_str());
+    for (const auto& f : r.fit) {
+      if (!f.converged) std::printf("  %s: forward run did not converge\n", f.label.c_str());
+      else if (f.series) std::printf("  %s: RMS residual %.4g (sigma %.4g)\n", f.label.c_str(), f.simulated, f.sigma);
+      else std::printf("  %s: simulated %.4g, observed %.4g ± %.4g\n", f.label.c_str(), f.simulated, f.observed, f.sigma);
+    }
     if (!r.statement.empty()) std::printf("  %s\n", r.statement.c_str());
     std::printf("  wrote %s%s\n", result.c_str(), r.map.empty() ? "" : (" and " + outDir + "/misfit_map.csv, .png").c_str());
   }

@@ -17,6 +17,9 @@ namespace {
 using nlohmann::json;
 namespace fs = std::filesystem;
 
+class JobReader;
+void readQuantity(const JobReader& r, const json& j, const std::string& p, ObservationSpec& o);
+
 class JobReader {
  public:
   explicit JobReader(std::string file) : file_(std::move(file)) {}
@@ -51,6 +54,15 @@ class JobReader {
  private:
   std::string file_;
 };
+
+/// The monitor quantity a series or runout compares (default: displacement).
+void readQuantity(const JobReader& r, const json& j, const std::string& p, ObservationSpec& o) {
+  if (!j.contains("quantity")) return;
+  o.quantity = r.string(j.at("quantity"), p + ".quantity");
+  static const std::set<std::string> known{"ux", "uy", "vx", "vy", "displacement", "speed"};
+  if (!known.count(o.quantity))
+    r.fail(p + ".quantity", "expected one of ux, uy, vx, vy, displacement, speed, found \"" + o.quantity + "\"");
+}
 
 }  // namespace
 
@@ -115,7 +127,7 @@ BackanalysisJob readJob(const std::string& path) {
     if (type == "series") {
       o.kind = ObservationSpec::Kind::Series;
       o.monitor = r.string(r.required(j, p, "monitor"), p + ".monitor");
-      if (j.contains("quantity")) o.quantity = r.string(j.at("quantity"), p + ".quantity");
+      readQuantity(r, j, p, o);
       r.readSeries(r.string(r.required(j, p, "csv"), p + ".csv"),
                    j.contains("time_column") ? r.string(j.at("time_column"), p + ".time_column") : "time",
                    r.string(r.required(j, p, "value_column"), p + ".value_column"), p + ".csv", o);
@@ -128,6 +140,7 @@ BackanalysisJob readJob(const std::string& path) {
     } else if (type == "runout") {
       o.kind = ObservationSpec::Kind::Runout;
       o.monitor = r.string(r.required(j, p, "monitor"), p + ".monitor");
+      readQuantity(r, j, p, o);
       o.target = r.number(r.required(j, p, "target"), p + ".target");
     } else {
       r.fail(p + ".type", "expected series, factor_of_safety or runout, found \"" + type + "\"");

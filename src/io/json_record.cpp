@@ -15,6 +15,10 @@ JsonRecord& JsonRecord::set(const std::string& k, int v) { impl_->j[k] = v; retu
 JsonRecord& JsonRecord::set(const std::string& k, bool v) { impl_->j[k] = v; return *this; }
 JsonRecord& JsonRecord::set(const std::string& k, const std::string& v) { impl_->j[k] = v; return *this; }
 JsonRecord& JsonRecord::set(const std::string& k, const std::vector<double>& v) { impl_->j[k] = v; return *this; }
+JsonRecord& JsonRecord::append(const std::string& k, const JsonRecord& item) {
+  impl_->j[k].push_back(item.impl_->j);
+  return *this;
+}
 std::string JsonRecord::dump() const { return impl_->j.dump(2); }
 
 }  // namespace ddaslope::io

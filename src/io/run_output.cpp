@@ -1,4 +1,5 @@
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <algorithm>
@@ -8,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "ddaslope/core/errors.hpp"
+#include "ddaslope/io/line_plot.hpp"
 #include "ddaslope/io/run_case.hpp"
 #include "ddaslope/io/scene_picture.hpp"
 
@@ -37,6 +39,8 @@ class HistoryWriter {
     fs::remove(dir / "history.csv");
     fs::remove(dir / "history.partial.csv");
     fs::remove(dir / "summary.json");
+    fs::remove(dir / "history.png");
+    fs::remove(dir / "energy.png");
     out_.open(dir / "history.partial.csv");
     if (!out_) throw InputError((dir / "history.csv").string(), "", "cannot write the output file");
     out_ << "time,dt,iterations";
@@ -132,6 +136,43 @@ void writeSummary(const fs::path& dir, const model::Scene& scene, const RunOptio
   fs::rename(tmp, dir / "summary.json");
 }
 
+/// history.png: each monitor's displacement and speed against time; energy.png: where the
+/// energy went (kinetic, potential released, stored elastic, and the rest: dissipated).
+void writeHistoryPlots(const fs::path& dir, const std::string& casePath, const Trace& trace) {
+  if (trace.steps.empty()) return;
+  // At most ~2000 points per line: a long run has tens of thousands of steps.
+  const size_t stride = std::max<size_t>(1, trace.steps.size() / 2000);
+  LinePlot motion{"Monitors: " + casePath, "time (s)", "displacement (m) / speed (m/s)", {}};
+  for (size_t m = 0; m < trace.monitorIds.size(); ++m) {
+    PlotSeries u{trace.monitorIds[m] + " displacement", {}, {}, false}, v{trace.monitorIds[m] + " speed", {}, {}, false};
+    for (size_t k = 0; k < trace.steps.size(); k += stride) {
+      const MonitorSample& s = trace.samples[k][m];
+      u.x.push_back(trace.steps[k].time);
+      u.y.push_back(std::hypot(s.ux, s.uy));
+      v.x.push_back(trace.steps[k].time);
+      v.y.push_back(std::hypot(s.vx, s.vy));
+    }
+    motion.series.push_back(std::move(u));
+    motion.series.push_back(std::move(v));
+  }
+  writePng(motion, (dir / "history.png").string());
+  const solver::EnergyBudget& e0 = trace.energy.front();
+  LinePlot energy{"Energy (J/m): " + casePath, "time (s)", "energy since t = 0 (J/m)", {}};
+  PlotSeries released{"potential released + load work", {}, {}, false}, kinetic{"kinetic", {}, {}, false},
+      elastic{"elastic (change)", {}, {}, false}, dissipated{"dissipated", {}, {}, false};
+  for (size_t k = 0; k < trace.steps.size(); k += stride) {
+    const solver::EnergyBudget& e = trace.energy[k];
+    const double t = trace.steps[k].time;
+    for (PlotSeries* p : {&released, &kinetic, &elastic, &dissipated}) p->x.push_back(t);
+    released.y.push_back(e0.potential - e.potential + e.loadWork);
+    kinetic.y.push_back(e.kinetic);
+    elastic.y.push_back(e.elastic - e0.elastic);
+    dissipated.y.push_back(e0.mechanical() - e.mechanical());
+  }
+  energy.series = {released, kinetic, elastic, dissipated};
+  writePng(energy, (dir / "energy.png").string());
+}
+
 }  // namespace
 
 RunOutcome runScene(const model::Scene& scene, const RunOptions& opt) {
@@ -180,6 +221,7 @@ RunOutcome runScene(const model::Scene& scene, const RunOptions& opt) {
   if (o.completed) o.expectations = evaluateExpectations(o.trace, scene.expectations);
   if (history) {
     history->finish(o.completed);
+    if (o.completed) writeHistoryPlots(*opt.outputDir, opt.casePath, o.trace);
     writeSummary(*opt.outputDir, scene, opt, o);
   }
   return o;

@@ -11,10 +11,22 @@
 
 namespace ddaslope::calibration {
 
+/// How one observation is met at a parameter vector.
+struct ObservationFit {
+  std::string label;
+  /// Factor of safety or runout: the simulated and observed values. Series: the RMS of
+  /// simulated − observed over its times, and 0.
+  double simulated = 0, observed = 0;
+  double sigma = 0;
+  bool series = false;
+  bool converged = true;  ///< false: the forward run did not converge (no simulated value)
+};
+
 struct BackanalysisResult {
   std::vector<std::string> names;
   std::vector<double> estimate;     ///< physical units (friction angles in degrees)
   double misfit = 0;
+  std::vector<ObservationFit> fit;  ///< each observation at the estimate
   int evaluations = 0;              ///< misfit evaluations (each ≥ 1 forward run)
   int forwardRuns = 0;
   std::string globalStatus, localStatus;
@@ -36,8 +48,10 @@ model::Scene sceneAt(const io::BackanalysisJob& job, const std::vector<double>& 
 /// first equilibrium stage, when the parameters are joint strengths only. `searchThreads`: trial
 /// factors run at once by a factor-of-safety observation's search (1 when the caller already
 /// evaluates several points in parallel, as the misfit map does).
+/// `fit`: if given, receives how each observation is met.
 double misfitAt(const io::BackanalysisJob& job, const std::vector<double>& x, int* runs = nullptr,
-                const solver::HeldEquilibrium* shared = nullptr, int searchThreads = 1);
+                const solver::HeldEquilibrium* shared = nullptr, int searchThreads = 1,
+                std::vector<ObservationFit>* fit = nullptr);
 
 BackanalysisResult runBackanalysis(const io::BackanalysisJob& job);
 

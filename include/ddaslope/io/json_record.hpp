@@ -19,6 +19,8 @@ class JsonRecord {
   JsonRecord& set(const std::string& key, const std::string& value);
   JsonRecord& set(const std::string& key, const char* value) { return set(key, std::string(value)); }
   JsonRecord& set(const std::string& key, const std::vector<double>& values);
+  /// Appends `item` to the array at `key` (created if missing).
+  JsonRecord& append(const std::string& key, const JsonRecord& item);
   std::string dump() const;
 
  private:

@@ -1,0 +1,61 @@
+#!/usr/bin/env python3
+"""Checks scripts/vajont_limit_equilibrium.py against closed forms (run by ctest)."""
+import json, os, subprocess, sys, tempfile, unittest
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+
+
+def critical_friction(case, *args):
+    with tempfile.NamedTemporaryFile("w", suffix=".json", delete=False) as f:
+        json.dump(case, f)
+    try:
+        out = subprocess.run([sys.executable, os.path.join(HERE, "vajont_limit_equilibrium.py"), f.name, *args],
+                             check=True, capture_output=True, text=True).stdout
+    finally:
+        os.remove(f.name)
+    return float(out.split("critical friction")[1].split("deg")[0])
+
+
+def planar_case(dip_deg, level=None):
+    """A 100 m wide mass on one plane dipping dip_deg, under a horizontal ground surface."""
+    import math
+    drop = 100 * math.tan(math.radians(dip_deg))
+    case = {"materials": {"rock": {"density": 2500}}, "joints": {"j": {"friction_angle": 40}}, "default_joint": "j",
+            "section": {"ground": [[0, drop], [100, drop], [100, 0]], "sliding_surface": [[0, drop], [100, 0]],
+                        "joint_sets": [{"angle": 90, "spacing": 20, "origin": [0, 0]}]}}
+    if level is not None:
+        case["water"] = {"level": level}
+    return case
+
+
+class LimitEquilibrium(unittest.TestCase):
+    def test_dry_plane(self):
+        # Closed form: a rigid mass on one plane with c = 0 slides when tan(phi) = tan(dip), whatever
+        # the vertical interfaces carry (every slice sits on the same plane).
+        for dip in (20, 35):
+            self.assertAlmostEqual(critical_friction(planar_case(dip)), dip, places=6)
+
+    def test_submerged_plane(self):
+        # Closed form: full hydrostatic submergence (water on every face) is buoyancy, which scales
+        # the base's normal and shear alike, so the critical friction is still the dip.
+        self.assertAlmostEqual(critical_friction(planar_case(30, level=1000)), 30, places=6)
+
+    def test_partly_submerged_plane(self):
+        # Closed form: on a uniform plane each slice's buoyancy scales its own base forces alike,
+        # so partial submergence leaves the critical friction at the dip too.
+        self.assertAlmostEqual(critical_friction(planar_case(30, level=20)), 30, places=6)
+
+    def test_two_equal_wedges_without_interface_friction(self):
+        # Closed form (two-wedge method, delta = 0): W1 tan(b1 - phi) + W2 tan(b2 - phi) = 0. With
+        # equal weights and a flat seat (b2 = 0), tan(b1 - phi) = tan(phi): phi = b1 / 2.
+        import math
+        drop = 100 * math.tan(math.radians(30))
+        case = {"materials": {"rock": {"density": 2500}}, "joints": {"j": {"friction_angle": 40}},
+                "default_joint": "j",
+                "section": {"ground": [[0, drop], [150, drop], [150, 0]],
+                            "sliding_surface": [[0, drop], [100, 0], [150, 0]]}}
+        self.assertAlmostEqual(critical_friction(case, "--delta", "0"), 15, places=6)
+
+
+if __name__ == "__main__":
+    unittest.main()
