@@ -74,17 +74,20 @@ double residentMb() {
 int main(int argc, char** argv) {
   int steps = 20;
   model::ContactTreatment treatment = model::ContactTreatment::Edge;
+  bool rigid = false;
   std::vector<int> sizes{10, 50, 100, 200, 500, 1000, 2000};
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--steps") && i + 1 < argc) steps = std::atoi(argv[++i]);
     else if (!std::strcmp(argv[i], "--contact-treatment") && i + 1 < argc)
       treatment = std::strcmp(argv[++i], "vertex") ? model::ContactTreatment::Edge : model::ContactTreatment::Vertex;
+    else if (!std::strcmp(argv[i], "--blocks") && i + 1 < argc)
+      rigid = !std::strcmp(argv[++i], "rigid");
     else if (!std::strcmp(argv[i], "--sizes") && i + 1 < argc) {
       sizes.clear();
       std::stringstream ss(argv[++i]);
       for (std::string tok; std::getline(ss, tok, ',');) sizes.push_back(std::stoi(tok));
     } else {
-      std::fprintf(stderr, "usage: ddaslope_bench [--steps S] [--sizes 10,100,...] [--contact-treatment edge|vertex]\n");
+      std::fprintf(stderr, "usage: ddaslope_bench [--steps S] [--sizes 10,100,...] [--contact-treatment edge|vertex] [--blocks rigid|deformable]\n");
       return 2;
     }
   }
@@ -95,6 +98,7 @@ int main(int argc, char** argv) {
   for (int n : sizes) {
     model::Scene scene = makeWall(n);
     scene.settings.contactTreatment = treatment;
+    scene.settings.rigidBlocks = rigid;
     solver::Simulation sim(scene);
     if (std::getenv("DDASLOPE_BENCH_VERBOSE")) sim.setLog([](const std::string& l) { std::fprintf(stderr, "%s\n", l.c_str()); });
     auto t0 = std::chrono::steady_clock::now();
@@ -107,7 +111,7 @@ int main(int argc, char** argv) {
     const solver::RunStatistics& a = sim.statistics();
     const auto d = [&](double solver::PhaseTimes::*f) { return ms(a.times.*f - before.times.*f, steps); };
     std::printf("%d,%zu,%d,%.1f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.2f,%.2f,%.2f,%d,%.1f\n", n,
-                sim.contacts().contacts().size(), 6 * n, 1e3 * eq, ms(wall, steps),
+                sim.contacts().contacts().size(), (rigid ? 3 : 6) * n, 1e3 * eq, ms(wall, steps),
                 d(&solver::PhaseTimes::broadPhase), d(&solver::PhaseTimes::contacts),
                 d(&solver::PhaseTimes::assembly), d(&solver::PhaseTimes::factorisation),
                 d(&solver::PhaseTimes::solve), d(&solver::PhaseTimes::stateChecks),

@@ -271,6 +271,17 @@ TEST(CaseReader, OverrideByJsonPath) {
   } catch (const InputError& e) {
     EXPECT_EQ(e.jsonPath(), "materials.granite.density");
   }
+  // A setting the case leaves at its default can be set (a whole number stays an integer) ...
+  const model::Scene t = io::readCase(casePath, {{"analysis.open_close_max_iterations", 6}});
+  EXPECT_EQ(t.settings.openCloseMaxIterations, 6);
+  // ... but a key the reader does not know is still refused, with the keys it knows.
+  try {
+    io::readCase(casePath, {{"analysis.open_close_limit", 6}});
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.jsonPath(), "analysis.open_close_limit");
+    EXPECT_NE(std::string(e.what()).find("open_close_max_iterations"), std::string::npos) << e.what();
+  }
 }
 
 // --snapshots writes one PNG per requested time (checked by its signature).

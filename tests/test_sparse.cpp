@@ -8,6 +8,18 @@
 
 using namespace ddaslope;
 
+namespace {
+/// The block-sparse matrix multiplies and solves like its dense reference (round-off only).
+void expectMatchesDense(const assembly::BlockSparseMatrix& k, const Eigen::MatrixXd& dense, solver::SparseCholesky& chol) {
+  const Eigen::VectorXd x = Eigen::VectorXd::LinSpaced(dense.rows(), -1, 2);
+  EXPECT_LT((k.multiply(x) - dense * x).norm(), 1e-12 * (dense * x).norm());
+  ASSERT_TRUE(chol.factorise(k));
+  Eigen::VectorXd sol;
+  chol.solve(dense * x, sol);
+  EXPECT_LT((sol - x).norm(), 1e-10 * x.norm());
+}
+}  // namespace
+
 TEST(SparseSolve, MatchesDenseCholesky) {
   // Three blocks in a chain: 0–1 and 1–2 coupled. Build an SPD dense matrix with that pattern.
   const int n = 3;
@@ -29,13 +41,8 @@ TEST(SparseSolve, MatchesDenseCholesky) {
     dense.block<6, 6>(6 * r, 6 * c) += krc;
     dense.block<6, 6>(6 * c, 6 * r) += krc.transpose();
   }
-  const Eigen::VectorXd x = Eigen::VectorXd::LinSpaced(18, -1, 2);
-  EXPECT_LT((k.multiply(x) - dense * x).norm(), 1e-12 * (dense * x).norm());
   solver::SparseCholesky chol;
-  ASSERT_TRUE(chol.factorise(k));
-  Eigen::VectorXd sol;
-  chol.solve(dense * x, sol);
-  EXPECT_LT((sol - x).norm(), 1e-10 * x.norm());
+  expectMatchesDense(k, dense, chol);
   // Same pattern: no second symbolic analysis.
   ASSERT_TRUE(chol.factorise(k));
   EXPECT_EQ(chol.symbolicAnalyses(), 1);
@@ -48,4 +55,30 @@ TEST(SparseSolve, ReportsIndefiniteMatrix) {
   k.addDiagonal(0, -Mat6::Identity());
   solver::SparseCholesky chol;
   EXPECT_FALSE(chol.factorise(k));
+}
+
+// Rigid blocks (three unknowns): the matrix keeps the leading 3×3 of every 6×6 term and solves
+// that system exactly (dense reference: the same sub-blocks).
+TEST(SparseSolve, RigidBlocksKeepTheLeadingThreeUnknowns) {
+  const int n = 3;
+  Eigen::MatrixXd dense = Eigen::MatrixXd::Zero(9, 9);
+  std::srand(11);
+  assembly::BlockSparseMatrix k;
+  k.setPattern(n, {{0, 1}, {1, 2}}, 3);
+  EXPECT_EQ(k.size(), 9);
+  k.setZero();
+  for (int b = 0; b < n; ++b) {
+    Mat6 a = Mat6::Random();
+    a = a * a.transpose() + 20 * Mat6::Identity();
+    k.addDiagonal(b, a);
+    dense.block<3, 3>(3 * b, 3 * b) += a.topLeftCorner<3, 3>();
+  }
+  for (auto [r, c] : {std::pair{0, 1}, std::pair{2, 1}}) {
+    const Mat6 krc = Mat6::Random();
+    k.addCoupling(r, c, krc);
+    dense.block<3, 3>(3 * r, 3 * c) += krc.topLeftCorner<3, 3>();
+    dense.block<3, 3>(3 * c, 3 * r) += krc.topLeftCorner<3, 3>().transpose();
+  }
+  solver::SparseCholesky chol;
+  expectMatchesDense(k, dense, chol);
 }

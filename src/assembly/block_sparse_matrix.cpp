@@ -14,34 +14,36 @@ std::vector<std::pair<int, int>> BlockSparseMatrix::normalise(std::vector<std::p
   return c;
 }
 
-bool BlockSparseMatrix::hasPattern(int nBlocks, const std::vector<std::pair<int, int>>& c) const {
-  return nBlocks == nBlocks_ && c == couplings_ && patternVersion_ > 0;
+bool BlockSparseMatrix::hasPattern(int nBlocks, const std::vector<std::pair<int, int>>& c, int dof) const {
+  return nBlocks == nBlocks_ && dof == dof_ && c == couplings_ && patternVersion_ > 0;
 }
 
-void BlockSparseMatrix::setPattern(int nBlocks, std::vector<std::pair<int, int>> couplings) {
+void BlockSparseMatrix::setPattern(int nBlocks, std::vector<std::pair<int, int>> couplings, int dof) {
+  DDASLOPE_ASSERT(dof >= 1 && dof <= 6, "a block has 1 to 6 unknowns");
   couplings_ = normalise(std::move(couplings));
   nBlocks_ = nBlocks;
+  dof_ = dof;
   columnRows_.assign(nBlocks, {});
   for (const auto& [r, c] : couplings_) {
     DDASLOPE_ASSERT(r != c && c < nBlocks, "bad block coupling");
     columnRows_[c].push_back(r);  // couplings are sorted by r, so each list is sorted
   }
   blockBase_.assign(nBlocks + 1, 0);
-  colPtr_.assign(6 * nBlocks + 1, 0);
+  colPtr_.assign(dof_ * nBlocks + 1, 0);
   rowIdx_.clear();
   int nz = 0;
   for (int c = 0; c < nBlocks; ++c) {
     blockBase_[c] = nz;
-    for (int k = 0; k < 6; ++k) {
-      colPtr_[6 * c + k] = nz;
+    for (int k = 0; k < dof_; ++k) {
+      colPtr_[dof_ * c + k] = nz;
       for (int r : columnRows_[c])
-        for (int i = 0; i < 6; ++i) rowIdx_.push_back(6 * r + i);
-      for (int i = 0; i <= k; ++i) rowIdx_.push_back(6 * c + i);
-      nz += 6 * static_cast<int>(columnRows_[c].size()) + k + 1;
+        for (int i = 0; i < dof_; ++i) rowIdx_.push_back(dof_ * r + i);
+      for (int i = 0; i <= k; ++i) rowIdx_.push_back(dof_ * c + i);
+      nz += dof_ * static_cast<int>(columnRows_[c].size()) + k + 1;
     }
   }
   blockBase_[nBlocks] = nz;
-  colPtr_[6 * nBlocks] = nz;
+  colPtr_[dof_ * nBlocks] = nz;
   values_.assign(nz, 0.0);
   ++patternVersion_;
 }
@@ -49,9 +51,10 @@ void BlockSparseMatrix::setPattern(int nBlocks, std::vector<std::pair<int, int>>
 void BlockSparseMatrix::setZero() { std::fill(values_.begin(), values_.end(), 0.0); }
 
 void BlockSparseMatrix::addDiagonal(int b, const Mat6& k) {
-  const int off = 6 * static_cast<int>(columnRows_[b].size());
-  for (int col = 0; col < 6; ++col) {
-    double* v = &values_[colPtr_[6 * b + col] + off];
+  // Only the first dof_ unknowns (u0, v0, r0 for a rigid block) take part.
+  const int off = dof_ * static_cast<int>(columnRows_[b].size());
+  for (int col = 0; col < dof_; ++col) {
+    double* v = &values_[colPtr_[dof_ * b + col] + off];
     for (int row = 0; row <= col; ++row) v[row] += k(row, col);
   }
 }
@@ -68,10 +71,10 @@ void BlockSparseMatrix::addCoupling(int r, int c, const Mat6& krc) {
     addCoupling(c, r, krc.transpose());
     return;
   }
-  const int s = 6 * slot(r, c);
-  for (int col = 0; col < 6; ++col) {
-    double* v = &values_[colPtr_[6 * c + col] + s];
-    for (int row = 0; row < 6; ++row) v[row] += krc(row, col);
+  const int s = dof_ * slot(r, c);
+  for (int col = 0; col < dof_; ++col) {
+    double* v = &values_[colPtr_[dof_ * c + col] + s];
+    for (int row = 0; row < dof_; ++row) v[row] += krc(row, col);
   }
 }
 

@@ -33,6 +33,7 @@ struct Overrides {
   double timeStep = 0;
   double duration = 0;
   std::string contactTreatment;
+  std::string blocks;                 ///< rigid or deformable
   std::vector<std::string> settings;  ///< "json.path=value", applied before the case is read
   std::string preset;                 ///< fast, balanced or accurate (docs/accuracy.md)
 };
@@ -68,6 +69,7 @@ void applyOverrides(ddaslope::model::Scene& scene, const Overrides& o) {
   if (!o.contactTreatment.empty())
     scene.settings.contactTreatment = o.contactTreatment == "vertex" ? ddaslope::model::ContactTreatment::Vertex
                                                                      : ddaslope::model::ContactTreatment::Edge;
+  if (!o.blocks.empty()) scene.settings.rigidBlocks = o.blocks == "rigid";
 }
 
 int compareContactsCommand(bool deformable, const std::string& csvPath) {
@@ -363,7 +365,7 @@ int backanalyseCommand(const std::string& jobPath, const std::string& outDir, bo
     for (const auto& f : r.fit) {
       if (!f.converged) std::printf("  %s: forward run did not converge\n", f.label.c_str());
       else if (f.series) std::printf("  %s: RMS residual %.4g (sigma %.4g)\n", f.label.c_str(), f.simulated, f.sigma);
-      else std::printf("  %s: simulated %.4g, observed %.4g ± %.4g\n", f.label.c_str(), f.simulated, f.observed, f.sigma);
+      else std::printf("  %s: simulated %.6g, observed %.6g ± %.4g\n", f.label.c_str(), f.simulated, f.observed, f.sigma);
     }
     if (!r.statement.empty()) std::printf("  %s\n", r.statement.c_str());
     std::printf("  wrote %s%s\n", result.c_str(), r.map.empty() ? "" : (" and " + outDir + "/misfit_map.csv, .png").c_str());
@@ -406,6 +408,7 @@ int main(int argc, char** argv) {
   run->add_option("--out", outDir, "output directory")->capture_default_str();
   run->add_option("--time-step", overrides.timeStep, "override analysis.time_step (s)");
   run->add_option("--duration", overrides.duration, "override analysis.duration (s)");
+  run->add_option("--blocks", overrides.blocks, "rigid (3 unknowns) or deformable (6)")->check(CLI::IsMember({"rigid", "deformable"}));
   run->add_option("--contact-treatment", overrides.contactTreatment,
                   "override analysis.contact_treatment: edge (one state per edge-to-edge contact) or vertex (original DDA)")
       ->check(CLI::IsMember({"edge", "vertex"}));
@@ -443,6 +446,7 @@ int main(int argc, char** argv) {
   critical->add_option("--threads", crit.threads, "forward runs at once")->capture_default_str();
   critical->add_option("--time-step", overrides.timeStep, "override analysis.time_step (s)");
   critical->add_option("--contact-treatment", overrides.contactTreatment, "edge or vertex")->check(CLI::IsMember({"edge", "vertex"}));
+  critical->add_option("--blocks", overrides.blocks, "rigid (3 unknowns) or deformable (6)")->check(CLI::IsMember({"rigid", "deformable"}));
   critical->add_flag("--json", crit.json, "print the result as JSON");
   critical->add_option("--set", overrides.settings, "json.path=value: override a number of the case (repeatable)");
   critical->add_option("--preset", overrides.preset, "fast, balanced or accurate: Δt, g2 and penalty (docs/accuracy.md)")
@@ -463,6 +467,7 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"fast", "balanced", "accurate"}));
   fos->add_option("--time-step", overrides.timeStep, "override analysis.time_step (s)");
   fos->add_option("--contact-treatment", overrides.contactTreatment, "edge or vertex")->check(CLI::IsMember({"edge", "vertex"}));
+  fos->add_option("--blocks", overrides.blocks, "rigid (3 unknowns) or deformable (6)")->check(CLI::IsMember({"rigid", "deformable"}));
   fos->add_flag("--json", fosOpt.json, "print the result as JSON");
 
   std::string jobPath, baOut = "out/backanalysis";

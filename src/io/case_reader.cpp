@@ -416,7 +416,8 @@ void readAnalysis(const Reader& r, const json& doc, model::Scene& s) {
                     "shear_penalty_ratio", "max_displacement_ratio", "open_close_max_iterations",
                     "friction_tolerance", "max_step_cuts", "step_cut_factor", "initial_equilibrium",
                     "equilibrium_max_steps", "edge_parallel_tolerance", "initial_contact_tolerance",
-                    "contact_state_tolerance", "contact_treatment", "failure_displacement", "resting_speed", "preset"});
+                    "contact_state_tolerance", "contact_treatment", "failure_displacement", "resting_speed", "preset",
+                    "blocks"});
   model::AnalysisSettings& st = s.settings;
   st.duration = r.numberIn(r.required(a, p, "duration"), p + ".duration", 0, 1e9, true, false, "a duration > 0 s");
   // A preset sets Δt, g2 and the penalty from the model's size; explicit keys below still win.
@@ -430,6 +431,7 @@ void readAnalysis(const Reader& r, const json& doc, model::Scene& s) {
                                                                                  : model::AnalysisMode::Dynamic;
   st.plane = r.choice(a, p, "plane", "strain", {"strain", "stress"}) == "stress" ? model::PlaneMode::Stress
                                                                               : model::PlaneMode::Strain;
+  st.rigidBlocks = r.choice(a, p, "blocks", "deformable", {"deformable", "rigid"}) == "rigid";
   st.failureDisplacement = r.optionalIn(a, p, "failure_displacement", 0, 0, 1e6, false, false, "a distance ≥ 0 m (0: 1e-3 of w0)");
   st.restingSpeed = r.optionalIn(a, p, "resting_speed", 0, 0, 1e6, false, false, "a speed ≥ 0 m/s (0: automatic)");
   st.contactTreatment = r.choice(a, p, "contact_treatment", "edge", {"edge", "vertex"}) == "vertex"
@@ -554,9 +556,19 @@ model::Scene readCase(const std::string& path, const std::vector<CaseOverride>& 
   }
   for (const CaseOverride& o : overrides) {
     json* at = locate(doc, o.jsonPath);
-    if (!at || !at->is_number())
+    if (!at) {
+      // A key the case leaves at its default (analysis.open_close_max_iterations) may be set too:
+      // it is added to its object, and the reader then checks it like any other key.
+      const size_t dot = o.jsonPath.rfind('.');
+      json* parent = dot == std::string::npos ? nullptr : locate(doc, o.jsonPath.substr(0, dot));
+      const std::string key = dot == std::string::npos ? "" : o.jsonPath.substr(dot + 1);
+      if (parent && parent->is_object() && !key.empty() && key.find('[') == std::string::npos) at = &(*parent)[key];
+    }
+    if (!at || !(at->is_number() || at->is_null()))
       throw InputError(path, o.jsonPath, "expected a number at this path of the case (to vary it), found none");
-    *at = o.value;
+    // A whole number stays an integer, so that integer settings accept it.
+    if (std::floor(o.value) == o.value && std::abs(o.value) < 9e15) *at = static_cast<long long>(o.value);
+    else *at = o.value;
   }
   return parseCase(doc.dump(), path);
 }

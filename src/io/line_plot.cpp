@@ -99,7 +99,7 @@ void writePng(const LinePlot& plot, const std::string& path) {
     cairo_set_source_rgb(cr, c[0], c[1], c[2]);
     cairo_set_line_width(cr, 2);
     bool pen = false;
-    for (size_t i = 0; i < s.x.size(); ++i) {
+    for (size_t i = 0; i < s.x.size() && s.lines; ++i) {
       if (!std::isfinite(s.y[i])) {
         pen = false;
         continue;
@@ -117,9 +117,15 @@ void writePng(const LinePlot& plot, const std::string& path) {
         }
     // Legend, top right.
     const double ly = top + 18 + 20 * k;
-    cairo_move_to(cr, legendX, ly);
-    cairo_line_to(cr, legendX + 25, ly);
-    cairo_stroke(cr);
+    if (s.lines) {
+      cairo_move_to(cr, legendX, ly);
+      cairo_line_to(cr, legendX + 25, ly);
+      cairo_stroke(cr);
+    } else {
+      cairo_new_path(cr);
+      cairo_arc(cr, legendX + 12.5, ly, 3.5, 0, 2 * M_PI);
+      cairo_fill(cr);
+    }
     cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);
     text(cr, legendX + 32, ly, s.label, 0, 0.35);
   }

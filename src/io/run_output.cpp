@@ -114,6 +114,7 @@ void writeSummary(const fs::path& dir, const model::Scene& scene, const RunOptio
                    {"time_step", s.timeStep},
                    {"mode", s.mode == model::AnalysisMode::Dynamic ? "dynamic" : "static"},
                    {"plane", s.plane == model::PlaneMode::Strain ? "strain" : "stress"},
+                   {"blocks", s.rigidBlocks ? "rigid" : "deformable"},
                    {"contact_treatment", s.contactTreatment == model::ContactTreatment::Edge ? "edge" : "vertex"},
                    {"penalty", scene.normalPenalty()},
                    {"shear_penalty_ratio", s.shearPenaltyRatio},

@@ -232,7 +232,8 @@ Simulation::Attempt Simulation::tryStep(double dt, Regime regime, bool freezeCyc
     if (i >= 0 && j >= 0) couplings.emplace_back(i, j);
   }
   couplings = assembly::BlockSparseMatrix::normalise(std::move(couplings));
-  if (!matrix_.hasPattern(nActive_, couplings)) matrix_.setPattern(nActive_, couplings);
+  const int dof = scene_.settings.rigidBlocks ? 3 : 6;
+  if (!matrix_.hasPattern(nActive_, couplings, dof)) matrix_.setPattern(nActive_, couplings, dof);
 
   std::vector<Mat6> blockK;
   std::vector<Vec6> blockF;
@@ -305,7 +306,7 @@ Simulation::Attempt Simulation::tryStep(double dt, Regime regime, bool freezeCyc
     stats_.times.assembly += sw.lap();
     if (stiffnessChanged) linearSolver_.matrixChanged();
     const long factorisationsBefore = linearSolver_.stats().factorisations;
-    const bool solved = nActive_ == 0 || linearSolver_.solve(matrix_, rhs, a.d);
+    const bool solved = nActive_ == 0 || solveSystem(rhs, a.d);
     // Time in a refactorising solve counts as factorisation, the rest as solve.
     (linearSolver_.stats().factorisations > factorisationsBefore ? stats_.times.factorisation
                                                                  : stats_.times.solve) += sw.lap();
@@ -390,6 +391,18 @@ Simulation::Attempt Simulation::tryStep(double dt, Regime regime, bool freezeCyc
     a.failure = msg.str();
   }
   return a;
+}
+
+bool Simulation::solveSystem(const Eigen::VectorXd& rhs, Eigen::VectorXd& d) {
+  const int dof = matrix_.blockSize();
+  if (dof == 6) return linearSolver_.solve(matrix_, rhs, d);
+  // Rigid blocks: the matrix holds u0, v0, r0 of each block; the strains stay zero.
+  Eigen::VectorXd reduced(dof * nActive_), x;
+  for (int i = 0; i < nActive_; ++i) reduced.segment(dof * i, dof) = rhs.segment(6 * i, dof);
+  if (!linearSolver_.solve(matrix_, reduced, x)) return false;
+  d = Eigen::VectorXd::Zero(6 * nActive_);
+  for (int i = 0; i < nActive_; ++i) d.segment(6 * i, dof) = x.segment(dof * i, dof);
+  return true;
 }
 
 void Simulation::commit(const Attempt& a, double dt) {

@@ -1,6 +1,7 @@
 #pragma once
 // Symmetric matrix of 6×6 blocks stored as the upper triangle in compressed columns (CSC),
 // the layout CHOLMOD reads without a copy. The pattern is fixed between setPattern calls.
+// With dof = 3 (rigid blocks) each block keeps only u0, v0, r0: the leading 3×3 of every term.
 #include <utility>
 #include <vector>
 
@@ -13,9 +14,9 @@ namespace ddaslope::assembly {
 class BlockSparseMatrix {
  public:
   /// nBlocks block rows/columns; couplings: unordered block pairs (any order, duplicates allowed).
-  void setPattern(int nBlocks, std::vector<std::pair<int, int>> couplings);
+  void setPattern(int nBlocks, std::vector<std::pair<int, int>> couplings, int dof = 6);
   /// True if this pattern equals the current one (so the symbolic factorisation can be kept).
-  bool hasPattern(int nBlocks, const std::vector<std::pair<int, int>>& sortedUniqueCouplings) const;
+  bool hasPattern(int nBlocks, const std::vector<std::pair<int, int>>& sortedUniqueCouplings, int dof = 6) const;
   static std::vector<std::pair<int, int>> normalise(std::vector<std::pair<int, int>> couplings);
 
   void setZero();
@@ -24,7 +25,8 @@ class BlockSparseMatrix {
   void addCoupling(int r, int c, const Mat6& krc);
   Eigen::VectorXd multiply(const Eigen::VectorXd& x) const;
 
-  int size() const { return 6 * nBlocks_; }
+  int size() const { return dof_ * nBlocks_; }
+  int blockSize() const { return dof_; }
   int nonZeros() const { return static_cast<int>(values_.size()); }
   const std::vector<int>& columnPointers() const { return colPtr_; }
   const std::vector<int>& rowIndices() const { return rowIdx_; }
@@ -37,6 +39,7 @@ class BlockSparseMatrix {
   int slot(int r, int c) const;  ///< position of row block r in column block c's list (r < c)
 
   int nBlocks_ = 0;
+  int dof_ = 6;
   std::vector<std::pair<int, int>> couplings_;   ///< sorted (r < c)
   std::vector<std::vector<int>> columnRows_;     ///< per column block: row blocks r < c, sorted
   std::vector<int> blockBase_;                   ///< first value index of each column block

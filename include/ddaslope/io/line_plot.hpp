@@ -9,6 +9,7 @@ struct PlotSeries {
   std::string label;
   std::vector<double> x, y;
   bool markers = true;
+  bool lines = true;  ///< false: markers only (a scatter)
 };
 
 struct LinePlot {

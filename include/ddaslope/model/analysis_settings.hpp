@@ -20,6 +20,10 @@ struct AnalysisSettings {
   AnalysisMode mode = AnalysisMode::Dynamic;
   /// Plane strain (benchmarks' default) or plane stress for the block elasticity.
   PlaneMode plane = PlaneMode::Strain;
+  /// Rigid blocks: three unknowns each (u0, v0, r0), no strain. The linear system is half the
+  /// size (the factorisation about a quarter of the work); the blocks' elastic deformation and
+  /// its stresses are lost, and all compliance sits in the contact springs.
+  bool rigidBlocks = false;
   /// edge: each edge-to-edge contact judged as one (Zhang et al. 2014, the default); vertex:
   /// original DDA, each half judged alone with c·L/2 (fails cohesive blocks too early).
   ContactTreatment contactTreatment = ContactTreatment::Edge;

@@ -116,6 +116,8 @@ class Simulation {
   Attempt tryStep(double dt, Regime regime, bool freezeCycling);
   void assembleBlockTerms(double dt, Regime regime, std::vector<Mat6>& k, std::vector<Vec6>& f) const;
   void commit(const Attempt& a, double dt);
+  /// Solves matrix_ d = rhs (6 per active block); rigid blocks solve for their 3 unknowns.
+  bool solveSystem(const Eigen::VectorXd& rhs, Eigen::VectorXd& d);
   /// Work of water pressure and point loads over a step of displacements d (loads at its end).
   double loadWork(const Eigen::VectorXd& d, double dt) const;
   contact::ContactStrength strengthOf(const contact::Contact& c) const;
