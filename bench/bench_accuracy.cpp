@@ -110,14 +110,20 @@ Errors evaluate(const Knobs& k) {
     const io::RunOutcome o = io::runScene(s, {});
     const double a = M_PI / 6, acc = 1.5 * 9.81 * (25 * std::sin(a) - 10 * std::cos(a)) / (100 + 625);
     const double want = std::hypot(10.0, 25.0) * 0.5 * acc * 0.25;
-    model::Expectation top{"top", "displacement", 0.5};
+    model::Expectation top{};
+    top.monitor = "top";
+    top.quantity = "displacement";
+    top.time = 0.5;
     e.toppling = o.completed ? std::abs(io::measure(o.trace, top) - want) / want : 1.0;
   }
   {  // Two-block slide (calibration/two_block_slide geometry at phi = 9 deg): toe travel at 2 s.
     model::Scene s = io::readCase(std::string(DDASLOPE_SOURCE_DIR) + "/calibration/two_block_slide/case.json");
     apply(s, k);
     const io::RunOutcome o = io::runScene(s, {});
-    model::Expectation toe{"toe", "ux", 2.0};
+    model::Expectation toe{};
+    toe.monitor = "toe";
+    toe.quantity = "ux";
+    toe.time = 2.0;
     e.twoBlockToe = o.completed ? io::measure(o.trace, toe) : NAN;
   }
   e.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

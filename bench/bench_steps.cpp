@@ -10,50 +10,12 @@
 #include <string>
 #include <vector>
 
+#include "ddaslope/model/wall_scene.hpp"
 #include "ddaslope/solver/simulation.hpp"
 
 using namespace ddaslope;
 
 namespace {
-
-/// A running-bond wall of about n bricks (2 m × 1 m) on a fixed base: odd rows start and end
-/// with a half brick, so both ends are straight and no brick overhangs (a stable wall).
-model::Scene makeWall(int n) {
-  model::Scene s;
-  s.description = "benchmark wall";
-  s.materials.push_back({"rock", 2600, 10e9, 0.25});
-  s.joints.push_back({"joint", 35 * M_PI / 180, 0, 0});
-  const int perRow = std::max(2, static_cast<int>(std::lround(std::sqrt(2.0 * n))));
-  const double bw = 2, bh = 1, width = perRow * bw;
-  const auto add = [&](std::string id, bool fixed, std::vector<Vec2> v) {
-    model::Block b;
-    b.id = std::move(id);
-    b.fixed = fixed;
-    b.vertices = std::move(v);
-    b.moments = geometry::computeMoments(b.vertices);
-    s.blocks.push_back(b);
-  };
-  add("base", true, {{-2, -2}, {width + 2, -2}, {width + 2, 0}, {-2, 0}});
-  int made = 0;
-  for (int r = 0; made < n; ++r) {
-    const double y0 = r * bh;
-    std::vector<std::pair<double, double>> spans;
-    if (r % 2 == 0) {
-      for (int k = 0; k < perRow; ++k) spans.emplace_back(k * bw, (k + 1) * bw);
-    } else {
-      spans.emplace_back(0, bw / 2);
-      for (int k = 0; k + 1 < perRow; ++k) spans.emplace_back(bw / 2 + k * bw, bw / 2 + (k + 1) * bw);
-      spans.emplace_back(width - bw / 2, width);
-    }
-    for (const auto& [x0, x1] : spans) {
-      if (made == n) break;
-      add("b" + std::to_string(made++), false, {{x0, y0}, {x1, y0}, {x1, y0 + bh}, {x0, y0 + bh}});
-    }
-  }
-  s.settings.timeStep = 1e-3;
-  s.settings.duration = 1e9;
-  return s;
-}
 
 double ms(double s, int steps) { return 1e3 * s / steps; }
 
@@ -96,7 +58,7 @@ int main(int argc, char** argv) {
               "cg_iterations_per_step,cuts,resident_mb\n");
   std::vector<std::pair<int, double>> perStep;
   for (int n : sizes) {
-    model::Scene scene = makeWall(n);
+    model::Scene scene = model::makeBrickWall(n);
     scene.settings.contactTreatment = treatment;
     scene.settings.rigidBlocks = rigid;
     solver::Simulation sim(scene);

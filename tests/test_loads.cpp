@@ -83,7 +83,9 @@ TEST(Loads, RampedForceFollowsTheCubicLaw) {
     const double x = measureAt(run(s), "centre", "ux", 1.0);
     const double error = std::abs(x - expected) / expected;
     EXPECT_LT(error, 3e-3) << "dt " << dt;
-    if (previousError > 0) EXPECT_LT(error, 0.2 * previousError);  // first order: ~10× smaller
+    if (previousError > 0) {
+      EXPECT_LT(error, 0.2 * previousError);  // first order: ~10× smaller
+    }
     previousError = error;
   }
 }

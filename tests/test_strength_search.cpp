@@ -167,7 +167,9 @@ TEST(Verdict, SharedEquilibriumGivesTheSameVerdicts) {
     const calibration::TrialResult shared = calibration::judgeStability(s, {}, &held);
     EXPECT_EQ(own.stable, c > 36397) << c;
     EXPECT_EQ(shared.stable, own.stable) << c;
-    if (own.stable) EXPECT_NEAR(shared.maxDisplacement, own.maxDisplacement, 1e-6);
+    if (own.stable) {
+      EXPECT_NEAR(shared.maxDisplacement, own.maxDisplacement, 1e-6);
+    }
   }
 }
 

@@ -192,7 +192,6 @@ void Simulation::assembleBlockTerms(double dt, Regime regime, std::vector<Mat6>&
     const int i = active_[b];
     if (i < 0) continue;
     const model::Block& blk = scene_.blocks[b];
-    const model::Material& mat = scene_.materials[blk.material];
     // ρ·S₀/S: a block's mass is its initial one however its area strains (Shi's ρ·S is not).
     const double density = mass_[b] / blk.moments.area;
     const Mat6 mass = density * assembly::unitMassMatrix(blk.moments);
