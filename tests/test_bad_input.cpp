@@ -257,6 +257,9 @@ TEST(JobReader, BadJobs) {
   j = good;
   j["observations"][0] = {{"type", "runout"}, {"monitor", "block"}, {"target", 300}, {"sigma", 50}, {"quantity", "travel"}};
   expectJobError(j, "observations[0].quantity", "ux, uy, vx, vy, displacement, speed, found \"travel\"");
+  j = good;
+  j["preset"] = "quick";
+  expectJobError(j, "preset", "fast, balanced or accurate, found \"quick\"");
 }
 
 // A case value varied by JSON path must exist and be a number.

@@ -76,7 +76,8 @@ BackanalysisJob readJob(const std::string& path) {
   } catch (const json::parse_error& e) {
     r.fail("", std::string("invalid JSON: ") + e.what());
   }
-  r.onlyKeys(doc, "", {"description", "case", "parameters", "observations", "optimiser", "grid_points", "threads"});
+  r.onlyKeys(doc, "", {"description", "case", "parameters", "observations", "optimiser", "grid_points", "threads",
+                       "preset"});
   BackanalysisJob job;
   job.jobPath = path;
   job.casePath = r.resolve(r.string(r.required(doc, "", "case"), "case")).string();
@@ -161,6 +162,11 @@ BackanalysisJob readJob(const std::string& path) {
   }
   if (doc.contains("grid_points")) job.gridPoints = static_cast<int>(r.number(doc.at("grid_points"), "grid_points"));
   if (doc.contains("threads")) job.threads = static_cast<int>(r.number(doc.at("threads"), "threads"));
+  if (doc.contains("preset")) {
+    job.preset = r.string(doc.at("preset"), "preset");
+    if (job.preset != "fast" && job.preset != "balanced" && job.preset != "accurate")
+      r.fail("preset", "expected fast, balanced or accurate, found \"" + job.preset + "\"");
+  }
   return job;
 }
 

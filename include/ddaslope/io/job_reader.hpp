@@ -44,6 +44,9 @@ struct BackanalysisJob {
   OptimiserSpec optimiser;
   int gridPoints = 15;   ///< per axis, for the misfit map of two parameters (0: none)
   int threads = 2;
+  /// fast, balanced or accurate: the accuracy preset every forward run uses (docs/accuracy.md);
+  /// empty: the case's own settings.
+  std::string preset;
 };
 
 /// Throws InputError (file, JSON path, expected vs found) on bad input.
