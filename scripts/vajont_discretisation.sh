@@ -9,7 +9,7 @@ echo "|---|---|---|---|---|"
 for spacing in 0 100 50 25; do
   case_file="out/vajont_layouts/vajont_${spacing}.json"
   python3 scripts/make_vajont_case.py --spacing "$spacing" --out "$case_file"
-  blocks=$(build/ddaslope check "$case_file" | sed -E 's/.*valid\. ([0-9]+) blocks.*/\1/')
+  blocks=$(build/ddaslope check "$case_file" | head -1 | sed -E 's/.*valid\. ([0-9]+) blocks.*/\1/')
   result=$(build/ddaslope critical "$case_file" --joint sliding_surface --solve friction --cohesion 0 --json)
   phi=$(echo "$result" | sed -n 's/.*"critical": \([0-9.]*\).*/\1/p')
   runs=$(echo "$result" | sed -n 's/.*"forward_runs": \([0-9]*\).*/\1/p')

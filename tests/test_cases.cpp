@@ -36,9 +36,10 @@ std::string slurp(const fs::path& p) {
 // toppling_slope_bench_toe eight contacts stick in the first step: 4e-3 J/m against a
 // scale of 6 J/m (2e-10 of its total).
 void expectNoEnergyGain(const io::Trace& t) {
-  if (t.energyScale() > 10 * t.energy.front().elastic)
+  if (t.energyScale() > 10 * t.energy.front().elastic) {
     EXPECT_LE(t.largestEnergyGain(), 1e-4 * t.energyScale() + 1e-12 * std::abs(t.energy.front().mechanical()))
         << "energy gained";
+  }
 }
 }  // namespace
 

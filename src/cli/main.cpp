@@ -142,6 +142,9 @@ int checkCommand(const std::string& casePath) {
               casePath.c_str(), scene.blocks.size(), scene.materials.size(), scene.joints.size(),
               scene.monitors.size(), sim.contacts().contacts().size(), closed, sim.modelHalfSize(),
               scene.normalPenalty());
+  const double g2w0 = scene.settings.maxDisplacementRatio * sim.modelHalfSize();
+  std::printf("  step limit %g m per step (g2·w0 = %g m%s), contact search distance %g m\n", sim.stepLimit(), g2w0,
+              sim.stepLimit() < g2w0 ? ", held to a tenth of the thinnest block" : "", sim.searchDistance());
   return kExitOk;
 }
 

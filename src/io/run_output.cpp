@@ -87,6 +87,8 @@ void writeSummary(const fs::path& dir, const model::Scene& scene, const RunOptio
                       {"relaxed", st.relaxationConverged}};
   j["max_contacts"] = st.maxContacts;
   j["max_penetration_m"] = st.maxPenetration;
+  j["step_limit_m"] = o.stepLimit;
+  j["search_distance_m"] = o.searchDistance;
   if (!o.trace.energy.empty())
     j["energy_J_per_m"] = {{"mechanical_at_start", o.trace.energy.front().mechanical()},
                            {"mechanical_at_end", o.trace.energy.back().mechanical()},
@@ -218,6 +220,8 @@ RunOutcome runScene(const model::Scene& scene, const RunOptions& opt) {
     if (opt.progress) std::fprintf(stderr, "\n");
   }
   o.statistics = sim.statistics();
+  o.stepLimit = sim.stepLimit();
+  o.searchDistance = sim.searchDistance();
   o.wallTime = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (o.completed) o.expectations = evaluateExpectations(o.trace, scene.expectations);
   if (history) {

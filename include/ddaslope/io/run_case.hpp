@@ -40,6 +40,7 @@ struct RunOutcome {
   Trace trace;
   solver::RunStatistics statistics;
   double wallTime = 0;
+  double stepLimit = 0, searchDistance = 0;  ///< the run's effective values (m)
   std::vector<ExpectationResult> expectations;
 };
 

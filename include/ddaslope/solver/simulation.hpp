@@ -86,6 +86,8 @@ class Simulation {
   double time() const { return time_; }
   double modelHalfSize() const { return w0_; }
   double searchDistance() const { return searchDistance_; }
+  /// Largest vertex displacement per step (m): g2·w0, at most a tenth of the thinnest block.
+  double stepLimit() const { return stepLimit_; }
   const RunStatistics& statistics() const { return stats_; }
   const contact::ContactSet& contacts() const { return contacts_; }
   /// The scene's mechanical energy now; load work counts from t = 0 (after the equilibrium).
