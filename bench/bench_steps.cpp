@@ -1,6 +1,7 @@
 // Step-cost benchmark: brick walls of N = 10 … 5000 blocks on a fixed base. Prints CSV: per-step
 // time by phase, open-close iterations and Δt cuts. Speed targets live here, not in tests.
-//   build/ddaslope_bench [--steps S] [--sizes 10,100,...]
+//   build/ddaslope_bench [--steps S] [--sizes 10,100,...] [--contact-treatment edge|vertex] [--blocks rigid|deformable]
+//                        [--compare-search]  (also time the narrow phase on every pair, on stderr)
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -10,6 +11,8 @@
 #include <string>
 #include <vector>
 
+#include "ddaslope/contact/broad_phase.hpp"
+#include "ddaslope/contact/narrow_phase.hpp"
 #include "ddaslope/model/wall_scene.hpp"
 #include "ddaslope/solver/simulation.hpp"
 
@@ -18,6 +21,39 @@ using namespace ddaslope;
 namespace {
 
 double ms(double s, int steps) { return 1e3 * s / steps; }
+
+/// What the broad phase saves: one contact search over the candidate pairs of the sweep and
+/// prune against the narrow phase run on every pair of blocks (ms each, and the pair counts).
+void compareContactSearch(const model::Scene& scene, double searchDistance) {
+  std::vector<geometry::Aabb> boxes;
+  std::vector<bool> fixed;
+  for (const model::Block& b : scene.blocks) {
+    boxes.push_back(geometry::boundingBox(b.vertices));
+    fixed.push_back(b.fixed);
+  }
+  const contact::NarrowPhaseSettings nps{searchDistance, 1.0 * M_PI / 180};
+  const auto none = [](const contact::ContactKey&) { return false; };
+  std::vector<contact::ContactCandidate> found;
+  auto t0 = std::chrono::steady_clock::now();
+  const auto pairs = contact::findCandidatePairs(boxes, fixed, searchDistance);
+  for (const auto& p : pairs)
+    contact::findContacts(p.a, scene.blocks[p.a].vertices, p.b, scene.blocks[p.b].vertices, nps, none, found);
+  const double pruned = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const size_t withPruning = found.size();
+  found.clear();
+  t0 = std::chrono::steady_clock::now();
+  size_t allPairs = 0;
+  for (size_t a = 0; a < scene.blocks.size(); ++a)
+    for (size_t b = a + 1; b < scene.blocks.size(); ++b) {
+      if (fixed[a] && fixed[b]) continue;
+      ++allPairs;
+      contact::findContacts(a, scene.blocks[a].vertices, b, scene.blocks[b].vertices, nps, none, found);
+    }
+  const double all = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  std::fprintf(stderr, "contact search, %zu blocks: broad phase + narrow phase on %zu pairs %.2f ms; "
+               "narrow phase on all %zu pairs %.2f ms (%zu and %zu contacts)\n",
+               scene.blocks.size(), pairs.size(), 1e3 * pruned, allPairs, 1e3 * all, withPruning, found.size());
+}
 
 /// Resident memory of this process now (MB), from /proc/self/status.
 double residentMb() {
@@ -37,11 +73,14 @@ int main(int argc, char** argv) {
   int steps = 20;
   model::ContactTreatment treatment = model::ContactTreatment::Edge;
   bool rigid = false;
+  bool allPairs = false;
   std::vector<int> sizes{10, 50, 100, 200, 500, 1000, 2000};
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--steps") && i + 1 < argc) steps = std::atoi(argv[++i]);
     else if (!std::strcmp(argv[i], "--contact-treatment") && i + 1 < argc)
       treatment = std::strcmp(argv[++i], "vertex") ? model::ContactTreatment::Edge : model::ContactTreatment::Vertex;
+    else if (!std::strcmp(argv[i], "--compare-search"))
+      allPairs = true;
     else if (!std::strcmp(argv[i], "--blocks") && i + 1 < argc)
       rigid = !std::strcmp(argv[++i], "rigid");
     else if (!std::strcmp(argv[i], "--sizes") && i + 1 < argc) {
@@ -49,7 +88,7 @@ int main(int argc, char** argv) {
       std::stringstream ss(argv[++i]);
       for (std::string tok; std::getline(ss, tok, ',');) sizes.push_back(std::stoi(tok));
     } else {
-      std::fprintf(stderr, "usage: ddaslope_bench [--steps S] [--sizes 10,100,...] [--contact-treatment edge|vertex] [--blocks rigid|deformable]\n");
+      std::fprintf(stderr, "usage: ddaslope_bench [--steps S] [--sizes 10,100,...] [--contact-treatment edge|vertex] [--blocks rigid|deformable] [--compare-search]\n");
       return 2;
     }
   }
@@ -63,6 +102,7 @@ int main(int argc, char** argv) {
     scene.settings.rigidBlocks = rigid;
     solver::Simulation sim(scene);
     if (std::getenv("DDASLOPE_BENCH_VERBOSE")) sim.setLog([](const std::string& l) { std::fprintf(stderr, "%s\n", l.c_str()); });
+    if (allPairs) compareContactSearch(scene, sim.searchDistance());
     auto t0 = std::chrono::steady_clock::now();
     sim.bringToEquilibrium();
     const double eq = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
