@@ -1,5 +1,7 @@
 #include "ddaslope/solver/energy.hpp"
 
+#include <cmath>
+
 #include <Eigen/Cholesky>
 
 #include "ddaslope/assembly/block_terms.hpp"
@@ -25,8 +27,13 @@ EnergyBudget storedEnergy(const model::Scene& scene, const std::vector<double>& 
   for (const contact::Contact& c : contacts) {
     if (!c.closed()) continue;
     e.elastic += 0.5 * c.normalForce * c.normalForce / normalStiffness;
-    if (c.state == contact::ContactState::Locked)
-      e.elastic += 0.5 * c.shearForce * c.shearForce / shearStiffness;
+    // The shear spring is elastic-plastic: locked, it holds S; sliding, it stays stretched to
+    // the friction force N tan φ (a contact that sticks again keeps that force), so it stores
+    // ½ (N tan φ)² / p_s while it slides.
+    const double shear = c.state == contact::ContactState::Locked
+                             ? c.shearForce
+                             : std::max(0.0, c.normalForce) * std::tan(scene.joints[c.joint].frictionAngle);
+    e.elastic += 0.5 * shear * shear / shearStiffness;
   }
   return e;
 }
