@@ -28,6 +28,17 @@ def planar_case(dip_deg, level=None):
     return case
 
 
+def toppling_factor(blocks, *args):
+    with tempfile.NamedTemporaryFile("w", suffix=".json", delete=False) as f:
+        json.dump({"blocks": blocks}, f)
+    try:
+        out = subprocess.run([sys.executable, os.path.join(HERE, "toppling_limit_equilibrium.py"), f.name, *args],
+                             check=True, capture_output=True, text=True).stdout
+    finally:
+        os.remove(f.name)
+    return float(out.split("limit-equilibrium factor of safety:")[1].split()[0])
+
+
 class LimitEquilibrium(unittest.TestCase):
     def test_dry_plane(self):
         # Closed form: a rigid mass on one plane with c = 0 slides when tan(phi) = tan(dip), whatever
@@ -55,6 +66,21 @@ class LimitEquilibrium(unittest.TestCase):
                 "section": {"ground": [[0, drop], [150, drop], [150, 0]],
                             "sliding_surface": [[0, drop], [100, 0], [150, 0]]}}
         self.assertAlmostEqual(critical_friction(case, "--delta", "0"), 15, places=6)
+
+
+class GoodmanBray(unittest.TestCase):
+    def test_squat_column_slides_at_the_plane_closed_form(self):
+        # Closed form: a column too squat to topple (width 10 m, height 3 m) on a basal joint
+        # dipping psi slides when tan(phi)/F = tan(psi): F = tan(phi) / tan(psi).
+        import math
+        psi, phi = 20.0, 30.0
+        t = math.tan(math.radians(psi))
+        o_up, o = (0.0, 0.0), (10 * math.cos(math.radians(psi)), -10 * math.sin(math.radians(psi)))
+        column = {"id": "c", "vertices": [list(o_up), list(o), [o[0], o[1] + 3], [0.0, 3.0]]}
+        base = {"id": "base", "fixed": True,
+                "vertices": [[-5.0, 5 * t], [-5.0, -20.0], [20.0, -20.0], [20.0, -20 * t]]}
+        got = toppling_factor([base, column], "--joint-angle", "90", "--phi", str(phi))
+        self.assertAlmostEqual(got, math.tan(math.radians(phi)) / t, places=4)
 
 
 if __name__ == "__main__":
