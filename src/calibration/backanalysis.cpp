@@ -115,6 +115,7 @@ double misfitAt(const io::BackanalysisJob& job, const std::vector<double>& x, in
   if (needTrace) {
     io::RunOptions options;
     options.sharedEquilibrium = shared;
+    options.energy = false;  // the misfit reads monitors only
     run = io::runScene(scene, options);
     if (runs) ++*runs;
   }

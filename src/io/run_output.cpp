@@ -182,6 +182,7 @@ RunOutcome runScene(const model::Scene& scene, const RunOptions& opt) {
   const auto start = std::chrono::steady_clock::now();
   RunOutcome o;
   for (const auto& m : scene.monitors) o.trace.monitorIds.push_back(m.id);
+  const bool recordEnergy = opt.energy || opt.outputDir.has_value();
   std::optional<HistoryWriter> history;
   if (opt.outputDir) history.emplace(*opt.outputDir, o.trace.monitorIds);
   solver::Simulation sim(scene);
@@ -195,7 +196,7 @@ RunOutcome runScene(const model::Scene& scene, const RunOptions& opt) {
   const auto observe = [&](const solver::Simulation& s, const solver::StepRecord& r) {
     std::vector<MonitorSample> row;
     for (size_t m = 0; m < s.scene().monitors.size(); ++m) row.push_back(sampleOf(s, static_cast<int>(m)));
-    o.trace.energy.push_back(s.energy());
+    if (recordEnergy) o.trace.energy.push_back(s.energy());
     if (history) history->row(r, row, o.trace.energy.back(), o.trace.energy.front().mechanical());
     while (opt.outputDir && nextSnapshot < snapshots.size() && r.time >= snapshots[nextSnapshot] - 1e-12) {
       char name[64];
