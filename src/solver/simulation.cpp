@@ -180,10 +180,11 @@ contact::ContactStrength Simulation::strengthOf(const Contact& c) const {
   return {std::tan(j.frictionAngle), j.cohesion * share, j.tensileStrength * share};
 }
 
-void Simulation::assembleBlockTerms(double dt, Regime regime, std::vector<Mat6>& k,
-                                    std::vector<Vec6>& f) const {
+void Simulation::assembleBlockTerms(double dt, Regime regime, std::vector<Mat6>& k, std::vector<Vec6>& f,
+                                    std::vector<Vec6>& loads) const {
   k.assign(nActive_, Mat6::Zero());
   f.assign(nActive_, Vec6::Zero());
+  loads.assign(nActive_, Vec6::Zero());
   const bool carryVelocity =
       regime == Regime::Analysis && scene_.settings.mode == model::AnalysisMode::Dynamic;
   // Water (and any load history) at the end of the step; equilibrium is found at t = 0.
@@ -200,15 +201,16 @@ void Simulation::assembleBlockTerms(double dt, Regime regime, std::vector<Mat6>&
     f[i] = assembly::bodyForce(blk.moments.area, density * scene_.gravity) +
            assembly::initialStressForce(blk.moments.area, blk.stress);
     if (carryVelocity) f[i] += (2 / dt) * mass * blk.velocity;
-    if (water.active()) f[i] += assembly::waterForce(blk, water);
+    if (water.active()) loads[i] += assembly::waterForce(blk, water);
   }
   for (const model::PointLoad& l : scene_.pointLoads) {
     const int i = active_[l.point.block];
     // The load at the end of the step (implicit, like every other term).
     if (i >= 0)
-      f[i] += assembly::pointForce(scene_.blocks[l.point.block].moments.centroid, l.point.current,
-                                   l.at(regime == Regime::Analysis ? time_ + dt : 0.0));
+      loads[i] += assembly::pointForce(scene_.blocks[l.point.block].moments.centroid, l.point.current,
+                                       l.at(regime == Regime::Analysis ? time_ + dt : 0.0));
   }
+  for (int i = 0; i < nActive_; ++i) f[i] += loads[i];
   for (const model::FixedPoint& fp : scene_.fixedPoints) {
     const int i = active_[fp.point.block];
     if (i < 0) continue;
@@ -236,7 +238,7 @@ Simulation::Attempt Simulation::tryStep(double dt, Regime regime, bool freezeCyc
 
   std::vector<Mat6> blockK;
   std::vector<Vec6> blockF;
-  assembleBlockTerms(dt, regime, blockK, blockF);
+  assembleBlockTerms(dt, regime, blockK, blockF, a.loads);
   stats_.times.assembly += sw.lap();
 
   const auto ends = [&](const Contact& c) {
@@ -580,7 +582,7 @@ StepRecord Simulation::advance() {
     Attempt a = tryStep(dt, Regime::Analysis, cuts >= 2);
     if (a.converged) {
       if (a.frozeContacts) ++stats_.frozenSteps;
-      loadWork_ += loadWork(a.d, dt);
+      for (int i = 0; i < nActive_; ++i) loadWork_ += a.loads[i].dot(a.d.segment<6>(6 * i));
       commit(a, dt);
       time_ = (dt == remaining) ? scene_.settings.duration : time_ + dt;
       stepSize_.accepted(dt, cuts > 0);
@@ -599,21 +601,6 @@ StepRecord Simulation::advance() {
       << " time-step cuts (Δt tried from " << first << " s down to " << dt / scene_.settings.stepCutFactor
       << " s); last failure: " << failure;
   throw NonConvergenceError(msg.str());
-}
-
-double Simulation::loadWork(const Eigen::VectorXd& d, double dt) const {
-  double work = 0;
-  const model::WaterTable water = scene_.water.at(time_ + dt);
-  if (water.active())
-    for (size_t b = 0; b < scene_.blocks.size(); ++b)
-      if (active_[b] >= 0) work += assembly::waterForce(scene_.blocks[b], water).dot(d.segment<6>(6 * active_[b]));
-  for (const model::PointLoad& l : scene_.pointLoads) {
-    const int i = active_[l.point.block];
-    if (i >= 0)
-      work += assembly::pointForce(scene_.blocks[l.point.block].moments.centroid, l.point.current, l.at(time_ + dt))
-                  .dot(d.segment<6>(6 * i));
-  }
-  return work;
 }
 
 EnergyBudget Simulation::energy() const {

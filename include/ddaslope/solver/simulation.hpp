@@ -105,6 +105,7 @@ class Simulation {
     int iterations = 0;
     bool frozeContacts = false;  ///< converged only because cycling contacts were frozen
     Eigen::VectorXd d;  ///< solution, 6 per active block
+    std::vector<Vec6> loads;  ///< water and point loads on each active block (their work: loads·d)
     std::vector<contact::Contact> contacts;
   };
 
@@ -116,12 +117,12 @@ class Simulation {
   /// travels more than g2·w0 (failing) or the step budget runs out.
   bool settle(Regime regime, double& dt, double largestDt);
   Attempt tryStep(double dt, Regime regime, bool freezeCycling);
-  void assembleBlockTerms(double dt, Regime regime, std::vector<Mat6>& k, std::vector<Vec6>& f) const;
+  /// Block terms of a step; `loads` receives the water and point-load part of f (its work).
+  void assembleBlockTerms(double dt, Regime regime, std::vector<Mat6>& k, std::vector<Vec6>& f,
+                          std::vector<Vec6>& loads) const;
   void commit(const Attempt& a, double dt);
   /// Solves matrix_ d = rhs (6 per active block); rigid blocks solve for their 3 unknowns.
   bool solveSystem(const Eigen::VectorXd& rhs, Eigen::VectorXd& d);
-  /// Work of water pressure and point loads over a step of displacements d (loads at its end).
-  double loadWork(const Eigen::VectorXd& d, double dt) const;
   contact::ContactStrength strengthOf(const contact::Contact& c) const;
   /// Finds the two halves of every edge-to-edge contact (partner_).
   void pairEdgeHalves();
