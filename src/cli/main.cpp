@@ -128,7 +128,16 @@ int runCommand(const std::string& casePath, const std::string& outDir, const Ove
   std::printf("%s: %d steps, %d Δt cuts, %ld open-close iterations, %.3f s wall\n", casePath.c_str(), st.steps,
               st.cuts, st.iterations, r.wallTime);
   for (const auto& e : r.expectations) std::printf("  %s\n", e.describe().c_str());
-  std::printf("  wrote %s/history.csv and %s/summary.json\n", outDir.c_str(), outDir.c_str());
+  // The energy check a user should see: a correct run only dissipates (docs/case-format.md).
+  const auto& first = r.trace.energy.front();
+  const auto& last = r.trace.energy.back();
+  const double gain = r.trace.largestEnergyGain(), scale = r.trace.energyScale();
+  std::printf("  energy: %.4g J/m released (potential and load work), %.4g J/m dissipated; largest rise %.3g J/m\n",
+              first.potential - last.potential + last.loadWork, first.mechanical() - last.mechanical(), gain);
+  if (gain > 1e-4 * scale + 1e-12 * std::abs(first.mechanical()))
+    std::printf("  WARNING: the mechanical energy rose by %.3g of the energy scale: a spurious gain. Try a smaller "
+                "time step or max_displacement_ratio, and look at energy.png\n", gain / std::max(scale, 1e-300));
+  std::printf("  wrote %s/history.csv, summary.json, history.png and energy.png\n", outDir.c_str());
   return kExitOk;
 }
 
