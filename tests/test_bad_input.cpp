@@ -260,6 +260,9 @@ TEST(JobReader, BadJobs) {
   j = good;
   j["preset"] = "quick";
   expectJobError(j, "preset", "fast, balanced or accurate, found \"quick\"");
+  j = good;
+  j["blocks"] = "stiff";
+  expectJobError(j, "blocks", "rigid or deformable, found \"stiff\"");
 }
 
 // A case value varied by JSON path must exist and be a number.
@@ -331,6 +334,28 @@ TEST(Cli, SetOverridesACaseNumber) {
   fs::remove_all(out);
 }
 
+// The command line's model options reach the run, and summary.json says where Δt came from:
+// `fast` is Δt = 1.6e-3 √(w0/g) (model/presets.cpp; this case has g = 10 m/s²). A bad value is bad input for every command.
+TEST(Cli, ModelOptionsAreReportedInTheSummary) {
+  const std::string path = std::string(DDASLOPE_SOURCE_DIR) + "/cases/stable_block_40deg.json";
+  const fs::path out = fs::temp_directory_path() / ("ddaslope_preset_" + std::to_string(::getpid()));
+  std::string err;
+  ASSERT_EQ(runCli("run " + path + " --quiet --duration 0.05 --preset fast --blocks rigid --out " + out.string(), &err), 0)
+      << err;
+  const json settings = json::parse(std::ifstream(out / "summary.json"))["settings"];
+  const model::Scene scene = io::readCase(path);
+  EXPECT_NEAR(settings["time_step"].get<double>(), 1.6e-3 * std::sqrt(scene.modelHalfSize() / scene.gravity.norm()),
+              1e-12);
+  EXPECT_EQ(settings["time_step_origin"], "--preset fast");
+  EXPECT_EQ(settings["blocks"], "rigid");
+  const std::string job = std::string(DDASLOPE_SOURCE_DIR) + "/calibration/two_block_slide/job.json";
+  EXPECT_EQ(runCli("backanalyse " + job + " --time-step 0 --out " + out.string(), &err), 2);
+  EXPECT_NE(err.find("expected a time step in (0, 1e6] s, found 0"), std::string::npos) << err;
+  EXPECT_EQ(runCli("critical " + path + " --joint interface --preset quick", &err), 2);
+  EXPECT_NE(err.find("quick"), std::string::npos) << err;
+  fs::remove_all(out);
+}
+
 // Presets (docs/accuracy.md): "preset" sets Δt = c √(w0/g), g2 and the penalty factor; explicit
 // keys of the same analysis object win; an unknown name is bad input.
 TEST(CaseReader, PresetsAndExplicitKeys) {
@@ -347,4 +372,37 @@ TEST(CaseReader, PresetsAndExplicitKeys) {
   EXPECT_EQ(t.settings.maxDisplacementRatio, 0.01);
   d["analysis"]["preset"] = "quick";
   expectError(d, "analysis.preset", "expected one of accurate, balanced, fast");
+}
+
+// Issue #6: a case that sets neither a time step nor a preset runs at `balanced`, in every command
+// and so in the calibration loops: Δt = 5.5e-4 √(w0/g) (model/presets.cpp), g2 0.005, penalty
+// factor 40. The origin of Δt is reported (check, summary.json, the loops' results).
+TEST(CaseReader, NoTimeStepMeansTheBalancedPreset) {
+  json d = minimal();
+  d["analysis"].erase("time_step");
+  const model::Scene s = io::parseCase(d.dump(), "case.json");
+  EXPECT_NEAR(s.settings.timeStep, 5.5e-4 * std::sqrt(s.modelHalfSize() / 9.81), 1e-15);
+  EXPECT_EQ(s.settings.maxDisplacementRatio, 0.005);
+  EXPECT_EQ(s.settings.penaltyFactor, 40);
+  EXPECT_EQ(s.settings.timeStepOrigin, "default preset balanced");
+  d["analysis"]["time_step"] = 0.002;
+  EXPECT_EQ(io::parseCase(d.dump(), "case.json").settings.timeStepOrigin, "analysis.time_step");
+}
+
+// The command line's model options win over the case and over a back-analysis job's own, in the
+// order preset, time step (a --time-step after --preset keeps the preset's g2 and penalty).
+TEST(SettingsOverride, CommandLineWinsInOrder) {
+  model::Scene s = io::parseCase(minimal().dump(), "case.json");
+  model::SettingsOverride o;
+  o.preset = "fast";
+  o.timeStep = 0.004;
+  o.blocks = "rigid";
+  o.contactTreatment = "vertex";
+  o.apply(s);
+  EXPECT_EQ(s.settings.timeStep, 0.004);
+  EXPECT_EQ(s.settings.maxDisplacementRatio, 0.01);  // fast's g2
+  EXPECT_EQ(s.settings.penaltyFactor, 10);           // fast's penalty factor
+  EXPECT_TRUE(s.settings.rigidBlocks);
+  EXPECT_EQ(s.settings.contactTreatment, model::ContactTreatment::Vertex);
+  EXPECT_EQ(s.settings.timeStepOrigin, "--time-step");
 }

@@ -12,7 +12,6 @@
 #include "ddaslope/core/errors.hpp"
 #include "ddaslope/io/case_reader.hpp"
 #include "ddaslope/io/run_case.hpp"
-#include "ddaslope/model/presets.hpp"
 
 namespace ddaslope::calibration {
 namespace {
@@ -91,8 +90,9 @@ model::Scene sceneAt(const io::BackanalysisJob& job, const std::vector<double>& 
   std::vector<io::CaseOverride> overrides;
   for (size_t i = 0; i < x.size(); ++i)
     if (!job.parameters[i].jsonPath.empty()) overrides.push_back({job.parameters[i].jsonPath, x[i]});
+  overrides.insert(overrides.begin(), job.caseOverrides.begin(), job.caseOverrides.end());
   model::Scene s = io::readCase(job.casePath, overrides);
-  if (!job.preset.empty()) model::applyPreset(s.settings, *model::findPreset(job.preset), s.modelHalfSize(), s.gravity.norm());
+  for (const model::SettingsOverride& o : job.model) o.apply(s);
   for (size_t i = 0; i < x.size(); ++i) {
     const io::ParameterSpec& p = job.parameters[i];
     if (p.joint.empty()) continue;

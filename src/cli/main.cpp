@@ -18,6 +18,7 @@
 #include "ddaslope/io/line_plot.hpp"
 #include "ddaslope/io/scene_picture.hpp"
 #include "ddaslope/model/presets.hpp"
+#include "ddaslope/model/settings_override.hpp"
 #include "ddaslope/core/errors.hpp"
 #include "ddaslope/io/case_reader.hpp"
 #include "ddaslope/io/run_case.hpp"
@@ -30,13 +31,28 @@ constexpr int kExitBadInput = 2;
 constexpr int kExitNonConvergence = 3;
 
 struct Overrides {
-  double timeStep = 0;
+  ddaslope::model::SettingsOverride model;  ///< --preset, --time-step, --blocks, --contact-treatment
   double duration = 0;
-  std::string contactTreatment;
-  std::string blocks;                 ///< rigid or deformable
   std::vector<std::string> settings;  ///< "json.path=value", applied before the case is read
-  std::string preset;                 ///< fast, balanced or accurate (docs/accuracy.md)
 };
+
+/// The options every command that runs forward models shares.
+void addModelOptions(CLI::App* cmd, Overrides& o) {
+  cmd->add_option("--preset", o.model.preset, "fast, balanced or accurate: Δt, g2 and penalty (docs/accuracy.md)")
+      ->check(CLI::IsMember({"fast", "balanced", "accurate"}));
+  cmd->add_option("--time-step", o.model.timeStep, "override analysis.time_step (s)")
+      ->check([](const std::string& v) -> std::string {
+        char* end = nullptr;
+        const double dt = std::strtod(v.c_str(), &end);
+        return end != v.c_str() && *end == 0 && dt > 0 && dt <= 1e6 ? "" : "expected a time step in (0, 1e6] s, found " + v;
+      });
+  cmd->add_option("--blocks", o.model.blocks, "rigid (3 unknowns) or deformable (6)")
+      ->check(CLI::IsMember({"rigid", "deformable"}));
+  cmd->add_option("--contact-treatment", o.model.contactTreatment,
+                  "edge (one state per edge-to-edge contact) or vertex (original DDA)")
+      ->check(CLI::IsMember({"edge", "vertex"}));
+  cmd->add_option("--set", o.settings, "json.path=value: override a number of the case (repeatable)");
+}
 
 /// "path=value" → an override; a malformed one is bad input.
 ddaslope::io::CaseOverride parseSetting(const std::string& text) {
@@ -61,15 +77,8 @@ ddaslope::model::Scene loadCase(const std::string& casePath, const Overrides& o,
 }
 
 void applyOverrides(ddaslope::model::Scene& scene, const Overrides& o) {
-  if (!o.preset.empty())
-    ddaslope::model::applyPreset(scene.settings, *ddaslope::model::findPreset(o.preset), scene.modelHalfSize(),
-                                 scene.gravity.norm());
-  if (o.timeStep > 0) scene.settings.timeStep = o.timeStep;
+  o.model.apply(scene);
   if (o.duration > 0) scene.settings.duration = o.duration;
-  if (!o.contactTreatment.empty())
-    scene.settings.contactTreatment = o.contactTreatment == "vertex" ? ddaslope::model::ContactTreatment::Vertex
-                                                                     : ddaslope::model::ContactTreatment::Edge;
-  if (!o.blocks.empty()) scene.settings.rigidBlocks = o.blocks == "rigid";
 }
 
 int compareContactsCommand(bool deformable, const std::string& csvPath) {
@@ -141,8 +150,20 @@ int runCommand(const std::string& casePath, const std::string& outDir, const Ove
   return kExitOk;
 }
 
-int checkCommand(const std::string& casePath) {
-  const ddaslope::model::Scene scene = ddaslope::io::readCase(casePath);
+/// The settings every forward run of a command uses, and where Δt came from.
+std::string settingsLine(const ddaslope::model::Scene& scene) {
+  const ddaslope::model::AnalysisSettings& s = scene.settings;
+  char buf[320];
+  std::snprintf(buf, sizeof buf, "Δt %g s (%s), g2 %g, penalty %g N/m, %s blocks, %s contacts", s.timeStep,
+                s.timeStepOrigin.c_str(), s.maxDisplacementRatio, scene.normalPenalty(),
+                s.rigidBlocks ? "rigid" : "deformable",
+                s.contactTreatment == ddaslope::model::ContactTreatment::Edge ? "edge" : "vertex");
+  return buf;
+}
+
+int checkCommand(const std::string& casePath, const Overrides& o) {
+  ddaslope::model::Scene scene = loadCase(casePath, o);
+  applyOverrides(scene, o);
   const ddaslope::solver::Simulation sim(scene);
   int closed = 0;
   for (const auto& c : sim.contacts().contacts()) closed += c.closed();
@@ -154,6 +175,7 @@ int checkCommand(const std::string& casePath) {
   const double g2w0 = scene.settings.maxDisplacementRatio * sim.modelHalfSize();
   std::printf("  step limit %g m per step (g2·w0 = %g m%s), contact search distance %g m\n", sim.stepLimit(), g2w0,
               sim.stepLimit() < g2w0 ? ", held to a tenth of the thinnest block" : "", sim.searchDistance());
+  std::printf("  %s\n", settingsLine(scene).c_str());
   return kExitOk;
 }
 
@@ -243,13 +265,14 @@ int criticalCommand(const std::string& casePath, const Overrides& o, const Criti
     if (cohesion) j.set("friction_angle_deg", phi); else j.set("cohesion_pa", c);
     j.set("critical", r.critical).set("unit", unit).set("bracket", std::vector<double>{r.failingEnd, r.stableEnd});
     j.set("forward_runs", r.runs).set("wall_time_s", r.wallTime).set("message", r.message);
+    j.set("settings", settingsLine(scene));
     std::printf("%s\n", j.dump().c_str());
   } else if (r.found) {
     std::printf("critical %s of joint '%s' %s: %.6g %s (failing at %.6g, stable at %.6g)%s%s\n", opt.solve.c_str(),
                 opt.joint.c_str(),
                 (cohesion ? "at φ = " + std::to_string(phi) + "°" : "at c = " + std::to_string(c) + " Pa").c_str(),
                 r.critical, unit, r.failingEnd, r.stableEnd, r.message.empty() ? "" : ": ", r.message.c_str());
-    std::printf("%d forward runs, %.2f s wall\n", r.runs, r.wallTime);
+    std::printf("%d forward runs, %.2f s wall; %s\n", r.runs, r.wallTime, settingsLine(scene).c_str());
   } else {
     std::fprintf(stderr, "ddaslope: %s: no critical %s found after %d forward runs: %s\n", casePath.c_str(),
                  opt.solve.c_str(), r.runs, r.message.c_str());
@@ -319,11 +342,13 @@ int fosCommand(const std::string& casePath, const Overrides& o, const FosOptions
     j.set("case", casePath).set("found", r.found).set("factor_of_safety", r.factor);
     j.set("bracket", std::vector<double>{r.stableEnd, r.failingEnd}).set("width", opt.width);
     j.set("forward_runs", r.runs).set("rounds", r.rounds).set("wall_time_s", r.wallTime).set("message", r.message);
+    j.set("settings", settingsLine(scene));
     std::printf("%s\n", j.dump().c_str());
   } else if (r.found) {
     std::printf("factor of safety (strength reduction on %s): %.4f (stable at %.4f, failing at %.4f)\n",
                 opt.joints.empty() ? "all joints" : "the named joints", r.factor, r.stableEnd, r.failingEnd);
-    std::printf("%d forward runs in %d rounds of %d, %.2f s wall\n", r.runs, r.rounds, opt.threads, r.wallTime);
+    std::printf("%d forward runs in %d rounds of %d, %.2f s wall; %s\n", r.runs, r.rounds, opt.threads, r.wallTime,
+                settingsLine(scene).c_str());
   } else {
     std::fprintf(stderr, "ddaslope: %s: no factor of safety found after %d forward runs: %s\n", casePath.c_str(),
                  r.runs, r.message.c_str());
@@ -331,8 +356,11 @@ int fosCommand(const std::string& casePath, const Overrides& o, const FosOptions
   return r.found ? kExitOk : kExitNonConvergence;
 }
 
-int backanalyseCommand(const std::string& jobPath, const std::string& outDir, bool json) {
-  const ddaslope::io::BackanalysisJob job = ddaslope::io::readJob(jobPath);
+int backanalyseCommand(const std::string& jobPath, const std::string& outDir, bool json, const Overrides& o) {
+  ddaslope::io::BackanalysisJob job = ddaslope::io::readJob(jobPath);
+  // The command line's choices are applied after the job's own (its "preset", "blocks").
+  job.model.push_back(o.model);
+  for (const auto& s : o.settings) job.caseOverrides.push_back(parseSetting(s));
   const ddaslope::calibration::BackanalysisResult r = ddaslope::calibration::runBackanalysis(job);
   std::filesystem::create_directories(outDir);
   ddaslope::io::JsonRecord j;
@@ -340,6 +368,8 @@ int backanalyseCommand(const std::string& jobPath, const std::string& outDir, bo
   for (size_t i = 0; i < r.names.size(); ++i) j.set(r.names[i], r.estimate[i]);
   j.set("misfit", r.misfit).set("evaluations", r.evaluations).set("forward_runs", r.forwardRuns);
   j.set("global_search", r.globalStatus).set("local_search", r.localStatus).set("wall_time_s", r.wallTime);
+  const std::string settings = settingsLine(ddaslope::calibration::sceneAt(job, r.estimate));
+  j.set("settings", settings);
   if (!r.map.empty()) j.set("constrains_only_a_line", r.lineOnly).set("statement", r.statement);
   for (const auto& f : r.fit) {
     ddaslope::io::JsonRecord item;
@@ -370,7 +400,7 @@ int backanalyseCommand(const std::string& jobPath, const std::string& outDir, bo
   if (json) {
     std::printf("%s\n", j.dump().c_str());
   } else {
-    std::printf("back-analysis of %s\n", job.casePath.c_str());
+    std::printf("back-analysis of %s\n  forward runs at %s\n", job.casePath.c_str(), settings.c_str());
     for (size_t i = 0; i < r.names.size(); ++i) std::printf("  %s = %.6g\n", r.names[i].c_str(), r.estimate[i]);
     std::printf("  misfit %.4g after %d evaluations (%d forward runs), %.1f s wall\n  %s; %s\n", r.misfit, r.evaluations,
                 r.forwardRuns, r.wallTime, r.globalStatus.c_str(), r.localStatus.c_str());
@@ -418,22 +448,16 @@ int main(int argc, char** argv) {
   CLI::App* run = app.add_subcommand("run", "run a case and write history.csv and summary.json");
   run->add_option("case", casePath, "case file (JSON)")->required();
   run->add_option("--out", outDir, "output directory")->capture_default_str();
-  run->add_option("--time-step", overrides.timeStep, "override analysis.time_step (s)");
+  addModelOptions(run, overrides);
   run->add_option("--duration", overrides.duration, "override analysis.duration (s)");
-  run->add_option("--blocks", overrides.blocks, "rigid (3 unknowns) or deformable (6)")->check(CLI::IsMember({"rigid", "deformable"}));
-  run->add_option("--contact-treatment", overrides.contactTreatment,
-                  "override analysis.contact_treatment: edge (one state per edge-to-edge contact) or vertex (original DDA)")
-      ->check(CLI::IsMember({"edge", "vertex"}));
   run->add_flag("--quiet", quiet, "no progress on stderr");
-  run->add_option("--set", overrides.settings, "json.path=value: override a number of the case (repeatable)");
-  run->add_option("--preset", overrides.preset, "fast, balanced or accurate: Δt, g2 and penalty (docs/accuracy.md)")
-      ->check(CLI::IsMember({"fast", "balanced", "accurate"}));
   run->add_flag("--verbose", verbose, "log equilibrium steps and time-step cuts on stderr");
   std::vector<double> snapshots;
   run->add_option("--snapshots", snapshots, "times (s) of PNG pictures snapshot_NN.png in --out, e.g. 0,0.5,1")->delimiter(',');
 
   CLI::App* check = app.add_subcommand("check", "validate a case file without running it");
   check->add_option("case", casePath, "case file (JSON)")->required();
+  addModelOptions(check, overrides);
 
   bool deformable = false;
   std::string csvPath;
@@ -456,13 +480,8 @@ int main(int argc, char** argv) {
   critical->add_option("--cohesion", crit.cohesion, "cohesion (Pa) while solving for friction (default: the case's)");
   critical->add_option("--width", crit.width, "final bracket width (Pa or degrees; default 10 Pa or 0.01°)");
   critical->add_option("--threads", crit.threads, "forward runs at once")->capture_default_str();
-  critical->add_option("--time-step", overrides.timeStep, "override analysis.time_step (s)");
-  critical->add_option("--contact-treatment", overrides.contactTreatment, "edge or vertex")->check(CLI::IsMember({"edge", "vertex"}));
-  critical->add_option("--blocks", overrides.blocks, "rigid (3 unknowns) or deformable (6)")->check(CLI::IsMember({"rigid", "deformable"}));
+  addModelOptions(critical, overrides);
   critical->add_flag("--json", crit.json, "print the result as JSON");
-  critical->add_option("--set", overrides.settings, "json.path=value: override a number of the case (repeatable)");
-  critical->add_option("--preset", overrides.preset, "fast, balanced or accurate: Δt, g2 and penalty (docs/accuracy.md)")
-      ->check(CLI::IsMember({"fast", "balanced", "accurate"}));
   critical->add_option("--curve", crit.curve, "φmin:φmax:n: the critical (c, φ) curve as CSV and PNG in --out");
   critical->add_option("--out", crit.outDir, "output directory for --curve")->capture_default_str();
 
@@ -474,12 +493,7 @@ int main(int argc, char** argv) {
   fos->add_option("--threads", fosOpt.threads, "trial factors per round, run at once")->capture_default_str();
   fos->add_option("--sweep", fosOpt.sweep, "json.path=min:max:n: F at n values of one case number (CSV and PNG in --out)");
   fos->add_option("--out", fosOpt.outDir, "output directory for --sweep")->capture_default_str();
-  fos->add_option("--set", overrides.settings, "json.path=value: override a number of the case (repeatable)");
-  fos->add_option("--preset", overrides.preset, "fast, balanced or accurate: Δt, g2 and penalty (docs/accuracy.md)")
-      ->check(CLI::IsMember({"fast", "balanced", "accurate"}));
-  fos->add_option("--time-step", overrides.timeStep, "override analysis.time_step (s)");
-  fos->add_option("--contact-treatment", overrides.contactTreatment, "edge or vertex")->check(CLI::IsMember({"edge", "vertex"}));
-  fos->add_option("--blocks", overrides.blocks, "rigid (3 unknowns) or deformable (6)")->check(CLI::IsMember({"rigid", "deformable"}));
+  addModelOptions(fos, overrides);
   fos->add_flag("--json", fosOpt.json, "print the result as JSON");
 
   std::string jobPath, baOut = "out/backanalysis";
@@ -488,6 +502,7 @@ int main(int argc, char** argv) {
   ba->add_option("job", jobPath, "back-analysis job (JSON)")->required();
   ba->add_option("--out", baOut, "output directory")->capture_default_str();
   ba->add_flag("--json", baJson, "print the result as JSON");
+  addModelOptions(ba, overrides);
 
   try {
     app.parse(argc, argv);
@@ -496,11 +511,11 @@ int main(int argc, char** argv) {
   }
   try {
     if (run->parsed()) return runCommand(casePath, outDir, overrides, quiet, verbose, snapshots);
-    if (check->parsed()) return checkCommand(casePath);
+    if (check->parsed()) return checkCommand(casePath, overrides);
     if (compare->parsed()) return compareContactsCommand(deformable, csvPath);
     if (critical->parsed()) return criticalCommand(casePath, overrides, crit);
     if (cut->parsed()) return cutCommand(casePath, cutOut);
-    if (ba->parsed()) return backanalyseCommand(jobPath, baOut, baJson);
+    if (ba->parsed()) return backanalyseCommand(jobPath, baOut, baJson, overrides);
     if (fos->parsed()) return fosCommand(casePath, overrides, fosOpt);
   } catch (const ddaslope::InputError& e) {
     std::cerr << "ddaslope: error: " << e.what() << "\n";

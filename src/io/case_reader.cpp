@@ -421,12 +421,16 @@ void readAnalysis(const Reader& r, const json& doc, model::Scene& s) {
   model::AnalysisSettings& st = s.settings;
   st.duration = r.numberIn(r.required(a, p, "duration"), p + ".duration", 0, 1e9, true, false, "a duration > 0 s");
   // A preset sets Δt, g2 and the penalty from the model's size; explicit keys below still win.
-  if (a.contains("preset")) {
-    const std::string name = r.choice(a, p, "preset", "", {"fast", "balanced", "accurate"});
+  // A case with neither a preset nor a time step runs at the default preset (balanced).
+  if (a.contains("preset") || !a.contains("time_step")) {
+    const std::string name = r.choice(a, p, "preset", model::kDefaultPreset, {"fast", "balanced", "accurate"});
     model::applyPreset(st, *model::findPreset(name), s.modelHalfSize(), s.gravity.norm());
+    if (!a.contains("preset")) st.timeStepOrigin = "default " + st.timeStepOrigin;
   }
-  if (!a.contains("preset") || a.contains("time_step"))
-    st.timeStep = r.numberIn(r.required(a, p, "time_step"), p + ".time_step", 0, 1e6, true, false, "a time step > 0 s");
+  if (a.contains("time_step")) {
+    st.timeStep = r.numberIn(a.at("time_step"), p + ".time_step", 0, 1e6, true, false, "a time step > 0 s");
+    st.timeStepOrigin = "analysis.time_step";
+  }
   st.mode = r.choice(a, p, "mode", "dynamic", {"dynamic", "static"}) == "static" ? model::AnalysisMode::Static
                                                                                  : model::AnalysisMode::Dynamic;
   st.plane = r.choice(a, p, "plane", "strain", {"strain", "stress"}) == "stress" ? model::PlaneMode::Stress

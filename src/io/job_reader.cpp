@@ -77,7 +77,7 @@ BackanalysisJob readJob(const std::string& path) {
     r.fail("", std::string("invalid JSON: ") + e.what());
   }
   r.onlyKeys(doc, "", {"description", "case", "parameters", "observations", "optimiser", "grid_points", "threads",
-                       "preset"});
+                       "preset", "blocks"});
   BackanalysisJob job;
   job.jobPath = path;
   job.casePath = r.resolve(r.string(r.required(doc, "", "case"), "case")).string();
@@ -162,11 +162,19 @@ BackanalysisJob readJob(const std::string& path) {
   }
   if (doc.contains("grid_points")) job.gridPoints = static_cast<int>(r.number(doc.at("grid_points"), "grid_points"));
   if (doc.contains("threads")) job.threads = static_cast<int>(r.number(doc.at("threads"), "threads"));
+  model::SettingsOverride own;
+  own.origin = "job ";
   if (doc.contains("preset")) {
-    job.preset = r.string(doc.at("preset"), "preset");
-    if (job.preset != "fast" && job.preset != "balanced" && job.preset != "accurate")
-      r.fail("preset", "expected fast, balanced or accurate, found \"" + job.preset + "\"");
+    own.preset = r.string(doc.at("preset"), "preset");
+    if (own.preset != "fast" && own.preset != "balanced" && own.preset != "accurate")
+      r.fail("preset", "expected fast, balanced or accurate, found \"" + own.preset + "\"");
   }
+  if (doc.contains("blocks")) {
+    own.blocks = r.string(doc.at("blocks"), "blocks");
+    if (own.blocks != "rigid" && own.blocks != "deformable")
+      r.fail("blocks", "expected rigid or deformable, found \"" + own.blocks + "\"");
+  }
+  job.model.push_back(own);
   return job;
 }
 

@@ -114,6 +114,7 @@ void writeSummary(const fs::path& dir, const model::Scene& scene, const RunOptio
   const model::AnalysisSettings& s = scene.settings;
   j["settings"] = {{"duration", s.duration},
                    {"time_step", s.timeStep},
+                   {"time_step_origin", s.timeStepOrigin},
                    {"mode", s.mode == model::AnalysisMode::Dynamic ? "dynamic" : "static"},
                    {"plane", s.plane == model::PlaneMode::Strain ? "strain" : "stress"},
                    {"blocks", s.rigidBlocks ? "rigid" : "deformable"},

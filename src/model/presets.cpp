@@ -27,6 +27,7 @@ void applyPreset(AnalysisSettings& s, const Preset& p, double modelHalfSize, dou
   s.maxDisplacementRatio = p.maxDisplacementRatio;
   s.penaltyFactor = p.penaltyFactor;
   s.penalty = 0;
+  s.timeStepOrigin = std::string("preset ") + p.name;
 }
 
 }  // namespace ddaslope::model

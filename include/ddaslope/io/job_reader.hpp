@@ -4,6 +4,9 @@
 #include <string>
 #include <vector>
 
+#include "ddaslope/io/case_reader.hpp"
+#include "ddaslope/model/settings_override.hpp"
+
 namespace ddaslope::io {
 
 struct ParameterSpec {
@@ -44,9 +47,11 @@ struct BackanalysisJob {
   OptimiserSpec optimiser;
   int gridPoints = 15;   ///< per axis, for the misfit map of two parameters (0: none)
   int threads = 2;
-  /// fast, balanced or accurate: the accuracy preset every forward run uses (docs/accuracy.md);
-  /// empty: the case's own settings.
-  std::string preset;
+  /// Imposed on every forward run's case, in order: the job's own "preset" and "blocks", then the
+  /// command line's. Empty: the case's own settings (a case without a time step runs `balanced`).
+  std::vector<model::SettingsOverride> model;
+  /// Numbers of the case changed before it is read (the command line's --set).
+  std::vector<CaseOverride> caseOverrides;
 };
 
 /// Throws InputError (file, JSON path, expected vs found) on bad input.

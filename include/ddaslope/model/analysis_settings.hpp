@@ -15,6 +15,9 @@ struct AnalysisSettings {
   /// Nominal time step Δt (s), > 0. Smaller: more accurate impacts and less numerical
   /// dissipation (Newmark γ = 1), more steps. Steps are cut automatically when needed.
   double timeStep = 1e-3;
+  /// Where Δt came from, for reports: "analysis.time_step", "preset balanced", "default preset
+  /// balanced" (a case with neither a time step nor a preset; docs/accuracy.md), "--time-step".
+  std::string timeStepOrigin = "analysis.time_step";
   /// dynamic: velocities carried between steps; static: velocities reset each step (Shi's
   /// quasi-static mode, a heavily damped path to equilibrium).
   AnalysisMode mode = AnalysisMode::Dynamic;

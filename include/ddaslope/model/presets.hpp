@@ -16,6 +16,10 @@ struct Preset {
   double penaltyFactor;
 };
 
+/// The preset of a case that sets neither a preset nor its own time step, and so of every
+/// command's forward runs, the calibration loops' included, unless the case or the command chooses.
+inline constexpr const char* kDefaultPreset = "balanced";
+
 /// fast, balanced or accurate; nullopt for any other name.
 std::optional<Preset> findPreset(const std::string& name);
 /// Sets Δt, g2 and the penalty factor (and the penalty to automatic) from the preset.

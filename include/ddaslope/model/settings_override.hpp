@@ -1,0 +1,22 @@
+#pragma once
+// The accuracy and model choices a command or a back-analysis job may impose on a case's own
+// analysis settings: an accuracy preset, a time step, rigid or deformable blocks, the contact
+// treatment. Applied in that order, so an explicit time step wins over a preset.
+#include <string>
+
+#include "ddaslope/model/scene.hpp"
+
+namespace ddaslope::model {
+
+struct SettingsOverride {
+  std::string preset;            ///< fast, balanced or accurate; empty: keep the case's
+  double timeStep = 0;           ///< s; 0: keep
+  std::string blocks;            ///< rigid or deformable; empty: keep
+  std::string contactTreatment;  ///< edge or vertex; empty: keep
+  /// Prefix naming the source in AnalysisSettings::timeStepOrigin: "--" gives "--preset fast".
+  std::string origin = "--";
+
+  void apply(Scene& scene) const;
+};
+
+}  // namespace ddaslope::model
