@@ -76,6 +76,7 @@ void writeSummary(const fs::path& dir, const model::Scene& scene, const RunOptio
   j["steps"] = st.steps;
   j["time_step_cuts"] = st.cuts;
   j["open_close_iterations"] = st.iterations;
+  j["open_close_cycles"] = st.cycles;
   j["steps_with_frozen_contacts"] = st.frozenSteps;
   j["factorisations"] = st.factorisations;
   j["linear_solves"] = st.linearSolves;

@@ -1,5 +1,7 @@
 #include "ddaslope/solver/simulation.hpp"
 
+#include "ddaslope/solver/state_cycle.hpp"
+
 #include <array>
 #include <chrono>
 #include <map>
@@ -12,6 +14,7 @@
 #include "ddaslope/contact/contact_law.hpp"
 #include "ddaslope/contact/narrow_phase.hpp"
 #include "ddaslope/core/errors.hpp"
+#include "ddaslope/solver/state_cycle.hpp"
 
 namespace ddaslope::solver {
 
@@ -278,6 +281,7 @@ Simulation::Attempt Simulation::tryStep(double dt, Regime regime, bool freezeCyc
   for (const Contact& c : a.contacts) largestForce = std::max(largestForce, std::abs(c.normalForce));
   const contact::StateTolerance stateTolerance{std::max(penalty_ * noise, 1e-9 * largestForce), noise};
   bool stiffnessChanged = true;
+  StateCycleDetector cycles;
   const int maxIterations = std::max(1, scene_.settings.openCloseMaxIterations);
   for (a.iterations = 1; a.iterations <= maxIterations; ++a.iterations) {
     sw.lap();
@@ -368,6 +372,13 @@ Simulation::Attempt Simulation::tryStep(double dt, Regime regime, bool freezeCyc
       c.shearForce = c.state == ContactState::Locked ? r.lockedShear : 0.0;
     }
     stats_.times.stateChecks += sw.lap();
+    if (const int period = cycles.record(a.contacts); period > 0) {
+      a.failure = "open-close iteration cycles: the contact states repeat every " + std::to_string(period) +
+                  " iterations (from iteration " +
+                  std::to_string(a.iterations - StateCycleDetector::kRepeats * period) + ")";
+      ++stats_.cycles;
+      return a;
+    }
     stiffnessChanged = stateChanged;
     const bool frictionSettled = frictionDrift <= scene_.settings.frictionTolerance * forceScale;
     if (!stateChanged && !bondChanged && frictionSettled) {
