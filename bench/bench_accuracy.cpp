@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "ddaslope/calibration/strength_search.hpp"
+#include "ddaslope/io/extremes.hpp"
 #include "ddaslope/io/case_reader.hpp"
 #include "ddaslope/io/line_plot.hpp"
 #include "ddaslope/io/run_case.hpp"
@@ -132,10 +133,41 @@ Errors evaluate(const Knobs& k) {
 
 }  // namespace
 
+/// `--extremes`: the closed-form error, speed bound and energy balance of each extreme of issue #6
+/// (io/extremes.hpp; the test suite asserts the same numbers), as a Markdown table.
+int printExtremes() {
+  std::printf("| extreme | b (m) | h/b | E (Pa) | ρ | φ (°) | c (Pa) | Δt (s) | slide: closed form | slide: DDA | error "
+              "| peak speed / a t | energy rise / PE held | energy lost / friction work | wall (s) |\n");
+  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+  bool allPassed = true;
+  for (const io::ExtremeIncline& x : io::extremeInclines()) {
+    const io::ExtremeResult r = io::runExtreme(x);
+    const model::InclineSpec& s = x.spec;
+    if (!r.completed || !r.finite) {
+      std::printf("| %s | did not complete: %s |\n", x.name.c_str(), r.failure.c_str());
+      allPassed = false;
+      continue;
+    }
+    char closed[40], lost[40], speed[40];
+    if (x.slides) std::snprintf(closed, sizeof closed, "%.6g m", r.closedFormSlide);
+    else std::snprintf(closed, sizeof closed, "holds (< 1e-3 b)");
+    std::snprintf(speed, sizeof speed, "%.4f", r.closedFormPeakSpeed > 0 ? r.peakSpeed / r.closedFormPeakSpeed : 0.0);
+    if (x.slides && r.frictionWork > 0) std::snprintf(lost, sizeof lost, "%.4f", r.energyLost / r.frictionWork);
+    else std::snprintf(lost, sizeof lost, "(no friction work)");
+    std::printf("| %s | %g | %g | %g | %g | %g | %g | %g | %s | %.6g %s | %.2e | %s | %.1e | %s | %.3f |\n", x.name.c_str(), s.b,
+                s.h / s.b, s.young, s.density, s.phiDeg, s.cohesion, s.timeStep, closed, r.slide, x.slides ? "m" : "b",
+                r.slideError(), x.slides ? speed : "(held)", r.heldPotential > 0 ? r.energyGain / r.heldPotential : 0.0,
+                lost, r.wallSeconds);
+  }
+  return allPassed ? 0 : 1;
+}
+
 int main(int argc, char** argv) {
   std::string out = "out/accuracy";
-  for (int i = 1; i < argc; ++i)
+  for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--out") && i + 1 < argc) out = argv[++i];
+    else if (!std::strcmp(argv[i], "--extremes")) return printExtremes();
+  }
   std::vector<Knobs> knobs;
   for (double dt : {1e-2, 3e-3, 1e-3, 3e-4})
     for (double g2 : {0.002, 0.005, 0.01})

@@ -136,10 +136,13 @@ TEST(CaseReader, OutOfRangeValues) {
   expectError(d, "joints.bedding.friction_angle", "[0, 90)");
   d = minimal();
   d["analysis"]["time_step"] = 0;
-  expectError(d, "analysis.time_step", "> 0");
+  expectError(d, "analysis.time_step", "a time step in (0, 1e6] s, found 0");
   d = minimal();
   d["analysis"]["time_step"] = -0.001;
-  expectError(d, "analysis.time_step", "> 0");
+  expectError(d, "analysis.time_step", "a time step in (0, 1e6] s, found -0.001");
+  d = minimal();
+  d["analysis"]["time_step"] = 1e7;
+  expectError(d, "analysis.time_step", "a time step in (0, 1e6] s, found 1e+07");
   d = minimal();
   d["materials"]["rock"]["density"] = "heavy";
   expectError(d, "materials.rock.density", "expected a number, found a string");

@@ -428,7 +428,7 @@ void readAnalysis(const Reader& r, const json& doc, model::Scene& s) {
     if (!a.contains("preset")) st.timeStepOrigin = "default " + st.timeStepOrigin;
   }
   if (a.contains("time_step")) {
-    st.timeStep = r.numberIn(a.at("time_step"), p + ".time_step", 0, 1e6, true, false, "a time step > 0 s");
+    st.timeStep = r.numberIn(a.at("time_step"), p + ".time_step", 0, 1e6, true, false, "a time step in (0, 1e6] s");
     st.timeStepOrigin = "analysis.time_step";
   }
   st.mode = r.choice(a, p, "mode", "dynamic", {"dynamic", "static"}) == "static" ? model::AnalysisMode::Static
