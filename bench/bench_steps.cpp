@@ -55,16 +55,27 @@ void compareContactSearch(const model::Scene& scene, double searchDistance) {
                scene.blocks.size(), pairs.size(), 1e3 * pruned, allPairs, 1e3 * all, withPruning, found.size());
 }
 
-/// Resident memory of this process now (MB), from /proc/self/status.
-double residentMb() {
+/// A memory figure of this process (MB) from /proc/self/status: "VmRSS" (resident now) or
+/// "VmHWM" (peak resident since the last resetPeakResident).
+double statusMb(const char* field) {
   std::FILE* f = std::fopen("/proc/self/status", "r");
   if (!f) return 0;
-  char line[256];
+  char line[256], format[64];
+  std::snprintf(format, sizeof format, "%s: %%lf kB", field);
   double kb = 0;
   while (std::fgets(line, sizeof line, f))
-    if (std::sscanf(line, "VmRSS: %lf kB", &kb) == 1) break;
+    if (std::sscanf(line, format, &kb) == 1) break;
   std::fclose(f);
   return kb / 1024;
+}
+
+/// Resets the peak resident set (Linux ≥ 4.0: "5" to /proc/self/clear_refs), so that each wall
+/// size reports its own peak. Returns false where that is not allowed.
+bool resetPeakResident() {
+  std::FILE* f = std::fopen("/proc/self/clear_refs", "w");
+  if (!f) return false;
+  const bool ok = std::fputs("5", f) >= 0;
+  return std::fclose(f) == 0 && ok;
 }
 
 }  // namespace
@@ -94,9 +105,10 @@ int main(int argc, char** argv) {
   }
   std::printf("blocks,contacts,unknowns,equilibrium_ms,step_ms,broad_phase_ms,contacts_ms,assembly_ms,"
               "factorisation_ms,solve_ms,state_checks_ms,update_ms,iterations_per_step,factorisations_per_step,"
-              "cg_iterations_per_step,cuts,resident_mb\n");
+              "cg_iterations_per_step,cuts,resident_mb,peak_resident_mb\n");
   std::vector<std::pair<int, double>> perStep;
   for (int n : sizes) {
+    const bool peakReset = resetPeakResident();
     model::Scene scene = model::makeBrickWall(n);
     scene.settings.contactTreatment = treatment;
     scene.settings.rigidBlocks = rigid;
@@ -112,7 +124,7 @@ int main(int argc, char** argv) {
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     const solver::RunStatistics& a = sim.statistics();
     const auto d = [&](double solver::PhaseTimes::*f) { return ms(a.times.*f - before.times.*f, steps); };
-    std::printf("%d,%zu,%d,%.1f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.2f,%.2f,%.2f,%d,%.1f\n", n,
+    std::printf("%d,%zu,%d,%.1f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.2f,%.2f,%.2f,%d,%.1f,%.1f\n", n,
                 sim.contacts().contacts().size(), (rigid ? 3 : 6) * n, 1e3 * eq, ms(wall, steps),
                 d(&solver::PhaseTimes::broadPhase), d(&solver::PhaseTimes::contacts),
                 d(&solver::PhaseTimes::assembly), d(&solver::PhaseTimes::factorisation),
@@ -120,7 +132,7 @@ int main(int argc, char** argv) {
                 d(&solver::PhaseTimes::update), double(a.iterations - before.iterations) / steps,
                 double(a.factorisations - before.factorisations) / steps,
                 double(a.cgIterations - before.cgIterations) / steps,
-                a.cuts - before.cuts, residentMb());
+                a.cuts - before.cuts, statusMb("VmRSS"), peakReset ? statusMb("VmHWM") : NAN);
     std::fflush(stdout);
     perStep.emplace_back(n, wall / steps);
   }
