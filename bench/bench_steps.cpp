@@ -85,6 +85,7 @@ int main(int argc, char** argv) {
   model::ContactTreatment treatment = model::ContactTreatment::Edge;
   bool rigid = false;
   bool allPairs = false;
+  bool refactoriseOnly = false;
   std::vector<int> sizes{10, 50, 100, 200, 500, 1000, 2000};
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--steps") && i + 1 < argc) steps = std::atoi(argv[++i]);
@@ -92,6 +93,8 @@ int main(int argc, char** argv) {
       treatment = std::strcmp(argv[++i], "vertex") ? model::ContactTreatment::Edge : model::ContactTreatment::Vertex;
     else if (!std::strcmp(argv[i], "--compare-search"))
       allPairs = true;
+    else if (!std::strcmp(argv[i], "--refactorise-only"))
+      refactoriseOnly = true;
     else if (!std::strcmp(argv[i], "--blocks") && i + 1 < argc)
       rigid = !std::strcmp(argv[++i], "rigid");
     else if (!std::strcmp(argv[i], "--sizes") && i + 1 < argc) {
@@ -99,7 +102,7 @@ int main(int argc, char** argv) {
       std::stringstream ss(argv[++i]);
       for (std::string tok; std::getline(ss, tok, ',');) sizes.push_back(std::stoi(tok));
     } else {
-      std::fprintf(stderr, "usage: ddaslope_bench [--steps S] [--sizes 10,100,...] [--contact-treatment edge|vertex] [--blocks rigid|deformable] [--compare-search]\n");
+      std::fprintf(stderr, "usage: ddaslope_bench [--steps S] [--sizes 10,100,...] [--contact-treatment edge|vertex] [--blocks rigid|deformable] [--compare-search] [--refactorise-only]\n");
       return 2;
     }
   }
@@ -113,6 +116,7 @@ int main(int argc, char** argv) {
     scene.settings.contactTreatment = treatment;
     scene.settings.rigidBlocks = rigid;
     solver::Simulation sim(scene);
+    sim.setFactorFollowing(!refactoriseOnly);
     if (std::getenv("DDASLOPE_BENCH_VERBOSE")) sim.setLog([](const std::string& l) { std::fprintf(stderr, "%s\n", l.c_str()); });
     if (allPairs) compareContactSearch(scene, sim.searchDistance());
     auto t0 = std::chrono::steady_clock::now();
@@ -134,6 +138,13 @@ int main(int argc, char** argv) {
                 double(a.cgIterations - before.cgIterations) / steps,
                 a.cuts - before.cuts, statusMb("VmRSS"), peakReset ? statusMb("VmHWM") : NAN);
     std::fflush(stdout);
+    // The final state in two numbers, to see that two settings give the same run.
+    double sum = 0, fastest = 0;
+    for (const auto& b : sim.scene().blocks) {
+      sum += b.moments.centroid.x() + 3 * b.moments.centroid.y();
+      fastest = std::max(fastest, b.velocity.head<2>().norm());
+    }
+    std::fprintf(stderr, "%d blocks: state checksum %.12g, fastest block %.6g m/s\n", n, sum, fastest);
     perStep.emplace_back(n, wall / steps);
   }
   // Growth of the step cost: exponent k in t ∝ N^k between consecutive sizes (on stderr, so

@@ -82,3 +82,45 @@ TEST(SparseSolve, RigidBlocksKeepTheLeadingThreeUnknowns) {
   solver::SparseCholesky chol;
   expectMatchesDense(k, dense, chol);
 }
+
+// Low-rank update/downdate of the factor (what a contact spring switched on or off does to K):
+// after K + c cᵀ the solve must match a dense solve of that matrix, and after the downdate a
+// solve of K again (linear algebra identity; round-off tolerance 1e-9 relative). A downdate
+// that would leave an indefinite matrix is refused.
+TEST(SparseSolve, FactorFollowsRankOneChanges) {
+  const int n = 3;
+  Eigen::MatrixXd dense = Eigen::MatrixXd::Zero(18, 18);
+  std::srand(11);
+  assembly::BlockSparseMatrix k;
+  k.setPattern(n, {{1, 0}, {1, 2}});
+  k.setZero();
+  for (int b = 0; b < n; ++b) {
+    Mat6 a = Mat6::Random();
+    a = a * a.transpose() + 20 * Mat6::Identity();
+    k.addDiagonal(b, a);
+    dense.block<6, 6>(6 * b, 6 * b) += a;
+  }
+  const Mat6 k01 = Mat6::Random();
+  k.addCoupling(0, 1, k01);
+  dense.block<6, 6>(0, 6) += k01;
+  dense.block<6, 6>(6, 0) += k01.transpose();
+  solver::SparseCholesky chol;
+  ASSERT_TRUE(chol.factorise(k));
+  // A stiff spring between blocks 0 and 2 (rows 0..5 and 12..17), scaled like a contact penalty.
+  solver::SparseCholesky::Column c;
+  Eigen::VectorXd cv = Eigen::VectorXd::Zero(18);
+  for (int e = 0; e < 6; ++e) {
+    c.rows[c.count] = e, c.values[c.count++] = cv[e] = 30.0 * (e + 1);
+    c.rows[c.count] = 12 + e, c.values[c.count++] = cv[12 + e] = -25.0 * (6 - e);
+  }
+  const Eigen::VectorXd x = Eigen::VectorXd::LinSpaced(18, -1, 2);
+  Eigen::VectorXd sol;
+  ASSERT_TRUE(chol.modify({c}, true));
+  chol.solve((dense + cv * cv.transpose()) * x, sol);
+  EXPECT_LT((sol - x).norm(), 1e-9 * x.norm());
+  ASSERT_TRUE(chol.modify({c}, false));
+  chol.solve(dense * x, sol);
+  EXPECT_LT((sol - x).norm(), 1e-9 * x.norm());
+  // Removing the spring a second time would take away stiffness K never had.
+  EXPECT_FALSE(chol.modify({c}, false));
+}

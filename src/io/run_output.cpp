@@ -79,6 +79,7 @@ void writeSummary(const fs::path& dir, const model::Scene& scene, const RunOptio
   j["open_close_cycles"] = st.cycles;
   j["steps_with_frozen_contacts"] = st.frozenSteps;
   j["factorisations"] = st.factorisations;
+  j["factor_updates"] = st.factorUpdates;
   j["linear_solves"] = st.linearSolves;
   j["cg_iterations"] = st.cgIterations;
   j["wall_time_s"] = o.wallTime;

@@ -55,4 +55,17 @@ bool LinearSolver::solve(const assembly::BlockSparseMatrix& k, const Eigen::Vect
   return true;
 }
 
+bool LinearSolver::modifyFactor(const assembly::BlockSparseMatrix& k, const std::vector<SparseCholesky::Column>& added,
+                                const std::vector<SparseCholesky::Column>& removed) {
+  if (!haveFactor_ || patternVersion_ != k.patternVersion()) return false;
+  if (added.empty() && removed.empty()) return true;
+  ++stats_.factorModifications;
+  factorCurrent_ = false;  // CG checks the modified factor against the true K
+  // Updates first: a downdate applied before its matching update could pass through an
+  // indefinite matrix.
+  if (cholesky_.modify(added, true) && cholesky_.modify(removed, false)) return true;
+  haveFactor_ = false;
+  return false;
+}
+
 }  // namespace ddaslope::solver

@@ -2,6 +2,7 @@
 
 #include <cholmod.h>
 
+#include <algorithm>
 #include <cstring>
 
 #include "ddaslope/core/errors.hpp"
@@ -11,6 +12,9 @@ namespace ddaslope::solver {
 struct SparseCholesky::Impl {
   cholmod_common common{};
   cholmod_factor* factor = nullptr;
+  /// Simplicial LDLᵀ copy of `factor` with low-rank changes applied; null when none were.
+  cholmod_factor* modified = nullptr;
+  std::vector<int> inversePerm;  ///< original row → row of the factor
   long patternVersion = -1;
   const void* patternOwner = nullptr;
 
@@ -23,6 +27,7 @@ struct SparseCholesky::Impl {
     common.supernodal = CHOLMOD_SUPERNODAL;
   }
   ~Impl() {
+    if (modified) cholmod_free_factor(&modified, &common);
     if (factor) cholmod_free_factor(&factor, &common);
     cholmod_finish(&common);
   }
@@ -57,6 +62,8 @@ bool SparseCholesky::factorise(const assembly::BlockSparseMatrix& k) {
     impl_->patternOwner = &k;
     ++analyses_;
   }
+  if (impl_->modified) cholmod_free_factor(&impl_->modified, &impl_->common);
+  impl_->inversePerm.clear();
   cholmod_factorize(&a, impl_->factor, &impl_->common);
   return impl_->common.status == CHOLMOD_OK && impl_->factor->minor == a.nrow;
 }
@@ -70,11 +77,59 @@ void SparseCholesky::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
   rhs.x = const_cast<double*>(b.data());
   rhs.xtype = CHOLMOD_REAL;
   rhs.dtype = CHOLMOD_DOUBLE;
-  cholmod_dense* sol = cholmod_solve(CHOLMOD_A, impl_->factor, &rhs, &impl_->common);
+  cholmod_factor* f = impl_->modified ? impl_->modified : impl_->factor;
+  cholmod_dense* sol = cholmod_solve(CHOLMOD_A, f, &rhs, &impl_->common);
   DDASLOPE_ASSERT(sol != nullptr, "CHOLMOD solve failed");
   x.resize(b.size());
   std::memcpy(x.data(), sol->x, sizeof(double) * static_cast<size_t>(b.size()));
   cholmod_free_dense(&sol, &impl_->common);
+}
+
+bool SparseCholesky::modify(const std::vector<Column>& columns, bool add) {
+  if (columns.empty()) return true;
+  Impl& m = *impl_;
+  if (!m.modified) {
+    m.modified = cholmod_copy_factor(m.factor, &m.common);
+    DDASLOPE_ASSERT(m.modified != nullptr, "CHOLMOD could not copy the factor");
+    // Simplicial LDLᵀ, packed and monotonic: the form update/downdate works on.
+    cholmod_change_factor(CHOLMOD_REAL, false, false, true, true, m.modified, &m.common);
+  }
+  // The factor is of P K Pᵀ (fill-reducing order): C's rows go through the same permutation.
+  const int* perm = static_cast<const int*>(m.modified->Perm);
+  if (m.inversePerm.size() != m.modified->n) {
+    m.inversePerm.resize(m.modified->n);
+    for (size_t k = 0; k < m.modified->n; ++k) m.inversePerm[static_cast<size_t>(perm[k])] = static_cast<int>(k);
+  }
+  size_t nz = 0;
+  for (const Column& c : columns) nz += static_cast<size_t>(c.count);
+  cholmod_sparse* cs = cholmod_allocate_sparse(m.modified->n, columns.size(), nz, true, true, 0, CHOLMOD_REAL, &m.common);
+  DDASLOPE_ASSERT(cs != nullptr, "CHOLMOD could not allocate the update");
+  int* p = static_cast<int*>(cs->p);
+  int* i = static_cast<int*>(cs->i);
+  double* x = static_cast<double*>(cs->x);
+  size_t k = 0;
+  for (size_t j = 0; j < columns.size(); ++j) {
+    p[j] = static_cast<int>(k);
+    const Column& c = columns[j];
+    int order[12];
+    for (int e = 0; e < c.count; ++e) order[e] = e;
+    const auto row = [&](int e) { return m.inversePerm[static_cast<size_t>(c.rows[e])]; };
+    std::sort(order, order + c.count, [&](int a, int b) { return row(a) < row(b); });
+    for (int e = 0; e < c.count; ++e, ++k) {
+      i[k] = row(order[e]);
+      x[k] = c.values[order[e]];
+    }
+  }
+  p[columns.size()] = static_cast<int>(k);
+  const int ok = cholmod_updown(add, cs, m.modified, &m.common);
+  cholmod_free_sparse(&cs, &m.common);
+  if (!ok || m.common.status != CHOLMOD_OK) return false;
+  // D is on the diagonal of the simplicial LDLᵀ: positive definite iff every D(j,j) > 0.
+  const int* lp = static_cast<const int*>(m.modified->p);
+  const double* lx = static_cast<const double*>(m.modified->x);
+  for (size_t j = 0; j < m.modified->n; ++j)
+    if (!(lx[lp[j]] > 0)) return false;
+  return true;
 }
 
 }  // namespace ddaslope::solver

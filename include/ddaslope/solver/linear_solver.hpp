@@ -22,6 +22,7 @@ struct LinearSolverStats {
   long factorisations = 0;
   long solves = 0;
   long cgIterations = 0;
+  long factorModifications = 0;  ///< low-rank updates/downdates applied instead of refactorising
 };
 
 class LinearSolver {
@@ -31,6 +32,13 @@ class LinearSolver {
   void matrixChanged() { factorCurrent_ = false; }
   /// Returns false if K is not positive definite.
   bool solve(const assembly::BlockSparseMatrix& k, const Eigen::VectorXd& b, Eigen::VectorXd& x);
+  /// K changed by these rank-one terms since the factor was made (or last modified): the factor
+  /// follows them by update/downdate, and CG then converges as if it were fresh. Returns false
+  /// (and drops the factor, so the next solve refactorises) if the result lost positive
+  /// definiteness; does nothing without a factor of K's pattern.
+  bool modifyFactor(const assembly::BlockSparseMatrix& k, const std::vector<SparseCholesky::Column>& added,
+                    const std::vector<SparseCholesky::Column>& removed);
+  bool hasFactor() const { return haveFactor_; }
   const LinearSolverStats& stats() const { return stats_; }
   int symbolicAnalyses() const { return cholesky_.symbolicAnalyses(); }
 

@@ -13,6 +13,7 @@
 #include "ddaslope/contact/contact_set.hpp"
 #include "ddaslope/model/scene.hpp"
 #include "ddaslope/solver/energy.hpp"
+#include "ddaslope/solver/factor_springs.hpp"
 #include "ddaslope/solver/linear_solver.hpp"
 #include "ddaslope/solver/time_step.hpp"
 
@@ -43,6 +44,7 @@ struct RunStatistics {
   bool relaxationConverged = true;   ///< stage 2 (real contact law) reached rest and was kept
   int symbolicAnalyses = 0;
   long factorisations = 0;         ///< numeric Cholesky factorisations
+  long factorUpdates = 0;          ///< low-rank factor updates that replaced one (large systems)
   long linearSolves = 0;           ///< systems solved (one per open-close iteration)
   long cgIterations = 0;           ///< conjugate-gradient iterations on a reused factor
   int maxContacts = 0;
@@ -97,6 +99,9 @@ class Simulation {
   Vec2 monitorVelocity(int m) const;
   /// Receives one line per equilibrium step and per Δt cut (diagnostics; off by default).
   void setLog(std::function<void(const std::string&)> log) { log_ = std::move(log); }
+  /// Off: every contact state change of a large system refactorises, as before the factor
+  /// followed them by update/downdate (for comparisons: the bench, the tests).
+  void setFactorFollowing(bool on) { factorFollowing_ = on; }
 
  private:
   enum class Regime { Analysis, HeldEquilibrium, Relaxation };
@@ -149,6 +154,8 @@ class Simulation {
   std::vector<int> partner_;  ///< other half of the same edge-to-edge contact, or −1
   assembly::BlockSparseMatrix matrix_;
   LinearSolver linearSolver_;
+  FactorSprings factorSprings_;  ///< the contact springs the factor holds (large systems only)
+  bool factorFollowing_ = true;
   StepSizeController stepSize_;
   std::vector<Eigen::Matrix3d> elasticity_;
   RunStatistics stats_;

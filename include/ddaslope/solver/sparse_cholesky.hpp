@@ -2,6 +2,7 @@
 // Sparse Cholesky through CHOLMOD: analyse once per pattern, factorise per matrix, solve.
 // Only sparse_cholesky.cpp includes CHOLMOD.
 #include <memory>
+#include <vector>
 
 #include <Eigen/Core>
 
@@ -19,8 +20,19 @@ class SparseCholesky {
   /// Numeric factorisation; the symbolic analysis is redone only when the pattern changed.
   /// Returns false if the matrix is not positive definite.
   bool factorise(const assembly::BlockSparseMatrix& k);
-  /// Solves K x = b with the last factorisation.
+  /// Solves K x = b with the last factorisation (and the low-rank changes applied since).
   void solve(const Eigen::VectorXd& b, Eigen::VectorXd& x);
+
+  /// One column c of a low-rank change K ± c cᵀ: up to 12 entries (rows distinct).
+  struct Column {
+    int count = 0;
+    int rows[12];
+    double values[12];
+  };
+  /// Changes the factor to that of K + Σ c cᵀ (add) or K − Σ c cᵀ, by CHOLMOD's update/downdate
+  /// of a simplicial LDLᵀ copy (the supernodal factor stays for the next factorisation).
+  /// Returns false if the result is not positive definite (the factor must then be redone).
+  bool modify(const std::vector<Column>& columns, bool add);
   int symbolicAnalyses() const { return analyses_; }
 
  private:
