@@ -123,6 +123,12 @@ int main(int argc, char** argv) {
     sim.bringToEquilibrium();
     const double eq = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     const solver::RunStatistics before = sim.statistics();
+    const solver::PhaseTimes& e = before.times;
+    std::fprintf(stderr,
+                 "%d blocks, equilibrium: %.2f s; contacts %.2f, assembly %.2f, factorisation %.2f, solve %.2f, "
+                 "state checks %.2f s; %ld factorisations, %ld factor updates, %ld CG iterations, %d steps\n",
+                 n, eq, e.contacts + e.broadPhase, e.assembly, e.factorisation, e.solve, e.stateChecks, before.factorisations,
+                 before.factorUpdates, before.cgIterations, before.equilibriumSteps);
     t0 = std::chrono::steady_clock::now();
     for (int k = 0; k < steps; ++k) sim.advance();
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
