@@ -25,7 +25,7 @@ namespace {
 
 /// Unknowns from which the factor follows contact state changes by update/downdate. At 3000
 /// (500 deformable bricks) a factorisation takes about 14 ms, at 12 000 about 140 ms, while an
-/// update costs 0.1–0.25 ms per spring changed; the 500-brick equilibrium already drops from
+/// update costs 0.24 ms per spring changed at 18 000; the 500-brick equilibrium already drops from
 /// 0.77 to 0.21 s. No shipped case comes near it.
 constexpr int kFactorFollowingMinUnknowns = 3000;
 /// Springs changed at once beyond which a new factorisation is cheaper than following them.
