@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Checks scripts/vajont_limit_equilibrium.py against closed forms (run by ctest)."""
-import json, os, subprocess, sys, tempfile, unittest
+import json, math, os, subprocess, sys, tempfile, unittest
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 
@@ -81,6 +81,30 @@ class GoodmanBray(unittest.TestCase):
                 "vertices": [[-5.0, 5 * t], [-5.0, -20.0], [20.0, -20.0], [20.0, -20 * t]]}
         got = toppling_factor([base, column], "--joint-angle", "90", "--phi", str(phi))
         self.assertAlmostEqual(got, math.tan(math.radians(phi)) / t, places=4)
+
+
+class SteppedToppling(unittest.TestCase):
+    """scripts/stepped_toppling.py against Hoek & Bray's worked example (Rock Slope Engineering,
+    1981; Wyllie & Mah 2004, sec. 7.3): limiting equilibrium at phi = 38.15 deg, the top three
+    columns stable, the three at the toe sliding, the rest toppling."""
+
+    def run_fos(self, phi):
+        out = subprocess.run([sys.executable, os.path.join(HERE, "stepped_toppling.py"), "fos", "--phi", str(phi)],
+                             check=True, capture_output=True, text=True).stdout
+        return out, float(out.split("limit-equilibrium factor of safety:")[1].split()[0])
+
+    def test_published_limiting_friction_gives_factor_one(self):
+        out, F = self.run_fos(38.15)
+        self.assertAlmostEqual(F, 1.0, delta=0.002)  # 38.15 deg is quoted to 0.01 deg: 0.0005 in F
+        modes = [line.split(",")[2] for line in out.splitlines()[1:17]]  # columns 16 down to 1
+        self.assertEqual(modes[:3], ["stable"] * 3)
+        self.assertEqual(modes[3:13], ["topples"] * 10)
+        self.assertEqual(modes[13:15], ["slides"] * 2)
+
+    def test_factor_scales_with_tan_phi_for_a_fixed_mechanism(self):
+        # F is the reduction of tan(phi) that reaches the limit, so it is tan(phi)/tan(phi_crit).
+        _, F = self.run_fos(40)
+        self.assertAlmostEqual(F, math.tan(math.radians(40)) / math.tan(math.radians(38.13)), delta=0.002)
 
 
 if __name__ == "__main__":

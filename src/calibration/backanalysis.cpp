@@ -131,6 +131,7 @@ double misfitAt(const io::BackanalysisJob& job, const std::vector<double>& x, in
       const FactorOfSafetyResult f = factorOfSafety(scene, joints, 0.2 * o.sigma, s);
       if (runs) *runs += f.runs;
       met.simulated = f.found ? f.factor : 0.0;
+      met.trials = f.trials;
       const double d = (met.simulated - o.target) / o.sigma;
       sum = d * d;
       count = 1;

@@ -1,8 +1,10 @@
 #include "ddaslope/calibration/strength_search.hpp"
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <mutex>
 #include <optional>
 #include <thread>
 
@@ -16,13 +18,23 @@ double secondsSince(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-/// Wraps a verdict function so that every forward run is counted (thread-safe).
+/// Wraps a verdict function so that every forward run is counted and recorded (thread-safe).
 struct CountedVerdict {
-  std::function<bool(double)> verdict;
+  std::function<TrialResult(double)> verdict;
   std::atomic<int> runs{0};
+  std::mutex mutex;
+  std::vector<TrialRecord> trials;
   bool operator()(double x) {
     ++runs;
-    return verdict(x);
+    TrialResult r = verdict(x);
+    const std::lock_guard<std::mutex> lock(mutex);
+    trials.push_back({x, r});
+    return r.stable;
+  }
+  /// The trials by value: the record does not depend on which thread finished first.
+  std::vector<TrialRecord> sortedTrials() {
+    std::sort(trials.begin(), trials.end(), [](const TrialRecord& a, const TrialRecord& b) { return a.value < b.value; });
+    return trials;
   }
 };
 
@@ -52,7 +64,7 @@ CriticalResult criticalCohesion(const model::Scene& scene, int joint, double fri
     model::Scene trial = scene;
     trial.joints[joint].cohesion = c;
     trial.joints[joint].frictionAngle = degToRad(frictionDeg);
-    return judgeStability(trial, s.verdict, held ? &*held : nullptr).stable;
+    return judgeStability(trial, s.verdict, held ? &*held : nullptr);
   }};
   const std::function<bool(double)> f = std::ref(stableAt);
   CriticalResult r;
@@ -75,6 +87,7 @@ CriticalResult criticalCohesion(const model::Scene& scene, int joint, double fri
     }
   }
   r.runs = stableAt.runs;
+  r.trials = stableAt.sortedTrials();
   r.wallTime = secondsSince(t0);
   return r;
 }
@@ -87,7 +100,7 @@ CriticalResult criticalFriction(const model::Scene& scene, int joint, double coh
     model::Scene trial = scene;
     trial.joints[joint].cohesion = cohesion;
     trial.joints[joint].frictionAngle = degToRad(phiDeg);
-    return judgeStability(trial, s.verdict, held ? &*held : nullptr).stable;
+    return judgeStability(trial, s.verdict, held ? &*held : nullptr);
   }};
   const BisectionResult b = bisect(std::ref(stableAt), 0.0, 89.9, width, s.threads);
   CriticalResult r;
@@ -101,6 +114,7 @@ CriticalResult criticalFriction(const model::Scene& scene, int joint, double coh
     }
   }
   r.runs = stableAt.runs;
+  r.trials = stableAt.sortedTrials();
   r.wallTime = secondsSince(t0);
   return r;
 }
@@ -138,7 +152,7 @@ FactorOfSafetyResult factorOfSafety(const model::Scene& scene, const std::vector
       trial.joints[j].tensileStrength = scene.joints[j].tensileStrength / f;
       trial.joints[j].frictionAngle = std::atan(std::tan(scene.joints[j].frictionAngle) / f);
     }
-    return judgeStability(trial, s.verdict, held ? &*held : nullptr).stable;
+    return judgeStability(trial, s.verdict, held ? &*held : nullptr);
   }};
   FactorOfSafetyResult r;
   // Bracket from F = 1 by factors of 1.5 (stable: raise F; failing: lower it).
@@ -159,6 +173,7 @@ FactorOfSafetyResult factorOfSafety(const model::Scene& scene, const std::vector
     r.rounds = b.rounds;
   }
   r.runs = stableAt.runs;
+  r.trials = stableAt.sortedTrials();
   r.wallTime = secondsSince(t0);
   return r;
 }

@@ -15,6 +15,7 @@
 #include "ddaslope/io/job_reader.hpp"
 #include "ddaslope/calibration/strength_search.hpp"
 #include "ddaslope/io/json_record.hpp"
+#include "ddaslope/calibration/trial_report.hpp"
 #include "ddaslope/io/line_plot.hpp"
 #include "ddaslope/io/scene_picture.hpp"
 #include "ddaslope/model/presets.hpp"
@@ -244,6 +245,11 @@ int curveCommand(const std::string& casePath, const ddaslope::model::Scene& scen
   return all ? kExitOk : kExitNonConvergence;
 }
 
+/// Verdict warnings go to stderr, so a --json result on stdout stays clean.
+void warnAboutTrials(const std::string& casePath, const std::string& warning) {
+  if (!warning.empty()) std::fprintf(stderr, "ddaslope: warning: %s: %s\n", casePath.c_str(), warning.c_str());
+}
+
 int criticalCommand(const std::string& casePath, const Overrides& o, const CriticalOptions& opt) {
   ddaslope::model::Scene scene = loadCase(casePath, o);
   applyOverrides(scene, o);
@@ -266,6 +272,7 @@ int criticalCommand(const std::string& casePath, const Overrides& o, const Criti
     j.set("critical", r.critical).set("unit", unit).set("bracket", std::vector<double>{r.failingEnd, r.stableEnd});
     j.set("forward_runs", r.runs).set("wall_time_s", r.wallTime).set("message", r.message);
     j.set("settings", settingsLine(scene));
+    ddaslope::calibration::appendTrials(j, r.trials, cohesion ? "cohesion_pa" : "friction_angle_deg");
     std::printf("%s\n", j.dump().c_str());
   } else if (r.found) {
     std::printf("critical %s of joint '%s' %s: %.6g %s (failing at %.6g, stable at %.6g)%s%s\n", opt.solve.c_str(),
@@ -277,6 +284,7 @@ int criticalCommand(const std::string& casePath, const Overrides& o, const Criti
     std::fprintf(stderr, "ddaslope: %s: no critical %s found after %d forward runs: %s\n", casePath.c_str(),
                  opt.solve.c_str(), r.runs, r.message.c_str());
   }
+  warnAboutTrials(casePath, ddaslope::calibration::smallMotionWarning(r.trials, cohesion ? "c" : "φ"));
   return r.found ? kExitOk : kExitNonConvergence;
 }
 
@@ -343,6 +351,7 @@ int fosCommand(const std::string& casePath, const Overrides& o, const FosOptions
     j.set("bracket", std::vector<double>{r.stableEnd, r.failingEnd}).set("width", opt.width);
     j.set("forward_runs", r.runs).set("rounds", r.rounds).set("wall_time_s", r.wallTime).set("message", r.message);
     j.set("settings", settingsLine(scene));
+    ddaslope::calibration::appendTrials(j, r.trials, "factor");
     std::printf("%s\n", j.dump().c_str());
   } else if (r.found) {
     std::printf("factor of safety (strength reduction on %s): %.4f (stable at %.4f, failing at %.4f)\n",
@@ -353,6 +362,7 @@ int fosCommand(const std::string& casePath, const Overrides& o, const FosOptions
     std::fprintf(stderr, "ddaslope: %s: no factor of safety found after %d forward runs: %s\n", casePath.c_str(),
                  r.runs, r.message.c_str());
   }
+  warnAboutTrials(casePath, ddaslope::calibration::smallMotionWarning(r.trials, "F"));
   return r.found ? kExitOk : kExitNonConvergence;
 }
 
@@ -377,7 +387,9 @@ int backanalyseCommand(const std::string& jobPath, const std::string& outDir, bo
     if (!f.converged) item.set("simulated", "forward run did not converge");
     else if (f.series) item.set("rms_residual", f.simulated);
     else item.set("simulated", f.simulated).set("observed", f.observed);
-    j.append("fit_at_estimate", item.set("sigma", f.sigma));
+    item.set("sigma", f.sigma);
+    if (!f.trials.empty()) ddaslope::calibration::appendTrials(item, f.trials, "factor");
+    j.append("fit_at_estimate", item);
   }
   const std::string result = outDir + "/result.json";
   {

@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include "ddaslope/calibration/strength_search.hpp"
+
 #include "ddaslope/io/job_reader.hpp"
 #include "ddaslope/model/scene.hpp"
 #include "ddaslope/solver/simulation.hpp"
@@ -20,6 +22,8 @@ struct ObservationFit {
   double sigma = 0;
   bool series = false;
   bool converged = true;  ///< false: the forward run did not converge (no simulated value)
+  /// A factor-of-safety observation: the trials of its strength-reduction search (provenance).
+  std::vector<TrialRecord> trials;
 };
 
 struct BackanalysisResult {

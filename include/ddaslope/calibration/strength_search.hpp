@@ -10,6 +10,13 @@
 
 namespace ddaslope::calibration {
 
+/// One forward run of a search: the value tried (a strength factor F, a cohesion in Pa or a
+/// friction angle in degrees) and its verdict, with the rule that decided it.
+struct TrialRecord {
+  double value = 0;
+  TrialResult result;
+};
+
 struct SearchSettings {
   VerdictSettings verdict;
   int threads = 2;  ///< independent forward runs evaluated at once
@@ -23,6 +30,7 @@ struct CriticalResult {
   double failingEnd = 0;    ///< bracket end that fails
   int runs = 0;
   double wallTime = 0;      ///< s
+  std::vector<TrialRecord> trials;  ///< every forward run, by value
 };
 
 /// The cohesion (Pa) of `joint` at which the scene becomes stable, with φ of that joint set to
@@ -55,6 +63,7 @@ struct FactorOfSafetyResult {
   int runs = 0;
   int rounds = 0;
   double wallTime = 0;
+  std::vector<TrialRecord> trials;  ///< every forward run, by value
 };
 
 /// Strength reduction: the F at which c/F and atan(tan φ / F) on `joints` (all if empty) turn

@@ -1,38 +1,76 @@
 #pragma once
 // Stability verdict of one forward run: the function the bisection and back-analysis loops search.
+#include <string>
+
 #include "ddaslope/model/scene.hpp"
 #include "ddaslope/solver/simulation.hpp"
 
 namespace ddaslope::calibration {
 
-/// A run is failing when (a) a monitor moves more than `failureDisplacement` from where it is at
-/// t = 0, after the equilibrium (the quasi-static adjustment of a marginal slope while it comes to
-/// rest is not failure; the run stops there: its verdict is certain), or (b) at the end of the run a monitor still moves faster
-/// than `restingSpeed` and is not slowing down (its speed at the end is at least 90 % of its
-/// speed at half the duration). (b) catches slopes just past failure, whose acceleration is too
-/// small to reach (a) within the run; a stable scene is brought to rest before t = 0, so its
-/// speed is at round-off level, and a decaying transient fails the "not slowing down" test.
-/// Neither rule depends on Δt: sliding at constant acceleration is integrated exactly by
-/// Newmark β = 1/2, γ = 1, whose numerical damping acts on oscillations only.
+/// A run is failing when
+/// (a) a monitor moves more than `failureDisplacement` from where it is at t = 0, after the
+///     equilibrium; the run stops there: its verdict is certain; or
+/// (b) at the end of the run a monitor is still moving: over the last quarter of the run its net
+///     displacement is above the noise floor and at least 90 % of its net displacement over the
+///     quarter before (a slide just past failure accelerates: 7/5 of it from rest).
+/// Motion is judged on net displacements over windows of simulated time, never on instantaneous
+/// speeds, so contact-spring vibration cannot trip it. The noise floor of a monitor is the larger
+/// of `restingSpeed` × window and 5 × the scatter of its path about a least-squares quadratic over
+/// the last two windows (a steady slide or a smooth acceleration has none; a vibration of
+/// amplitude A has about A/√2, and moves a monitor at most 2A net). A verdict that is marginal,
+/// a net motion within twice the floor or a window ratio in [0.75, 1.25] (a steady creep, or a
+/// transient that neither grows nor dies), is not guessed: the run is extended once by its
+/// duration and judged again on quarters of the longer run. Neither rule depends on Δt: sliding
+/// at constant acceleration is integrated exactly by Newmark β = 1/2, γ = 1.
 struct VerdictSettings {
   /// m; ≤ 0: 1e-3 of the model half-size w0.
   double failureDisplacement = 0;
-  /// m/s; ≤ 0: 1e-4 of failureDisplacement per second.
+  /// m/s; ≤ 0: 1e-4 of failureDisplacement per second. A net motion slower than this over a
+  /// window counts as rest whatever the noise.
   double restingSpeed = 0;
 };
 
+/// Which rule decided a verdict.
+enum class VerdictRule {
+  AtRest,             ///< stable: net motion over the last window below the noise floor
+  SlowingDown,        ///< stable: net motion over the last window < 90 % of the window before
+  PassedDisplacement, ///< failing: rule (a)
+  StillMoving,        ///< failing: rule (b)
+  NotConverged,       ///< failing: the run did not converge
+};
+const char* describe(VerdictRule rule);
+/// Short name for tables and JSON: "at_rest", "slowing_down", "failure_displacement",
+/// "still_moving", "not_converged".
+const char* name(VerdictRule rule);
+
 struct TrialResult {
   bool stable = true;
-  double maxDisplacement = 0;  ///< largest monitor displacement after t = 0 (m)
-  double finalSpeed = 0;       ///< largest monitor speed at the end of the run (m/s)
-  double timeReached = 0;      ///< simulated time when the trial stopped (s)
-  bool converged = true;       ///< false if the run hit non-convergence (counted as failing)
-  const char* reason = "";     ///< which rule decided a failing verdict
+  VerdictRule rule = VerdictRule::AtRest;
+  double maxDisplacement = 0;      ///< largest monitor displacement after t = 0 (m)
+  double failureDisplacement = 0;  ///< the threshold of rule (a) in force (m)
+  double finalSpeed = 0;           ///< largest monitor speed at the end of the run (m/s)
+  double lastWindowMotion = 0;     ///< net displacement over the last window, deciding monitor (m)
+  double previousWindowMotion = 0; ///< over the window before (m)
+  double noiseFloor = 0;           ///< that monitor's floor (m)
+  double timeReached = 0;          ///< simulated time when the trial stopped (s)
+  int steps = 0;                   ///< accepted steps after t = 0
+  bool extended = false;           ///< run once more for a marginal verdict
+  bool marginal = false;           ///< still marginal after the extension: decided by the 90 % rule
+  bool converged = true;           ///< false if the run hit non-convergence (counted as failing)
+  const char* reason = "";         ///< describe(rule)
 };
 
 /// Runs the scene (equilibrium first, from `shared` when given: see solver::HeldEquilibrium)
 /// until its duration or until rule (a) fires.
 TrialResult judgeStability(const model::Scene& scene, const VerdictSettings& settings = {},
                            const solver::HeldEquilibrium* shared = nullptr);
+
+/// What a window judgement sees of one monitor: its net displacement over the last two windows
+/// and its noise floor. Pure, for tests.
+struct WindowMotion {
+  double last = 0, previous = 0, floor = 0;
+};
+enum class WindowVerdict { AtRest, SlowingDown, StillMoving };
+WindowVerdict judgeWindows(const WindowMotion& m, bool* marginal = nullptr);
 
 }  // namespace ddaslope::calibration

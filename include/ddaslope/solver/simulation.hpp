@@ -84,6 +84,8 @@ class Simulation {
   /// One accepted step. Throws NonConvergenceError once maxStepCuts cuts have failed.
   StepRecord advance();
   bool finished() const;
+  /// Lengthens the run by `extra` seconds (a verdict that needs more time to decide).
+  void extendDuration(double extra) { scene_.settings.duration += extra; }
 
   const model::Scene& scene() const { return scene_; }
   double time() const { return time_; }
@@ -122,6 +124,10 @@ class Simulation {
   /// Static steps in `regime` until at rest (implied acceleration < 1e-6 g); false if the scene
   /// travels more than g2·w0 (failing) or the step budget runs out.
   bool settle(Regime regime, double& dt, double largestDt);
+  /// True when `last` (a step at rest) froze no contact and one step from rest at the analysis
+  /// Δt, every contact judged by its real law, converges with an implied acceleration below
+  /// `restAcceleration`: the analysis will start at rest.
+  bool confirmedAtRest(const Attempt& last, double restAcceleration);
   Attempt tryStep(double dt, Regime regime, bool freezeCycling);
   /// Block terms of a step; `loads` receives the water and point-load part of f (its work).
   void assembleBlockTerms(double dt, Regime regime, std::vector<Mat6>& k, std::vector<Vec6>& f,

@@ -1,0 +1,45 @@
+#include "ddaslope/calibration/trial_report.hpp"
+
+#include <sstream>
+
+namespace ddaslope::calibration {
+namespace {
+
+bool failedOnLittleMotion(const TrialResult& r) {
+  return !r.stable && r.converged && r.maxDisplacement < kSmallFailureMotion * r.failureDisplacement;
+}
+
+}  // namespace
+
+void appendTrials(io::JsonRecord& j, const std::vector<TrialRecord>& trials, const std::string& valueKey) {
+  for (const TrialRecord& t : trials) {
+    const TrialResult& r = t.result;
+    io::JsonRecord item;
+    item.set(valueKey, t.value).set("stable", r.stable).set("rule", name(r.rule));
+    item.set("max_displacement_m", r.maxDisplacement).set("failure_displacement_m", r.failureDisplacement);
+    item.set("last_window_motion_m", r.lastWindowMotion).set("previous_window_motion_m", r.previousWindowMotion);
+    item.set("noise_floor_m", r.noiseFloor).set("final_speed_m_s", r.finalSpeed);
+    item.set("time_s", r.timeReached).set("steps", r.steps).set("extended", r.extended).set("marginal", r.marginal);
+    j.append("trials", item);
+  }
+}
+
+std::string smallMotionWarning(const std::vector<TrialRecord>& trials, const std::string& valueLabel) {
+  int n = 0;
+  const TrialRecord* least = nullptr;
+  for (const TrialRecord& t : trials)
+    if (failedOnLittleMotion(t.result)) {
+      ++n;
+      if (!least || t.result.maxDisplacement < least->result.maxDisplacement) least = &t;
+    }
+  if (n == 0) return "";
+  std::ostringstream m;
+  m << n << " of " << trials.size() << " trials were called failed after moving less than "
+    << 100 * kSmallFailureMotion << " % of the failure displacement (least: " << valueLabel << " = " << least->value
+    << " moved " << least->result.maxDisplacement << " m of " << least->result.failureDisplacement
+    << " m; rule: " << name(least->result.rule) << "). Such a verdict rests on the trend of the motion, not its "
+    << "size: check it with `ddaslope run` at that strength (history.png), or lengthen analysis.duration";
+  return m.str();
+}
+
+}  // namespace ddaslope::calibration

@@ -1,0 +1,113 @@
+// The stability verdict on multi-block deformable scenes (issue #13): a scene at rest stays at
+// rest, vibration cannot trip the verdict, and the strength-reduction factor of a multi-column
+// toppling slope on a stepped base does not depend on Δt, preset, threads, contact treatment or
+// block model, and agrees with its limit equilibrium.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "ddaslope/calibration/strength_search.hpp"
+#include "ddaslope/io/case_reader.hpp"
+#include "ddaslope/model/settings_override.hpp"
+#include "ddaslope/solver/simulation.hpp"
+
+using namespace ddaslope;
+using calibration::judgeWindows;
+using calibration::WindowMotion;
+using calibration::WindowVerdict;
+
+namespace {
+
+const std::string kStepped = std::string(DDASLOPE_SOURCE_DIR) + "/cases/stepped_toppling.json";
+
+/// Hoek & Bray's worked example (Rock Slope Engineering 1981; Wyllie & Mah 2004, sec. 7.3) is at
+/// limiting equilibrium with φ = 38.15°: Goodman & Bray on the shipped blocks gives F = 1.0006
+/// (python3 scripts/stepped_toppling.py fos), the critical φ 38.13°.
+constexpr double kLimitEquilibriumF = 1.0006;
+
+model::Scene steppedAt(double strengthFactor, double timeStep) {
+  model::Scene s = io::readCase(kStepped);
+  for (model::JointProperties& j : s.joints) j.frictionAngle = std::atan(std::tan(j.frictionAngle) / strengthFactor);
+  if (timeStep > 0) s.settings.timeStep = timeStep;
+  return s;
+}
+
+}  // namespace
+
+// Net motion over windows, never instantaneous speed. A uniformly accelerated slide from rest
+// moves 5 and 7 units over the third and fourth quarters of a run (s = a t²/2): still moving.
+TEST(WindowVerdict, AcceleratingSlideIsStillMoving) {
+  bool marginal = true;
+  EXPECT_EQ(judgeWindows({7e-4, 5e-4, 1e-6}, &marginal), WindowVerdict::StillMoving);
+  EXPECT_FALSE(marginal);  // 7/5 = 1.4 lies outside the marginal band [0.75, 1.25]
+}
+
+// A vibration of amplitude A moves a monitor at most 2A net over a window, while the floor is 5 ×
+// its scatter about a smooth path (A/√2 for a sine): 2A < 5A/√2, so it is rest, whatever its speed.
+TEST(WindowVerdict, VibrationBelowItsOwnScatterIsRest) {
+  const double amplitude = 1e-4;
+  EXPECT_EQ(judgeWindows({2 * amplitude, 0.5 * amplitude, 5 * amplitude / std::sqrt(2.0)}), WindowVerdict::AtRest);
+}
+
+// A transient dying out moves less over each window than over the one before.
+TEST(WindowVerdict, DecayingTransientIsSlowingDown) {
+  EXPECT_EQ(judgeWindows({1e-3, 4e-3, 1e-6}), WindowVerdict::SlowingDown);
+}
+
+// A steady creep (equal windows) is neither clearly failing nor clearly stopping: marginal, so the
+// verdict extends the run before it decides.
+TEST(WindowVerdict, SteadyCreepIsMarginal) {
+  bool marginal = false;
+  EXPECT_EQ(judgeWindows({1e-3, 1e-3, 1e-6}, &marginal), WindowVerdict::StillMoving);
+  EXPECT_TRUE(marginal);
+}
+
+// A deformable column scene brought to rest stays at rest. The stepped slope at F = 0.97 (stable:
+// limit equilibrium 1.0006) at Δt = 0.2 ms, the smallest documented step, where Newmark γ = 1
+// damps least: before the relaxed equilibrium was confirmed at the analysis Δt, the crest
+// vibrated at 2-3.6 mm/s after 2 s. Conservation: a scene in equilibrium has no force to move it.
+TEST(AtRest, SteppedToppingSlopeStaysAtRest) {
+  model::Scene s = steppedAt(0.97, 2e-4);
+  s.settings.duration = 1.0;
+  solver::Simulation sim(s);
+  sim.bringToEquilibrium();
+  double fastest = 0;
+  while (!sim.finished()) {
+    sim.advance();
+    for (size_t m = 0; m < s.monitors.size(); ++m)
+      fastest = std::max(fastest, sim.monitorVelocity(static_cast<int>(m)).norm());
+  }
+  EXPECT_LT(fastest, 1e-6) << "m/s, largest monitor speed over 1 s";
+}
+
+// The issue's requirement: on the stepped slope F agrees with itself within ±1.5 % across Δt
+// 0.2-4 ms, the three presets, 1 and 2
+// threads, edge and vertex contacts, deformable and rigid blocks, and lies within 3 % of its limit
+// equilibrium (Goodman & Bray, 1.0006; Hoek & Bray's example is at F = 1 by construction).
+TEST(StrengthReduction, SteppedToppingSlopeDoesNotDependOnSettings) {
+  struct Variant {
+    const char* label;
+    model::SettingsOverride o;
+    int threads = 2;
+  };
+  std::vector<Variant> variants = {{"case settings", {}}, {"1 thread", {}, 1}};
+  for (double dt : {2e-4, 5e-4, 1e-3, 2e-3, 4e-3}) variants.push_back({"dt", {"", dt}});
+  for (const char* p : {"fast", "balanced", "accurate"}) variants.push_back({p, {p}});
+  variants.push_back({"vertex", {"", 0, "", "vertex"}});
+  variants.push_back({"rigid", {"", 0, "rigid"}});
+  std::vector<double> factors;
+  for (const Variant& v : variants) {
+    model::Scene s = io::readCase(kStepped);
+    v.o.apply(s);
+    calibration::SearchSettings settings;
+    settings.threads = v.threads;
+    const calibration::FactorOfSafetyResult r = calibration::factorOfSafety(s, {}, 0.005, settings);
+    ASSERT_TRUE(r.found) << v.label << ": " << r.message;
+    EXPECT_NEAR(r.factor, kLimitEquilibriumF, 0.03 * kLimitEquilibriumF) << v.label << " Δt " << s.settings.timeStep;
+    factors.push_back(r.factor);
+  }
+  const auto [lo, hi] = std::minmax_element(factors.begin(), factors.end());
+  const double mid = 0.5 * (*lo + *hi);
+  EXPECT_LE(*hi - mid, 0.015 * mid) << "F from " << *lo << " to " << *hi;
+}
