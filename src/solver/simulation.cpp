@@ -510,10 +510,7 @@ bool Simulation::settle(Regime regime, double& dt, double largestDt) {
     }
     commit(a, dt);
     ++stats_.equilibriumSteps;
-    double worst = 0;
-    for (size_t b = 0; b < scene_.blocks.size(); ++b)
-      if (active_[b] >= 0)
-        worst = std::max(worst, scene_.blocks[b].maxVertexDisplacement(a.d.segment<6>(6 * active_[b])));
+    const double worst = largestVertexDisplacement(a);
     stats_.equilibriumResidual = 2 * worst / (dt * dt) / std::max(scene_.gravity.norm(), 1e-3);
     travel += worst;
     if (log_) {
@@ -551,16 +548,20 @@ bool Simulation::settle(Regime regime, double& dt, double largestDt) {
   return true;
 }
 
+double Simulation::largestVertexDisplacement(const Attempt& a) const {
+  double worst = 0;
+  for (size_t b = 0; b < scene_.blocks.size(); ++b)
+    if (active_[b] >= 0) worst = std::max(worst, scene_.blocks[b].maxVertexDisplacement(a.d.segment<6>(6 * active_[b])));
+  return worst;
+}
+
 bool Simulation::confirmedAtRest(const Attempt& last, double restAcceleration) {
   if (last.frozeContacts) return false;
   const double dt = scene_.settings.timeStep;
   detectContacts(false);
   const Attempt check = tryStep(dt, Regime::Relaxation, false);
   if (!check.converged) return false;
-  double moved = 0;
-  for (size_t b = 0; b < scene_.blocks.size(); ++b)
-    if (active_[b] >= 0) moved = std::max(moved, scene_.blocks[b].maxVertexDisplacement(check.d.segment<6>(6 * active_[b])));
-  return 2 * moved / (dt * dt) < restAcceleration;
+  return 2 * largestVertexDisplacement(check) / (dt * dt) < restAcceleration;
 }
 
 std::vector<bool> Simulation::unsupportedBlocks() const {

@@ -128,6 +128,8 @@ class Simulation {
   /// Δt, every contact judged by its real law, converges with an implied acceleration below
   /// `restAcceleration`: the analysis will start at rest.
   bool confirmedAtRest(const Attempt& last, double restAcceleration);
+  /// Largest vertex displacement of an attempt's solution over the active blocks (m).
+  double largestVertexDisplacement(const Attempt& a) const;
   Attempt tryStep(double dt, Regime regime, bool freezeCycling);
   /// Block terms of a step; `loads` receives the water and point-load part of f (its work).
   void assembleBlockTerms(double dt, Regime regime, std::vector<Mat6>& k, std::vector<Vec6>& f,
