@@ -3,6 +3,11 @@
 import json, math, os, subprocess, sys, tempfile, unittest
 
 HERE = os.path.dirname(os.path.abspath(__file__))
+sys.dont_write_bytecode = True  # no __pycache__ in the source tree
+sys.path.insert(0, HERE)
+import chair_slide  # noqa: E402
+from vajont_limit_equilibrium import section_slices, toe_thrust  # noqa: E402
+import vajont_limit_equilibrium  # noqa: E402
 
 
 def critical_friction(case, *args):
@@ -66,6 +71,119 @@ class LimitEquilibrium(unittest.TestCase):
                 "section": {"ground": [[0, drop], [150, drop], [150, 0]],
                             "sliding_surface": [[0, drop], [100, 0], [150, 0]]}}
         self.assertAlmostEqual(critical_friction(case, "--delta", "0"), 15, places=6)
+
+
+class CohesiveWedges(unittest.TestCase):
+    """toe_thrust with a cohesion on the slice bases (scripts/chair_slide.py le)."""
+    PHI = 18.0
+
+    def assertRelative(self, got, want, rel=1e-9):
+        self.assertLessEqual(abs(got - want), rel * abs(want), f"{got} vs {want}")
+
+    def test_single_planar_slice_closed_form(self):
+        # Closed form (Hoek & Bray, Rock Slope Engineering, planar failure, no water, no crack; FS = 1):
+        # c A + W cos(b) tan(phi) = W sin(b), so c = W (sin b - cos b tan phi) / L. One slice alone
+        # has no interfaces, so delta must not matter.
+        case = planar_case(30)
+        del case["section"]["joint_sets"]  # one slice: the whole wedge
+        (w, beta, length), = section_slices(case)
+        self.assertRelative(w, 2500 * 9.81 * 100 * 100 * math.tan(math.radians(30)) / 2)  # triangle area
+        tan_phi = math.tan(math.radians(self.PHI))
+        want = w * (math.sin(beta) - math.cos(beta) * tan_phi) / length
+        for delta in (0, 40):
+            got = chair_slide.critical_cohesion([(w, beta, length)], tan_phi, math.tan(math.radians(delta)))
+            self.assertRelative(got, want)
+
+    def test_submerged_planar_slice_closed_form(self):
+        # Closed form: fully submerged (water on every face) the slice's net water force is buoyancy,
+        # so the planar-failure cohesion above holds with the effective weight (rho - rho_w) g A.
+        case = planar_case(30, level=1000)
+        del case["section"]["joint_sets"]
+        (w, beta, length), = section_slices(case)
+        area = 100 * 100 * math.tan(math.radians(30)) / 2
+        w_eff = (2500 * 9.81 - 9810) * area
+        self.assertRelative(w, w_eff)
+        tan_phi = math.tan(math.radians(self.PHI))
+        got = chair_slide.critical_cohesion([(w, beta, length)], tan_phi, 0.0)
+        self.assertRelative(got, w_eff * (math.sin(beta) - math.cos(beta) * tan_phi) / length)
+
+    def test_zero_cohesion_leaves_the_friction_results(self):
+        # Closed form (two-wedge method, delta = 0, c = 0; test_two_equal_wedges_without_interface_
+        # friction): equal weights on 30 deg and 0 deg seats are critical at phi = 15 deg. Through the
+        # imported functions with the base lengths carried and c = 0 given explicitly, and the thrust
+        # bit-identical with and without the cohesion argument.
+        drop = 100 * math.tan(math.radians(30))
+        case = {"materials": {"rock": {"density": 2500}}, "joints": {"j": {"friction_angle": 40}},
+                "default_joint": "j",
+                "section": {"ground": [[0, drop], [150, drop], [150, 0]],
+                            "sliding_surface": [[0, drop], [100, 0], [150, 0]]}}
+        slices = section_slices(case)
+        phi = vajont_limit_equilibrium.critical_friction(slices, 0.0, cohesion=0.0)
+        self.assertAlmostEqual(phi, 15, places=9)
+        for tan_phi in (0.1, 0.3, 0.5):
+            for tan_delta in (0.0, 0.8):
+                self.assertEqual(toe_thrust(slices, tan_phi, tan_delta),
+                                 toe_thrust([s[:2] for s in slices], tan_phi, tan_delta, 0.0))
+
+    def test_two_wedges_with_cohesion_closed_form(self):
+        # Closed form (two-wedge method, delta = 0: a horizontal interface force): the force polygon
+        # of a wedge on a base dipping b, with friction phi and cohesion force c L on the base, gives
+        # the horizontal thrust it passes on as W tan(b - phi) - c L cos(phi) / cos(b - phi). The
+        # pair is critical when the thrusts sum to zero: c = sum W tan(b - phi) / sum L cos(phi) /
+        # cos(b - phi).
+        drop = 100 * math.tan(math.radians(30))
+        case = {"materials": {"rock": {"density": 2500}}, "joints": {"j": {"friction_angle": 40}},
+                "default_joint": "j",
+                "section": {"ground": [[0, drop], [160, drop], [160, 0]],
+                            "sliding_surface": [[0, drop], [100, 0], [160, 0]]}}
+        slices = section_slices(case)
+        phi = math.radians(10)  # the upper wedge drives and needs the lower one
+        want = sum(w * math.tan(b - phi) for w, b, _ in slices) / \
+            sum(length * math.cos(phi) / math.cos(b - phi) for _, b, length in slices)
+        self.assertGreater(want, 0)
+        self.assertRelative(chair_slide.critical_cohesion(slices, math.tan(phi), 0.0), want)
+
+
+class ChairSlide(unittest.TestCase):
+    """cases/chair_slide.json (scripts/chair_slide.py): the toe buttress."""
+
+    def setUp(self):
+        with open(chair_slide.CASE_PATH) as f:
+            self.case = json.load(f)
+        self.slices = section_slices(self.case)
+        self.tan_phi = math.tan(math.radians(self.case["joints"]["sliding_surface"]["friction_angle"]))
+
+    def test_single_block_on_the_30_degree_segment_closed_form(self):
+        # Closed form (infinite slope, dry: the 30 deg blocks lie above the reservoir): a block of
+        # vertical height h = t / cos(a) needs c = gamma h cos(a) (sin a - cos a tan phi).
+        a, h = math.radians(30), 50 / math.cos(math.radians(30))
+        want = 2500 * 9.81 * h * math.cos(a) * (math.sin(a) - math.cos(a) * self.tan_phi)
+        got = max(chair_slide.single_block_cohesion(*s, self.tan_phi) for s in self.slices)
+        self.assertLessEqual(abs(got - want), 1e-9 * want)
+
+    def test_whole_slide_needs_less_than_half_the_single_block_cohesion(self):
+        # Closed form (multi-wedge, delta = 0): as for two wedges, a run of slices whose interfaces
+        # are all in compression at the limit is critical at c = sum W' tan(b - phi) / sum L cos(phi)
+        # / cos(b - phi). The crown wedge alone needs less than that (its single-block value), so its
+        # interface would be in tension and carries nothing (no-tension joints): the run is slices
+        # 2 to the toe, all 30 deg slices driving, all slices of the flatter segment resisting.
+        phi = math.atan(self.tan_phi)
+        run = self.slices[1:]
+        want = sum(w * math.tan(b - phi) for w, b, _ in run) / \
+            sum(length * math.cos(phi) / math.cos(b - phi) for _, b, length in run)
+        got = chair_slide.critical_cohesion(self.slices, self.tan_phi, 0.0)
+        self.assertLessEqual(abs(got - want), 1e-9 * want)
+        singles = [chair_slide.single_block_cohesion(*s, self.tan_phi) for s in self.slices]
+        self.assertLess(singles[0], got)
+        for (_, b, _), c in zip(self.slices[1:], singles[1:]):  # steep ones drive, flat ones resist
+            self.assertTrue(c > got if b > phi else c < 0)
+        # The point of the case: under half the single-block value, and under the case's own
+        # cohesion (limit equilibrium has the slope hold); interface friction (delta = 40 deg, the
+        # internal joints') only adds strength.
+        self.assertLess(2 * got, max(singles))
+        self.assertLess(got, self.case["joints"]["sliding_surface"]["cohesion"])
+        tan_delta = math.tan(math.radians(40))
+        self.assertLess(chair_slide.critical_cohesion(self.slices, self.tan_phi, tan_delta), got)
 
 
 class GoodmanBray(unittest.TestCase):

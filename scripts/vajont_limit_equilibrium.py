@@ -7,6 +7,8 @@ The slices are those ddaslope cuts: vertical joints of the case's section (expli
 joint sets at 90 deg), plus cuts at every break of the sliding surface. Water as in ddaslope:
 hydrostatic pressure below the level on every face of a slice, so its net force is buoyancy and
 the contact forces are effective forces. No moment equilibrium (as in the wedge method).
+The sliding surface is frictional here (c = 0); toe_thrust also takes a cohesion on the slice bases,
+which scripts/chair_slide.py uses.
 
 Run: python3 scripts/vajont_limit_equilibrium.py cases/vajont.json [--delta 40] [--kinks-only]
 """
@@ -60,18 +62,77 @@ def slice_areas(ground, surface, xa, xb, level):
     return area, wet
 
 
-def toe_thrust(slices, tan_phi, tan_delta):
-    """Effective thrust the last slice would need from beyond the toe (> 0: the mass slides)."""
+def toe_thrust(slices, tan_phi, tan_delta, cohesion=0.0):
+    """Effective thrust the last slice would need from beyond the toe (> 0: the mass slides).
+
+    slices: (effective weight, base dip beta[, base length]) from crown to toe; the base length is
+    needed only with a cohesion c (Pa), which acts on each base as c * length, up the slope."""
     e = 0.0
-    for w_eff, beta in slices:
-        # Base: normal N on the upward normal (sin b, cos b), friction N tan(phi) up the slope.
-        # Interfaces: E on the left face pushes +x and drags down by E tan(delta) (the upslope slice
-        # moves down relative to this one); the right face's E' pushes back -x and holds up.
+    for w_eff, beta, *length in slices:
+        # Base: normal N on the upward normal (sin b, cos b), shear N tan(phi) + C up the slope
+        # (C = c * base length). Interfaces: E on the left face pushes +x and drags down by
+        # E tan(delta) (the upslope slice moves down relative to this one); the right face's E'
+        # pushes back -x and holds up. x: N nx - C cos b = E' - E; y: N ny + C sin b + (E' - E)
+        # tan(delta) = W.
+        c_force = cohesion * length[0] if cohesion else 0.0
         nx = math.sin(beta) - tan_phi * math.cos(beta)
         ny = math.cos(beta) + tan_phi * math.sin(beta)
-        n = w_eff / (ny + tan_delta * nx)
-        e = max(0.0, e + n * nx)  # no tension across a joint
+        n = (w_eff - c_force * (math.sin(beta) - tan_delta * math.cos(beta))) / (ny + tan_delta * nx)
+        e = max(0.0, e + n * nx - c_force * math.cos(beta))  # no tension across a joint
     return e
+
+
+def slice_cuts(sec, kinks_only=False):
+    """x of the slice boundaries: the sliding surface's ends and breaks, and (unless kinks_only) the
+    section's vertical joints and 90-degree joint sets."""
+    surface = sec["sliding_surface"]
+    x_start, x_end = surface[0][0], surface[-1][0]
+    cuts = {x for x, _ in surface[1:-1]}
+    if not kinks_only:
+        for j in sec.get("joints", []):
+            if abs(j[0][0] - j[1][0]) < 1e-9:
+                cuts.add(j[0][0])
+        for js in sec.get("joint_sets", []):
+            if js["angle"] == 90:
+                x = js["origin"][0]
+                while x > x_start:
+                    x -= js["spacing"]
+                while x < x_end:
+                    if x > x_start:
+                        cuts.add(x)
+                    x += js["spacing"]
+    return sorted({x_start, x_end} | {x for x in cuts if x_start < x < x_end})
+
+
+def section_slices(case, kinks_only=False):
+    """The case's slices from crown to toe: (effective weight N/m, base dip rad, base length m)."""
+    sec = case["section"]
+    ground, surface = sec["ground"], sec["sliding_surface"]
+    xs = slice_cuts(sec, kinks_only)
+    rho = case["materials"][sec["material"]]["density"] if "material" in sec \
+        else next(iter(case["materials"].values()))["density"]
+    g = -case.get("gravity", [0, -9.81])[1]
+    gamma_w = case.get("water", {}).get("unit_weight", 9810.0)
+    level = case.get("water", {}).get("level")
+    slices = []
+    for xa, xb in zip(xs, xs[1:]):
+        area, wet = slice_areas(ground, surface, xa, xb, level)
+        ya, yb = value_at(surface, xa, "right"), value_at(surface, xb, "left")
+        beta = math.atan2(ya - yb, xb - xa)
+        slices.append((rho * g * area - gamma_w * wet, beta, math.hypot(xb - xa, ya - yb)))
+    return slices
+
+
+def critical_friction(slices, tan_delta, cohesion=0.0):
+    """Friction angle (deg) of the sliding surface at which the slices are just in equilibrium."""
+    lo, hi = 0.0, 60.0  # phi (deg): the mass slides at lo and holds at hi
+    for _ in range(60):
+        mid = (lo + hi) / 2
+        if toe_thrust(slices, math.tan(math.radians(mid)), tan_delta, cohesion) > 0:
+            lo = mid
+        else:
+            hi = mid
+    return (lo + hi) / 2
 
 
 def main():
@@ -82,46 +143,13 @@ def main():
     ap.add_argument("--kinks-only", action="store_true", help="cut only at the breaks of the sliding surface")
     a = ap.parse_args()
     case = json.load(open(a.case))
-    sec = case["section"]
-    ground, surface = sec["ground"], sec["sliding_surface"]
-    x_end = surface[-1][0]
-    cuts = {x for x, _ in surface[1:-1]}
-    if not a.kinks_only:
-        for j in sec.get("joints", []):
-            if abs(j[0][0] - j[1][0]) < 1e-9:
-                cuts.add(j[0][0])
-        for js in sec.get("joint_sets", []):
-            if js["angle"] == 90:
-                x = js["origin"][0]
-                while x > 0:
-                    x -= js["spacing"]
-                while x < x_end:
-                    if x > 0:
-                        cuts.add(x)
-                    x += js["spacing"]
-    xs = sorted({0.0, x_end} | {x for x in cuts if 0 < x < x_end})
-    rho = next(iter(case["materials"].values()))["density"]
-    g = -case.get("gravity", [0, -9.81])[1]
-    gamma_w = case.get("water", {}).get("unit_weight", 9810.0)
     level = case.get("water", {}).get("level")
     default = case.get("default_joint")
     delta = a.delta if a.delta is not None else case["joints"][default]["friction_angle"]
-    slices = []
-    for xa, xb in zip(xs, xs[1:]):
-        area, wet = slice_areas(ground, surface, xa, xb, level)
-        ya, yb = value_at(surface, xa, "right"), value_at(surface, xb, "left")
-        beta = math.atan2(ya - yb, xb - xa)
-        slices.append((rho * g * area - gamma_w * wet, beta))
-    lo, hi = 0.0, 60.0  # phi (deg): the mass slides at lo and holds at hi
-    tan_d = math.tan(math.radians(delta))
-    for _ in range(60):
-        mid = (lo + hi) / 2
-        if toe_thrust(slices, math.tan(math.radians(mid)), tan_d) > 0:
-            lo = mid
-        else:
-            hi = mid
+    slices = section_slices(case, a.kinks_only)
+    phi = critical_friction(slices, math.tan(math.radians(delta)))
     print(f"{len(slices)} slices, interface friction {delta:g} deg, water level {level} m: "
-          f"critical friction {(lo + hi) / 2:.2f} deg")
+          f"critical friction {phi:.2f} deg")
 
 
 if __name__ == "__main__":
