@@ -8,7 +8,8 @@ cut by vertical joints every 50 m (one through the kink), its toe submerged by a
 equilibrium of those vertical slices (scripts/vajont_limit_equilibrium.py, extended to cohesion),
 for interface friction delta = 0 (Janbu-simplified-like: the weakest, so the highest critical
 cohesion) and delta = the internal joints' friction (the strongest, the lowest critical cohesion),
-and each slice's critical cohesion standing alone.
+and each slice's critical cohesion standing alone. The rigorous reference on the same slices
+(Spencer and Morgenstern-Price, force and moment equilibrium): scripts/spencer.py.
 
 Why: the case is built so that a block of the 30 deg segment alone needs far more cohesion (>= 2x)
 than the whole slide, whose flat, submerged toe acts as a buttress for the upper blocks. DDA's
