@@ -56,7 +56,7 @@ std::pair<model::Scene, double> planar() {
   const double h = 20, xc = 20, gap = 0.05, psi = 35 * M_PI / 180, t = std::tan(psi), cot60 = 1 / std::tan(M_PI / 3);
   model::Scene s;
   s.materials.push_back({"rock", 2600, 10e9, 0.25});
-  s.joints.push_back({"plane", 30 * M_PI / 180, 25e3, 0});
+  s.joints.push_back(model::JointProperties::coulomb("plane", 30 * M_PI / 180, 25e3));
   model::Block base, wedge;
   base.fixed = true;
   base.vertices = {{-10, -10}, {xc + 20, -10}, {xc + 20, h}, {xc + gap, h}, {xc + gap, (xc + gap) * t}, {0, 0}, {-5 * cot60, -5}, {-10, -5}};

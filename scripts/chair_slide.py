@@ -27,6 +27,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 sys.dont_write_bytecode = True  # no __pycache__ in the source tree
 sys.path.insert(0, HERE)
 from vajont_limit_equilibrium import section_slices, toe_thrust, critical_friction, value_at  # noqa: E402
+import spencer  # noqa: E402
 
 ROOT = os.path.dirname(HERE)
 CASE_PATH = os.path.join(ROOT, "cases", "chair_slide.json")
@@ -100,6 +101,12 @@ def make_case():
         ],
         "water": {"level": LEVEL},
         "analysis": {"duration": 6.0},
+        "expected": [
+            {"monitor": "crest", "quantity": "displacement", "at_most": 0.1,
+             "source": "Spencer on the same slices: critical c 66.2 kPa < 100 kPa, so the slide stands; "
+                       "the 0.1 m bound leaves room for its settlement under gravity (4 cm, measured)"},
+            {"monitor": "toe", "quantity": "displacement", "at_most": 0.01,
+             "source": "the toe buttress does not move when the slide stands (limit equilibrium)"}],
     }
     slices = section_slices(case)
     tan_phi = math.tan(math.radians(SLIDING_PHI))
@@ -119,8 +126,12 @@ def make_case():
         f"{c_hi / 1e3:.1f} kPa (interfaces without friction) to {c_lo / 1e3:.1f} kPa (interface friction "
         f"{INTERNAL_PHI:g} deg), so by limit equilibrium the slope holds, while a block of the "
         f"{UPPER_DIP:g} deg segment alone needs {c_single / 1e3:.1f} kPa: the flatter toe buttresses the "
-        "upper blocks. Whether DDA, whose bonds break once a contact slides, keeps that buttress is what the "
-        "case is for (ddaslope critical CASE --joint sliding_surface). Limit equilibrium: "
+        "upper blocks. Spencer's method on the same slices: "
+        f"{spencer.critical_cohesion(spencer.case_slices(case), tan_phi)[0] / 1e3:.1f} kPa "
+        f"(scripts/spencer.py cases/chair_slide.json --friction {SLIDING_PHI:g}). With softening joints (the "
+        "default) DDA keeps the buttress: critical c 67.0 kPa; with brittle bonds (weakening_distance 0, "
+        "original DDA) each upper block loses its bond as it slips and the answer is set by a single block, "
+        "260 kPa (calibration/chair_slide). Multi-wedge limit equilibrium: "
         f"scripts/chair_slide.py le --friction {SLIDING_PHI:g}. Regenerate: scripts/chair_slide.py case")
     return case
 

@@ -94,12 +94,15 @@ def main():
 
     # B2: cohesive block, stiff (rigid compared with its springs: the founding paper's setting).
     case, _ = incline_case(40, 10, 5, s0=15.0, length=30.0, rho=2000, g=10, phi_deg=20, c=42000, young=5e11)
+    case["joints"]["interface"]["weakening_distance"] = 0  # original DDA's brittle bond, as in the paper
     write("cohesive_block_42kpa.json", {
         "description": "B2 (founding paper's case): the A2 block (b = 10, h = 5 m, alpha = 40, phi = 20 degrees) "
                        "with cohesion c = 42 kPa, factor of safety (c b + N tan phi)/T = 1.087. The edge-to-edge "
                        "treatment (default) holds it. Run with --contact-treatment vertex to see original DDA "
                        "slide it: its upslope half fails first (threshold about 48 kPa for a block rigid compared "
-                       "with its springs, as here: E = 500 GPa, penalty 200 GN/m).",
+                       "with its springs, as here: E = 500 GPa, penalty 200 GN/m). The bond is brittle "
+                       "(weakening_distance 0: lost the moment a contact slides), as in the paper; with the "
+                       "default softening joint both treatments hold it (docs/contact-model.md).",
         **case,
         "analysis": {"duration": 1.0, "time_step": 0.001, "penalty": 2e11},
         "expected": [{"monitor": "centre", "quantity": "displacement", "at_most": 0.01,

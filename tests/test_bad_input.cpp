@@ -253,7 +253,7 @@ TEST(JobReader, BadJobs) {
   expectJobError(j, "parameters[0].max", "max > min");
   j = good;
   j["parameters"][0]["property"] = "strength";
-  expectJobError(j, "parameters[0].property", "cohesion, friction_angle or tensile_strength");
+  expectJobError(j, "parameters[0].property", "cohesion, friction_angle, tensile_strength, residual_cohesion");
   j = good;
   j["observations"][0]["type"] = "velocity";
   expectJobError(j, "observations[0].type", "series, factor_of_safety or runout");

@@ -47,16 +47,21 @@ TEST(EdgeContact, B1HoldsJustAboveAndSlidesJustBelowCriticalCohesion) {
 // a deformable block the toe takes more of the shear and the original treatment's error shrinks
 // (docs/contact-model.md).
 TEST(EdgeContact, B2EdgeHoldsWhereVertexSlides) {
-  const auto stiff = [](double c, ContactTreatment t) {
+  // The founding paper's bond is original DDA's: brittle, lost the moment a contact slides.
+  const auto stiff = [](double c, ContactTreatment t, bool brittle = true) {
     model::Scene s = a2(c, t);
     s.materials[0].youngModulus = 5e11;
     s.settings.penalty = 2e11;
+    if (brittle) s.joints[0].weakeningDistance = 0;
     return s;
   };
   EXPECT_TRUE(holds(stiff(42000, ContactTreatment::Edge)));
   EXPECT_FALSE(holds(stiff(42000, ContactTreatment::Vertex)));
   EXPECT_TRUE(holds(stiff(49000, ContactTreatment::Vertex)));  // above the 48.1 kPa estimate
   EXPECT_TRUE(holds(a2(42000, ContactTreatment::Edge)));         // default (deformable) block
+  // A softening joint (the default) keeps a sliding half's share of c·L until it has slipped δw;
+  // a rigid block cannot slip at one end only, so original DDA holds it too (issue #14).
+  EXPECT_TRUE(holds(stiff(42000, ContactTreatment::Vertex, false)));
 }
 
 // B3: c = 30 kPa (FS = 0.887) slides; once the bond is gone the block accelerates at the
@@ -110,27 +115,27 @@ TEST(EdgeContact, CohesiveJointHoldsAgainstToppingOnlyWithEnoughTension) {
 // The edge rule itself (pure): one state for both halves, judged on the totals.
 TEST(EdgeContact, RuleJudgesTotalsAndSplitsAtAPivot) {
   using contact::ContactState;
-  const contact::ContactStrength whole{std::tan(M_PI / 6), 1000, 400};  // c·L, σt·L
+  const contact::ContactStrength half{std::tan(M_PI / 6), 500, 200};  // c·L/2, σt·L/2 of each half
   const contact::HalfState locked{ContactState::Locked, 0, true};
   // Heel lightly loaded: alone it would fail (S1 = 600 > 500 + 100·0.577), but the totals hold:
   // S = 1000 ≤ 1000 + 1100·0.577.
-  auto [h, t] = contact::judgeEdgeContact(locked, locked, {100, 600, 0}, {1000, 400, 0}, whole);
+  auto [h, t] = contact::judgeEdgeContact(locked, locked, {100, 600, 0}, {1000, 400, 0}, half, half);
   EXPECT_EQ(h.state, ContactState::Locked);
   EXPECT_EQ(t.state, ContactState::Locked);
   EXPECT_TRUE(h.bonded && t.bonded);
   // Totals exceeded: both slide, same direction, bond lost together.
-  std::tie(h, t) = contact::judgeEdgeContact(locked, locked, {100, 900, 0}, {1000, 900, 0}, whole);
+  std::tie(h, t) = contact::judgeEdgeContact(locked, locked, {100, 900, 0}, {1000, 900, 0}, half, half);
   EXPECT_EQ(h.state, ContactState::Sliding);
   EXPECT_EQ(t.state, ContactState::Sliding);
   EXPECT_EQ(h.direction, t.direction);
   EXPECT_FALSE(h.bonded || t.bonded);
   // Heel tension beyond σt·L/2 = 200: the bond fails, the heel opens, the toe is a pivot.
-  std::tie(h, t) = contact::judgeEdgeContact(locked, locked, {-250, 0, 0}, {1000, 100, 0}, whole);
+  std::tie(h, t) = contact::judgeEdgeContact(locked, locked, {-250, 0, 0}, {1000, 100, 0}, half, half);
   EXPECT_EQ(h.state, ContactState::Open);
   EXPECT_EQ(t.state, ContactState::Locked);
   EXPECT_FALSE(t.bonded);
   // Tension within σt·L/2 on the heel: held by the bond.
-  std::tie(h, t) = contact::judgeEdgeContact(locked, locked, {-150, 0, 0}, {1000, 100, 0}, whole);
+  std::tie(h, t) = contact::judgeEdgeContact(locked, locked, {-150, 0, 0}, {1000, 100, 0}, half, half);
   EXPECT_EQ(h.state, ContactState::Locked);
   EXPECT_TRUE(h.bonded);
 }

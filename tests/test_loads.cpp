@@ -55,7 +55,7 @@ TEST(Loads, PairJointOverridesDefault) {
   model::Scene s = scenes::makeIncline(spec);
   const double slide = scenes::slidingAcceleration(spec) / 2;
   EXPECT_NEAR(measureAt(run(s), "centre", "displacement", 1.0), slide, 0.005 * slide);
-  s.joints.push_back({"rough", 40 * M_PI / 180, 0, 0});
+  s.joints.push_back(model::JointProperties::coulomb("rough", 40 * M_PI / 180, 0));
   s.pairJoints[{0, 1}] = 1;
   EXPECT_LT(measureAt(run(s), "centre", "displacement", std::nullopt), 1e-3 * spec.b);
 }

@@ -32,7 +32,7 @@ Planar planar(double psiDeg, double c, double phiDeg) {
   const double h = 20, xc = 20, gap = 0.05, psi = psiDeg * M_PI / 180, t = std::tan(psi);
   model::Scene s;
   s.materials.push_back({"rock", 2600, 10e9, 0.25});
-  s.joints.push_back({"plane", phiDeg * M_PI / 180, c, 0});
+  s.joints.push_back(model::JointProperties::coulomb("plane", phiDeg * M_PI / 180, c));
   model::Block base, block;
   base.id = "rock mass";
   base.fixed = true;

@@ -60,7 +60,7 @@ TEST(Water, SlopingPhreaticLineFollowsTheHead) {
 TEST(Water, RisingReservoirUnloadsAHangingBlock) {
   model::Scene s;
   s.materials.push_back({"rock", 2600, 5e9, 0.25});
-  s.joints.push_back({"j", 0.5, 0, 0});
+  s.joints.push_back(model::JointProperties::coulomb("j", 0.5, 0));
   model::Block b;
   b.id = "block";
   b.vertices = {{0, 0}, {2, 0}, {2, 1}, {0, 1}};

@@ -97,9 +97,14 @@ model::Scene sceneAt(const io::BackanalysisJob& job, const std::vector<double>& 
     const io::ParameterSpec& p = job.parameters[i];
     if (p.joint.empty()) continue;
     model::JointProperties& j = s.joints[jointNamed(s, p.joint, job.jobPath)];
+    // A residual above the peak is used as the peak (model::JointProperties), so the two can be
+    // searched over overlapping ranges.
     if (p.property == "cohesion") j.cohesion = x[i];
     else if (p.property == "friction_angle") j.frictionAngle = degToRad(x[i]);
-    else j.tensileStrength = x[i];
+    else if (p.property == "tensile_strength") j.tensileStrength = x[i];
+    else if (p.property == "residual_cohesion") j.residualCohesion = x[i];
+    else if (p.property == "residual_friction_angle") j.residualFrictionAngle = degToRad(x[i]);
+    else j.weakeningDistance = x[i];
   }
   return s;
 }

@@ -25,6 +25,7 @@ double critical(const ComparisonRow& row, model::ContactTreatment t, bool stiff,
     s.cohesion = c;
     model::Scene sc = model::makeInclineScene(s);
     sc.joints[0].tensileStrength = c;
+    sc.joints[0].weakeningDistance = 0;  // the founding paper's comparison is of original DDA's brittle bond
     sc.settings.contactTreatment = t;
     if (stiff) {
       sc.settings.penalty = 2e11;

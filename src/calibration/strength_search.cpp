@@ -147,11 +147,7 @@ FactorOfSafetyResult factorOfSafety(const model::Scene& scene, const std::vector
   const auto held = sharedEquilibrium(scene);
   CountedVerdict stableAt{[&](double f) {
     model::Scene trial = scene;
-    for (int j : reduced) {
-      trial.joints[j].cohesion = scene.joints[j].cohesion / f;
-      trial.joints[j].tensileStrength = scene.joints[j].tensileStrength / f;
-      trial.joints[j].frictionAngle = std::atan(std::tan(scene.joints[j].frictionAngle) / f);
-    }
+    for (int j : reduced) trial.joints[j] = scene.joints[j].reducedBy(f);
     return judgeStability(trial, s.verdict, held ? &*held : nullptr);
   }};
   FactorOfSafetyResult r;

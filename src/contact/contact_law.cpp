@@ -19,51 +19,63 @@ ContactJudgement judgeVertexContact(ContactState state, int direction, bool bond
   }
   const double tensionCapacity = bonded ? s.tensileForce : 0.0;
   if (r.normalForce < -tensionCapacity - tol.force) return {ContactState::Open, 0, false};
+  const bool bondedWhileSliding = bonded && s.bondSurvivesSlip;
   if (state == ContactState::Locked) {
     if (std::abs(r.lockedShear) > shearStrength(bonded, r.normalForce, s) + tol.force)
-      return {ContactState::Sliding, r.lockedShear > 0 ? 1 : -1, false};
+      return {ContactState::Sliding, r.lockedShear > 0 ? 1 : -1, bondedWhileSliding};
     return {ContactState::Locked, 0, bonded};
   }
-  // Sliding: friction opposite to `direction`; a reversed slip means friction has stopped it.
-  if (r.slip * direction < -tol.slip) return {ContactState::Locked, 0, false};
-  return {ContactState::Sliding, direction, false};
+  // Sliding: resistance opposite to `direction`; a reversed slip means it has stopped the contact.
+  if (r.slip * direction < -tol.slip) return {ContactState::Locked, 0, bondedWhileSliding};
+  return {ContactState::Sliding, direction, bondedWhileSliding};
 }
 
 std::pair<ContactJudgement, ContactJudgement> judgeEdgeContact(const HalfState& h1, const HalfState& h2,
                                                                const ContactResponse& r1,
                                                                const ContactResponse& r2,
-                                                               const ContactStrength& whole,
+                                                               const ContactStrength& s1,
+                                                               const ContactStrength& s2,
                                                                const StateTolerance& tol) {
-  const ContactStrength half{whole.tanPhi, whole.cohesionForce / 2, whole.tensileForce / 2};
-  const auto alone = [&](const HalfState& h, const ContactResponse& r, bool bonded) {
-    return judgeVertexContact(h.state, h.direction, bonded, r, half, tol);
+  const auto alone = [&](const HalfState& h, const ContactResponse& r, const ContactStrength& s, bool bonded) {
+    return judgeVertexContact(h.state, h.direction, bonded, r, s, tol);
   };
   if (h1.state == ContactState::Open || h2.state == ContactState::Open)
-    return {alone(h1, r1, h1.bonded), alone(h2, r2, h2.bonded)};
+    return {alone(h1, r1, s1, h1.bonded), alone(h2, r2, s2, h2.bonded)};
 
   bool bonded = h1.bonded && h2.bonded;
-  const double endTension = bonded ? half.tensileForce : 0.0;
-  if (r1.normalForce < -endTension - tol.force || r2.normalForce < -endTension - tol.force) {
-    // An end separates: the bond fails as a whole, the other half is the pivot.
-    return {alone(h1, r1, false), alone(h2, r2, false)};
+  const bool open1 = r1.normalForce < -(bonded ? s1.tensileForce : 0.0) - tol.force;
+  const bool open2 = r2.normalForce < -(bonded ? s2.tensileForce : 0.0) - tol.force;
+  if (open1 || open2) {
+    // An end separates and the other half is the pivot. A brittle bond fails as a whole (the
+    // founding paper's rule); a softening joint is damaged only where it opened, so the pivot
+    // keeps its own share of the bond (c·L/2, as a vertex-to-edge contact).
+    const bool pivotKeepsBond = s1.bondSurvivesSlip && s2.bondSurvivesSlip;
+    return {alone(h1, r1, s1, !open1 && pivotKeepsBond && h1.bonded),
+            alone(h2, r2, s2, !open2 && pivotKeepsBond && h2.bonded)};
   }
+  const bool bondedWhileSliding = bonded && s1.bondSurvivesSlip && s2.bondSurvivesSlip;
   const double n = r1.normalForce + r2.normalForce;
   if (h1.state == ContactState::Sliding && h2.state == ContactState::Sliding && h1.direction == h2.direction) {
     const int dir = h1.direction;
-    if ((r1.slip + r2.slip) * dir < -tol.slip) return {{ContactState::Locked, 0, false}, {ContactState::Locked, 0, false}};
-    return {{ContactState::Sliding, dir, false}, {ContactState::Sliding, dir, false}};
+    const ContactJudgement stopped{ContactState::Locked, 0, bondedWhileSliding};
+    if ((r1.slip + r2.slip) * dir < -tol.slip) return {stopped, stopped};
+    const ContactJudgement sliding{ContactState::Sliding, dir, bondedWhileSliding};
+    return {sliding, sliding};
   }
   // Locked (or halves in different states after a change of pairing): the shear each half carries,
-  // a locked spring's force or a sliding half's friction, against the strength of the whole.
-  const auto carried = [&](const HalfState& h, const ContactResponse& r) {
-    return h.state == ContactState::Locked ? r.lockedShear : h.direction * whole.tanPhi * std::max(0.0, r.normalForce);
+  // a locked spring's force or a sliding half's resistance, against the strength of the whole.
+  const auto carried = [&](const HalfState& h, const ContactResponse& r, const ContactStrength& s) {
+    return h.state == ContactState::Locked ? r.lockedShear : h.direction * shearStrength(h.bonded, r.normalForce, s);
   };
-  const double shear = carried(h1, r1) + carried(h2, r2);
+  const double shear = carried(h1, r1, s1) + carried(h2, r2, s2);
+  const ContactStrength whole{(s1.tanPhi + s2.tanPhi) / 2, s1.cohesionForce + s2.cohesionForce,
+                              s1.tensileForce + s2.tensileForce, bondedWhileSliding};
   if (std::abs(shear) > shearStrength(bonded, n, whole) + tol.force) {
     const int dir = shear > 0 ? 1 : -1;
-    return {{ContactState::Sliding, dir, false}, {ContactState::Sliding, dir, false}};
+    const ContactJudgement sliding{ContactState::Sliding, dir, bondedWhileSliding};
+    return {sliding, sliding};
   }
-  bonded = bonded && h1.state == ContactState::Locked && h2.state == ContactState::Locked;
+  if (!(h1.state == ContactState::Locked && h2.state == ContactState::Locked)) bonded = bondedWhileSliding;
   return {{ContactState::Locked, 0, bonded}, {ContactState::Locked, 0, bonded}};
 }
 

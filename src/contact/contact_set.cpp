@@ -41,6 +41,8 @@ void ContactSet::update(std::vector<ContactCandidate> candidates, const std::vec
         if (!it->closed()) continue;
         c.state = it->state;
         c.bonded = it->bonded;
+        c.slipDistance = it->slipDistance;
+        c.intact = it->intact;
         c.slideDirection = it->slideDirection;
         c.normalForce = it->normalForce;
         c.lockRatio = cand.ratio;

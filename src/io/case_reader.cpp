@@ -143,13 +143,34 @@ void readMaterials(const Reader& r, const json& doc, model::Scene& s, std::map<s
   }
 }
 
+/// Peak-to-residual softening of a joint (docs/case-format.md, "Joint").
+void readWeakening(const Reader& r, const json& jn, const std::string& p, model::JointProperties& jp) {
+  if (jn.contains("residual_friction_angle"))
+    jp.residualFrictionAngle = degToRad(r.numberIn(jn.at("residual_friction_angle"), p + ".residual_friction_angle",
+                                                   0, 90, false, true, "a friction angle in [0, 90) degrees"));
+  jp.residualCohesion = r.optionalIn(jn, p, "residual_cohesion", 0, 0, 1e12, false, false, "a cohesion ≥ 0 Pa");
+  if (jn.contains("weakening_distance"))
+    jp.weakeningDistance = r.numberIn(jn.at("weakening_distance"), p + ".weakening_distance", 0, 1e6, false, false,
+                                      "a slip distance ≥ 0 m (0: brittle)");
+  jp.weakeningLaw = r.choice(jn, p, "weakening_law", "linear", {"linear", "exponential"}) == "exponential"
+                        ? model::WeakeningLaw::Exponential
+                        : model::WeakeningLaw::Linear;
+  if (jp.residualFrictionAngle && *jp.residualFrictionAngle > jp.frictionAngle)
+    r.fail(p + ".residual_friction_angle", "expected a residual friction angle ≤ the peak friction_angle (" +
+                                               std::to_string(radToDeg(jp.frictionAngle)) + "°)");
+  if (jp.residualCohesion > jp.cohesion)
+    r.fail(p + ".residual_cohesion", "expected a residual cohesion ≤ the peak cohesion (" +
+                                         std::to_string(jp.cohesion) + " Pa)");
+}
+
 void readJoints(const Reader& r, const json& doc, model::Scene& s, std::map<std::string, int>& ids) {
   const json& joints = r.required(doc, "", "joints");
   r.object(joints, "joints");
   if (joints.empty()) r.fail("joints", "expected at least one joint");
   for (const auto& [name, jn] : joints.items()) {
     const std::string p = "joints." + name;
-    r.onlyKeys(jn, p, {"friction_angle", "cohesion", "tensile_strength", "bond"});
+    r.onlyKeys(jn, p, {"friction_angle", "cohesion", "tensile_strength", "bond", "residual_friction_angle",
+                       "residual_cohesion", "weakening_distance", "weakening_law"});
     model::JointProperties jp;
     jp.name = name;
     jp.frictionAngle = degToRad(r.numberIn(r.required(jn, p, "friction_angle"), p + ".friction_angle",
@@ -160,6 +181,7 @@ void readJoints(const Reader& r, const json& doc, model::Scene& s, std::map<std:
     const std::string bond = r.choice(jn, p, "bond", "initial", {"initial", "none", "always"});
     jp.bond = bond == "none" ? model::BondPolicy::None
                              : (bond == "always" ? model::BondPolicy::Always : model::BondPolicy::Initial);
+    readWeakening(r, jn, p, jp);
     ids[name] = static_cast<int>(s.joints.size());
     s.joints.push_back(jp);
   }

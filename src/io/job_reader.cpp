@@ -95,13 +95,16 @@ BackanalysisJob readJob(const std::string& path) {
     } else {
       s.joint = r.string(r.required(j, p, "joint"), p + ".joint");
       s.property = r.string(r.required(j, p, "property"), p + ".property");
-      if (s.property != "cohesion" && s.property != "friction_angle" && s.property != "tensile_strength")
-        r.fail(p + ".property", "expected cohesion, friction_angle or tensile_strength, found \"" + s.property + "\"");
+      static const std::set<std::string> known{"cohesion", "friction_angle", "tensile_strength",
+                                               "residual_cohesion", "residual_friction_angle", "weakening_distance"};
+      if (!known.count(s.property))
+        r.fail(p + ".property", "expected cohesion, friction_angle, tensile_strength, residual_cohesion, "
+                                "residual_friction_angle or weakening_distance, found \"" + s.property + "\"");
     }
     s.min = r.number(r.required(j, p, "min"), p + ".min");
     s.max = r.number(r.required(j, p, "max"), p + ".max");
     if (!(s.max > s.min)) r.fail(p + ".max", "expected max > min");
-    if (s.property == "friction_angle" && (s.min < 0 || s.max >= 90))
+    if ((s.property == "friction_angle" || s.property == "residual_friction_angle") && (s.min < 0 || s.max >= 90))
       r.fail(p, "friction angle bounds must lie in [0, 90) degrees");
     if (j.contains("start")) {
       s.start = r.number(j.at("start"), p + ".start");

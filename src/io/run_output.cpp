@@ -31,6 +31,24 @@ MonitorSample sampleOf(const solver::Simulation& sim, int m) {
   return {u.x(), u.y(), v.x(), v.y()};
 }
 
+/// Every joint's strength as the run used it, the automatic weakening distance resolved.
+nlohmann::ordered_json jointsEcho(const model::Scene& scene) {
+  nlohmann::ordered_json out = nlohmann::ordered_json::object();
+  const double w0 = scene.modelHalfSize();
+  for (const model::JointProperties& jp : scene.joints)
+    out[jp.name] = {{"friction_angle", radToDeg(jp.frictionAngle)},
+                    {"cohesion", jp.cohesion},
+                    {"tensile_strength", jp.tensileStrength},
+                    {"residual_friction_angle", radToDeg(jp.residualFriction())},
+                    {"residual_cohesion", jp.residualCohesionUsed()},
+                    {"weakening_distance", jp.weakeningDistanceIn(w0)},
+                    {"weakening_distance_origin", jp.weakeningDistance ? "case" : "automatic (1e-4 w0)"},
+                    {"weakening_law", jp.weakeningLaw == model::WeakeningLaw::Linear ? "linear" : "exponential"},
+                    {"bond", jp.bond == model::BondPolicy::Initial ? "initial"
+                                                                    : (jp.bond == model::BondPolicy::None ? "none" : "always")}};
+  return out;
+}
+
 /// history.csv is written under a temporary name and renamed only when the run completed.
 class HistoryWriter {
  public:
@@ -113,6 +131,7 @@ void writeSummary(const fs::path& dir, const model::Scene& scene, const RunOptio
     ex.push_back({{"monitor", r.expectation.monitor}, {"quantity", r.expectation.quantity},
                   {"actual", r.actual}, {"passed", r.passed}, {"text", r.describe()}});
   j["expected"] = ex;
+  j["joints"] = jointsEcho(scene);
   const model::AnalysisSettings& s = scene.settings;
   j["settings"] = {{"duration", s.duration},
                    {"time_step", s.timeStep},

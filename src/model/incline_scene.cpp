@@ -13,7 +13,7 @@ Scene makeInclineScene(const InclineSpec& s) {
   sc.description = "block on an incline";
   sc.gravity = {0, -s.g};
   sc.materials.push_back({"rock", s.density, s.young, 0.25});
-  sc.joints.push_back({"interface", degToRad(s.phiDeg), s.cohesion, 0});
+  sc.joints.push_back(model::JointProperties::coulomb("interface", degToRad(s.phiDeg), s.cohesion));
   Block ramp;
   ramp.id = "ramp";
   ramp.fixed = true;

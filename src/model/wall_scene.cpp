@@ -10,7 +10,7 @@ Scene makeBrickWall(int n) {
   Scene s;
   s.description = "brick wall";
   s.materials.push_back({"rock", 2600, 10e9, 0.25});
-  s.joints.push_back({"joint", 35 * M_PI / 180, 0, 0});
+  s.joints.push_back(model::JointProperties::coulomb("joint", 35 * M_PI / 180, 0));
   const int perRow = std::max(2, static_cast<int>(std::lround(std::sqrt(2.0 * n))));
   const double bw = 2, bh = 1, width = perRow * bw;
   const auto add = [&](std::string id, bool fixed, std::vector<Vec2> v) {

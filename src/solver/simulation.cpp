@@ -54,6 +54,7 @@ Simulation::Simulation(model::Scene scene)
     : scene_(std::move(scene)),
       stepSize_(scene_.settings.timeStep, scene_.settings.stepCutFactor) {
   w0_ = scene_.modelHalfSize();
+  for (model::JointProperties& j : scene_.joints) j.weakeningDistance = j.weakeningDistanceIn(w0_);
   for (const model::Block& b : scene_.blocks) mass_.push_back(scene_.materials[b.material].density * b.moments.area);
   // Shi's step limit g2·w0 scales with the model. In a kilometre slope with a 15 m wedge it
   // exceeds the wedge, and the contact search (2.5 times the limit) then pairs corners farther
@@ -169,12 +170,9 @@ std::vector<contact::ContactJudgement> Simulation::judgeContacts(
     }
     if (p < static_cast<int>(q)) continue;  // judged with its partner
     const Contact& o = cs[p];
-    contact::ContactStrength whole = strengthOf(c);
-    whole.cohesionForce *= 2;  // strengthOf gives a half's share (L/2)
-    whole.tensileForce *= 2;
     const auto [j1, j2] = contact::judgeEdgeContact({c.state, c.slideDirection, c.bonded},
                                                     {o.state, o.slideDirection, o.bonded}, response[q],
-                                                    response[p], whole, tol);
+                                                    response[p], strengthOf(c), strengthOf(o), tol);
     out[q] = j1;
     out[p] = j2;
   }
@@ -187,10 +185,12 @@ double Simulation::edgeLength(const Contact& c) const {
 }
 
 contact::ContactStrength Simulation::strengthOf(const Contact& c) const {
-  const model::JointProperties& j = scene_.joints[c.joint];
   // Original DDA: each vertex-to-edge half of an edge-to-edge contact carries c·L/2.
-  const double share = c.geometry.overlap / 2;
-  return {std::tan(j.frictionAngle), j.cohesion * share, j.tensileStrength * share};
+  return contact::contactStrength(scene_.joints[c.joint], c.intact, c.geometry.overlap / 2);
+}
+
+double Simulation::slidingResistance(const Contact& c) const {
+  return contact::shearStrength(c.bonded, c.normalForce, strengthOf(c));
 }
 
 void Simulation::assembleBlockTerms(double dt, Regime regime, std::vector<Mat6>& k, std::vector<Vec6>& f,
@@ -331,9 +331,9 @@ Simulation::Attempt Simulation::tryStep(double dt, Regime regime, bool freezeCyc
       if (c.state == ContactState::Locked) {
         addForce(c, -ps * kin[q].shearLocked0, kin[q].shearLocked);
       } else {
-        // Friction N tanφ opposite to the slip, as a pair of point loads: K stays symmetric.
-        const double friction = std::tan(scene_.joints[c.joint].frictionAngle) * std::max(0.0, c.normalForce);
-        addForce(c, -c.slideDirection * friction, kin[q].shearStep);
+        // Friction N tanφ (plus c·L while a softening bond lasts) opposite to the slip, as a pair
+        // of point loads: K stays symmetric.
+        addForce(c, -c.slideDirection * slidingResistance(c), kin[q].shearStep);
       }
     }
     if (followFactor && stiffnessChanged && factorSprings_.valid()) {
@@ -393,12 +393,13 @@ Simulation::Attempt Simulation::tryStep(double dt, Regime regime, bool freezeCyc
         // sliding keeps the friction force it carried (force continuity), or the load it drops
         // would jump onto its neighbours and break them.
         c.lockRatio = c.geometry.ratio;
-        if (c.state == ContactState::Sliding) {
-          const double friction = std::tan(scene_.joints[c.joint].frictionAngle) * std::max(0.0, c.normalForce);
-          c.lockRatio -= c.slideDirection * friction / (ps * edgeLength(c));
-        }
+        if (c.state == ContactState::Sliding)
+          c.lockRatio -= c.slideDirection * slidingResistance(c) / (ps * edgeLength(c));
         kin[q] = assembly::linearise(scene_.blocks[c.key().vertexBlock], scene_.blocks[c.key().edgeBlock], c);
       }
+      // A brittle joint's contact drops to its residual strength the moment it slides.
+      if (j.state == ContactState::Sliding && *scene_.joints[c.joint].weakeningDistance <= 0) c.intact = 0;
+      c.stepSlip = j.state == ContactState::Sliding ? r.slip : 0.0;
       c.state = j.state;
       c.slideDirection = j.direction;
       c.bonded = j.bonded;
@@ -451,7 +452,7 @@ bool Simulation::solveSystem(const Eigen::VectorXd& rhs, Eigen::VectorXd& d) {
   return true;
 }
 
-void Simulation::commit(const Attempt& a, double dt) {
+void Simulation::commit(const Attempt& a, double dt, bool weakens) {
   Stopwatch sw;
   const bool dynamic = scene_.settings.mode == model::AnalysisMode::Dynamic;
   const auto movePoint = [&](model::BlockPoint& p) {
@@ -473,6 +474,13 @@ void Simulation::commit(const Attempt& a, double dt) {
     blk.applyDisplacement(d);
   }
   contacts_.contacts() = a.contacts;
+  if (weakens)
+    for (Contact& c : contacts_.contacts()) {
+      // A softening joint loses strength with the slip accumulated by the accepted steps.
+      c.slipDistance += std::abs(c.stepSlip);
+      const model::JointProperties& j = scene_.joints[c.joint];
+      if (*j.weakeningDistance > 0) c.intact = std::min(c.intact, contact::remainingStrength(j, c.slipDistance));
+    }
   stats_.symbolicAnalyses = linearSolver_.symbolicAnalyses();
   stats_.factorisations = linearSolver_.stats().factorisations;
   stats_.factorUpdates = linearSolver_.stats().factorModifications;
@@ -508,7 +516,10 @@ bool Simulation::settle(Regime regime, double& dt, double largestDt) {
       if (firstRest) break;
       return false;
     }
-    commit(a, dt);
+    // Slip while the model settles under gravity switched on at once is an artefact of that start
+    // (in nature the slope was loaded over its history), so it does not soften a joint; a brittle
+    // bond that slides is still lost (original DDA).
+    commit(a, dt, false);
     ++stats_.equilibriumSteps;
     const double worst = largestVertexDisplacement(a);
     stats_.equilibriumResidual = 2 * worst / (dt * dt) / std::max(scene_.gravity.norm(), 1e-3);
@@ -669,7 +680,7 @@ StepRecord Simulation::advance() {
     if (a.converged) {
       if (a.frozeContacts) ++stats_.frozenSteps;
       for (int i = 0; i < nActive_; ++i) loadWork_ += a.loads[i].dot(a.d.segment<6>(6 * i));
-      commit(a, dt);
+      commit(a, dt, true);
       time_ = (dt == remaining) ? scene_.settings.duration : time_ + dt;
       stepSize_.accepted(dt, cuts > 0);
       ++stats_.steps;

@@ -37,6 +37,10 @@ struct Contact {
   double normalOffset = 0;         ///< initial gap taken as touching (m)
   double normalForce = 0;          ///< N from the latest solution (N/m), compression > 0
   double shearForce = 0;           ///< shear spring force from the latest solution (N/m)
+  double slipDistance = 0;         ///< slip accumulated while sliding, all steps (m)
+  double stepSlip = 0;             ///< slip in the step being solved, while sliding (m)
+  /// Fraction of the joint's peak-above-residual strength left (contact/joint_strength.hpp).
+  double intact = 1;
 
   const ContactKey& key() const { return geometry.key; }
   bool closed() const { return state != ContactState::Open; }

@@ -3,15 +3,9 @@
 #include <utility>
 
 #include "ddaslope/contact/contact.hpp"
+#include "ddaslope/contact/joint_strength.hpp"
 
 namespace ddaslope::contact {
-
-/// Strength of one contact while intact: c·Lc and σt·Lc as forces per metre of thickness.
-struct ContactStrength {
-  double tanPhi = 0;
-  double cohesionForce = 0;   ///< N/m, acts only while bonded
-  double tensileForce = 0;    ///< N/m, acts only while bonded
-};
 
 /// Round-off guard: a state changes only when its criterion is exceeded by this margin, so
 /// contacts carrying no load (N at round-off level) do not flip state on noise every iteration.
@@ -40,8 +34,9 @@ double shearStrength(bool bonded, double normalForce, const ContactStrength& s);
 /// Original DDA rule for one vertex-to-edge contact (Shi 1988):
 /// open → locked when the vertex penetrates; closed → open when the normal force is a tension
 /// beyond the bond's tensile capacity (0 once broken); locked → sliding when |shear| exceeds the
-/// strength; sliding → locked when the slip reverses against the friction. Sliding or opening
-/// breaks the bond for good.
+/// strength; sliding → locked when the slip reverses against the friction. Opening breaks the
+/// bond for good; so does sliding, unless the joint softens with slip (`bondSurvivesSlip`): then
+/// a sliding contact resists with c·L + N tanφ of its current (softened) strength.
 ContactJudgement judgeVertexContact(ContactState state, int direction, bool bonded,
                                     const ContactResponse& r, const ContactStrength& s,
                                     const StateTolerance& tol = {});
@@ -56,18 +51,20 @@ struct HalfState {
 /// The founding paper's rule (Zhang et al. 2014; dda-method.md §5): the two vertex-to-edge halves
 /// of one edge-to-edge contact of overlap L are judged as one contact.
 /// - Shear: total S = S1 + S2 against c·L + (N1 + N2) tanφ while intact, N tanφ after; one state
-///   (locked or sliding, one direction) for both halves; the bond is lost by both at once.
+///   (locked or sliding, one direction) for both halves; the bond is lost by both at once (kept
+///   while sliding if the joint softens with slip).
 /// - Tension is judged at the ends: two end springs stand for a linear stress distribution whose
 ///   end stress is N_k/(L/2), so an end separates when N_k < −σt·L/2 (pure tension: N1 + N2 <
 ///   −σt·L). When an end separates the whole bond fails: that half opens and the other carries
 ///   on alone as a vertex-to-edge contact at the pivot, friction only (toppling).
 /// - While either half is open the pair is not an edge contact: each half is judged alone with
 ///   half the bond (c·L/2, σt·L/2), as original DDA does.
-/// `whole` holds c·L and σt·L of the entire contact.
+/// `s1`, `s2`: each half's strength over L/2 (the halves may have slipped, so softened, apart).
 std::pair<ContactJudgement, ContactJudgement> judgeEdgeContact(const HalfState& h1, const HalfState& h2,
                                                                const ContactResponse& r1,
                                                                const ContactResponse& r2,
-                                                               const ContactStrength& whole,
+                                                               const ContactStrength& s1,
+                                                               const ContactStrength& s2,
                                                                const StateTolerance& tol = {});
 
 /// Rule used while bringing the scene to equilibrium: strengths held, so a closed contact

@@ -11,7 +11,8 @@ namespace ddaslope::io {
 
 struct ParameterSpec {
   std::string name;
-  /// Either a joint property ("cohesion" Pa, "friction_angle" degrees, "tensile_strength" Pa) of
+  /// Either a joint property ("cohesion", "residual_cohesion", "tensile_strength" Pa;
+  /// "friction_angle", "residual_friction_angle" degrees; "weakening_distance" m) of
   /// `joint`, or any number of the case at `jsonPath`.
   std::string joint, property, jsonPath;
   double min = 0, max = 0;

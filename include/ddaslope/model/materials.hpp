@@ -1,4 +1,5 @@
 #pragma once
+#include <optional>
 #include <string>
 
 namespace ddaslope::model {
@@ -18,13 +19,46 @@ enum class BondPolicy {
   Always,   ///< contacts formed later are intact too (a cementing joint)
 };
 
-/// Mohr-Coulomb joint with tension cut-off. Angles are radians inside the code.
+/// How a joint's strength falls from peak to residual with accumulated slip δ (docs/contact-model.md).
+enum class WeakeningLaw {
+  Linear,       ///< remaining fraction 1 − δ/δw, residual from δ = δw on
+  Exponential,  ///< remaining fraction exp(−δ/δw): 63 % lost at δw, 95 % at 3 δw
+};
+
+/// The automatic weakening distance as a fraction of w0 (half the model's larger side): a tenth
+/// of the searches' default failure displacement, so a trial judged failing has lost its peak
+/// strength, while a slope at rest has not (docs/calibration.md, the chair-shaped slide).
+constexpr double kAutomaticWeakeningRatio = 1e-4;
+
+/// Mohr-Coulomb joint with tension cut-off, softening from peak (c, φ, σt) to residual
+/// (c_r, φ_r, 0) with slip. Angles are radians inside the code.
 struct JointProperties {
   std::string name;
-  double frictionAngle = 0;    ///< φ (rad)
-  double cohesion = 0;         ///< c (Pa)
-  double tensileStrength = 0;  ///< σt (Pa)
+  double frictionAngle = 0;    ///< peak φ (rad)
+  double cohesion = 0;         ///< peak c (Pa)
+  double tensileStrength = 0;  ///< σt (Pa), residual 0
   BondPolicy bond = BondPolicy::Initial;
+  /// Residual φ_r (rad); unset: the peak φ (friction does not soften). Used as min(φ_r, φ), so a
+  /// search that lowers the peak below it softens nothing.
+  std::optional<double> residualFrictionAngle;
+  double residualCohesion = 0;  ///< c_r (Pa), used as min(c_r, c); acts only on intact contacts
+  /// Slip δw (m) over which peak falls to residual. 0: brittle, the bond (c, σt) and the peak φ
+  /// are lost the moment a contact slides (original DDA). Unset: automatic,
+  /// kAutomaticWeakeningRatio × w0, resolved when a simulation starts (docs/contact-model.md).
+  std::optional<double> weakeningDistance;
+  WeakeningLaw weakeningLaw = WeakeningLaw::Linear;
+
+  /// A joint of constant strength (no softening besides the brittle bond).
+  static JointProperties coulomb(std::string name, double frictionAngle, double cohesion = 0, double tensileStrength = 0);
+  /// φ_r as used: the residual friction, never above the peak.
+  double residualFriction() const;
+  /// δw as used in a model of half-size w0: the set distance, or the automatic one.
+  double weakeningDistanceIn(double w0) const { return weakeningDistance.value_or(kAutomaticWeakeningRatio * w0); }
+  /// c_r as used, never above the peak.
+  double residualCohesionUsed() const;
+  /// Strength reduction by F (Dawson et al. 1999, for peak and residual alike): c/F, σt/F,
+  /// atan(tan φ/F), c_r/F and atan(tan φ_r/F); the weakening distance is kept.
+  JointProperties reducedBy(double factor) const;
 };
 
 }  // namespace ddaslope::model

@@ -134,10 +134,13 @@ class Simulation {
   /// Block terms of a step; `loads` receives the water and point-load part of f (its work).
   void assembleBlockTerms(double dt, Regime regime, std::vector<Mat6>& k, std::vector<Vec6>& f,
                           std::vector<Vec6>& loads) const;
-  void commit(const Attempt& a, double dt);
+  /// Accepts an attempt; `weakens`: its slip softens the joints (analysis steps only).
+  void commit(const Attempt& a, double dt, bool weakens);
   /// Solves matrix_ d = rhs (6 per active block); rigid blocks solve for their 3 unknowns.
   bool solveSystem(const Eigen::VectorXd& rhs, Eigen::VectorXd& d);
   contact::ContactStrength strengthOf(const contact::Contact& c) const;
+  /// Shear a sliding contact resists with: N tanφ, plus c·L while a softening bond lasts.
+  double slidingResistance(const contact::Contact& c) const;
   /// Finds the two halves of every edge-to-edge contact (partner_).
   void pairEdgeHalves();
   /// States after a solve: vertex rule per contact, or edge rule per pair (contact_treatment).

@@ -1,0 +1,92 @@
+#!/usr/bin/env python3
+"""Critical cohesion of a chair-shaped multi-block slide against the weakening distance, the block
+size and the settings, beside limit equilibrium on the same slices (issue #14).
+
+The slide is cases/chair_slide.json (scripts/chair_slide.py): a 30 deg bedding segment buttressed
+by an 8 deg toe, vertical joints every 50 m. For block sizes 25, 50 and 100 m (the joint set's
+spacing, always through the kink) it prints the critical cohesion of the sliding surface at
+phi = 18 deg from
+- limit equilibrium on the same vertical slices: Spencer, Morgenstern-Price (half-sine) and the
+  multi-wedge bounds (interfaces without friction, and at the joints' 40 deg), scripts/spencer.py;
+- one block of the 30 deg segment standing alone (closed form);
+- ddaslope `critical` with the default (softening, automatic distance) joint, with brittle bonds
+  (weakening_distance 0, original DDA) and with set distances;
+and, for the 50 m blocks, the default joint under other settings.
+
+Run from the repository root after building:
+    python3 calibration/chair_slide/study.py [--bin build/ddaslope] [--quick]
+It takes about 2 minutes (--quick: the 50 m blocks only).
+"""
+import argparse, copy, json, math, os, re, subprocess, sys, tempfile
+
+sys.dont_write_bytecode = True
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+sys.path.insert(0, os.path.join(ROOT, "scripts"))
+import spencer  # noqa: E402
+from chair_slide import critical_cohesion as multi_wedge, single_block_cohesion  # noqa: E402
+from vajont_limit_equilibrium import section_slices  # noqa: E402
+
+PHI = 18.0
+DISTANCES = [None, 0.0, 0.01, 0.03, 0.3, 1.0]  # None: the automatic default
+SETTINGS = [("vertex treatment", ["--contact-treatment", "vertex"]), ("accurate preset", ["--preset", "accurate"]),
+            ("Δt 1 ms", ["--time-step", "0.001"]), ("1 thread", ["--threads", "1"]),
+            ("fast preset", ["--preset", "fast"]), ("rigid blocks", ["--blocks", "rigid"])]
+
+
+def ddaslope_critical(binary, case_path, extra):
+    """Critical cohesion (Pa) and forward runs from `ddaslope critical --json`."""
+    cmd = [binary, "critical", case_path, "--joint", "sliding_surface", "--solve", "cohesion",
+           "--friction", str(PHI), "--width", "300", "--json"] + extra
+    out = subprocess.run(cmd, check=True, capture_output=True, text=True).stdout
+    r = json.loads(out)
+    return r["critical"], r["forward_runs"]
+
+
+def limit_equilibrium(case):
+    tan_phi = math.tan(math.radians(PHI))
+    slices = section_slices(case)
+    return {
+        "spencer": spencer.critical_cohesion(spencer.case_slices(case), tan_phi)[0],
+        "morgenstern-price": spencer.critical_cohesion(spencer.case_slices(case), tan_phi, "morgenstern-price")[0],
+        "wedges δ=0": multi_wedge(slices, tan_phi, 0.0),
+        "wedges δ=40°": multi_wedge(slices, tan_phi, math.tan(math.radians(40))),
+        "single block": max(single_block_cohesion(*s, tan_phi) for s in slices),
+    }, len(slices)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--bin", default=os.path.join(ROOT, "build", "ddaslope"))
+    ap.add_argument("--quick", action="store_true", help="50 m blocks only")
+    a = ap.parse_args()
+    base = json.load(open(os.path.join(ROOT, "cases", "chair_slide.json")))
+    kpa = lambda v: f"{v / 1e3:.1f}"
+    with tempfile.TemporaryDirectory() as tmp:
+        print(f"Critical cohesion (kPa) of the chair slide's sliding surface at φ = {PHI:g}°\n")
+        print("| blocks | Spencer | M–P | wedges δ = 0 / 40° | one block alone | ddaslope default | brittle (δw = 0) | "
+              + " | ".join(f"δw = {d:g} m" for d in DISTANCES[2:]) + " |")
+        print("|---" * (7 + len(DISTANCES) - 2) + "|")
+        for spacing in ([50] if a.quick else [25, 50, 100]):
+            case = copy.deepcopy(base)
+            case["section"]["joint_sets"][0]["spacing"] = spacing
+            case.pop("expected", None)
+            path = os.path.join(tmp, f"chair_{spacing}.json")
+            json.dump(case, open(path, "w"))
+            le, n = limit_equilibrium(case)
+            dda = []
+            for d in DISTANCES:
+                extra = [] if d is None else ["--set", f"joints.sliding_surface.weakening_distance={d}"]
+                dda.append(ddaslope_critical(a.bin, path, extra)[0])
+            print(f"| {n} × {spacing} m | {kpa(le['spencer'])} | {kpa(le['morgenstern-price'])} | "
+                  f"{kpa(le['wedges δ=0'])} / {kpa(le['wedges δ=40°'])} | {kpa(le['single block'])} | "
+                  + " | ".join(kpa(v) for v in dda) + " |", flush=True)
+        path = os.path.join(ROOT, "cases", "chair_slide.json")
+        print("\nThe default joint on the 50 m blocks under other settings (ddaslope critical, kPa)\n")
+        print("| setting | critical c | forward runs |\n|---|---|---|")
+        for label, extra in SETTINGS:
+            c, runs = ddaslope_critical(a.bin, path, extra)
+            print(f"| {label} | {kpa(c)} | {runs} |", flush=True)
+
+
+if __name__ == "__main__":
+    main()

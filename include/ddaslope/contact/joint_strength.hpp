@@ -1,0 +1,28 @@
+#pragma once
+// A joint's strength as a contact sees it: peak softening to residual with slip (Mohr-Coulomb with
+// tension cut-off). Apart from the contact-state rules, which only compare forces with it.
+#include "ddaslope/model/materials.hpp"
+
+namespace ddaslope::contact {
+
+/// Strength of one contact (or one half of an edge-to-edge contact) as forces per metre of
+/// thickness over its share L of the contact length.
+struct ContactStrength {
+  double tanPhi = 0;
+  double cohesionForce = 0;   ///< c·L (N/m), acts only while bonded
+  double tensileForce = 0;    ///< σt·L (N/m), acts only while bonded
+  /// A joint with a weakening distance keeps its bond while it slides (the strength falls with
+  /// the slip instead); a brittle one loses it the moment it slides.
+  bool bondSurvivesSlip = false;
+};
+
+/// Fraction w ∈ [0, 1] of the peak-above-residual strength left after an accumulated slip δ (m):
+/// 1 − δ/δw (linear) or exp(−δ/δw) (exponential). A brittle joint (δw = 0) has 1 until it slides;
+/// the state rules then set 0 at once. The joint's distance must be resolved (set).
+double remainingStrength(const model::JointProperties& j, double slip);
+
+/// The strength of a contact share of length `length` whose remaining fraction is `intact`:
+/// tanφ = tanφ_r + (tanφ − tanφ_r)·w, c = c_r + (c − c_r)·w, σt·w.
+ContactStrength contactStrength(const model::JointProperties& j, double intact, double length);
+
+}  // namespace ddaslope::contact
