@@ -105,6 +105,30 @@ TEST(CaseReader, UnknownKeys) {
   expectError(d, "extra", "unknown key");
 }
 
+// Softening joints (issue #14): the residual cannot exceed the peak; the law is one of two.
+TEST(CaseReader, BadSofteningJoints) {
+  json d = minimal();
+  d["joints"]["bedding"]["residual_friction_angle"] = 25;  // peak 20
+  expectError(d, "joints.bedding.residual_friction_angle", "≤ the peak friction_angle");
+  d = minimal();
+  d["joints"]["bedding"]["cohesion"] = 1000;
+  d["joints"]["bedding"]["residual_cohesion"] = 2000;
+  expectError(d, "joints.bedding.residual_cohesion", "≤ the peak cohesion");
+  d = minimal();
+  d["joints"]["bedding"]["weakening_distance"] = -0.1;
+  expectError(d, "joints.bedding.weakening_distance", "slip distance ≥ 0");
+  d = minimal();
+  d["joints"]["bedding"]["weakening_law"] = "cubic";
+  expectError(d, "joints.bedding.weakening_law", "linear");
+  // Accepted: the set distance is kept, the residual friction used as given.
+  d = minimal();
+  d["joints"]["bedding"]["residual_friction_angle"] = 12;
+  d["joints"]["bedding"]["weakening_distance"] = 0.05;
+  const model::Scene s = io::parseCase(d.dump(), "case.json");
+  EXPECT_DOUBLE_EQ(*s.joints[0].weakeningDistance, 0.05);
+  EXPECT_NEAR(s.joints[0].residualFriction(), 12 * M_PI / 180, 1e-15);
+}
+
 TEST(CaseReader, BadPolygons) {
   json d = minimal();
   d["blocks"][1]["vertices"] = json::parse("[[2,1],[4,2],[4,1],[2,2]]");  // bow tie

@@ -3,8 +3,8 @@
 size and the settings, beside limit equilibrium on the same slices (issue #14).
 
 The slide is cases/chair_slide.json (scripts/chair_slide.py): a 30 deg bedding segment buttressed
-by an 8 deg toe, vertical joints every 50 m. For block sizes 25, 50 and 100 m (the joint set's
-spacing, always through the kink) it prints the critical cohesion of the sliding surface at
+by an 8 deg toe, vertical joints every 50 m. For block sizes 40, 50 and 100 m (the joint set's
+spacing, always through the kink; narrower columns, h/b > 1/tan 30°, topple) it prints the critical cohesion of the sliding surface at
 phi = 18 deg from
 - limit equilibrium on the same vertical slices: Spencer, Morgenstern-Price (half-sine) and the
   multi-wedge bounds (interfaces without friction, and at the joints' 40 deg), scripts/spencer.py;
@@ -15,7 +15,7 @@ and, for the 50 m blocks, the default joint under other settings.
 
 Run from the repository root after building:
     python3 calibration/chair_slide/study.py [--bin build/ddaslope] [--quick]
-It takes about 2 minutes (--quick: the 50 m blocks only).
+It takes about 3 minutes (--quick: the 50 m blocks only; --spacing 25 adds toppling columns).
 """
 import argparse, copy, json, math, os, re, subprocess, sys, tempfile
 
@@ -58,6 +58,8 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--bin", default=os.path.join(ROOT, "build", "ddaslope"))
     ap.add_argument("--quick", action="store_true", help="50 m blocks only")
+    ap.add_argument("--spacing", type=float, action="append",
+                    help="block width (m), repeatable; default 40, 50, 100 (25 m columns topple: b/h < tan 30°)")
     a = ap.parse_args()
     base = json.load(open(os.path.join(ROOT, "cases", "chair_slide.json")))
     kpa = lambda v: f"{v / 1e3:.1f}"
@@ -66,7 +68,7 @@ def main():
         print("| blocks | Spencer | M–P | wedges δ = 0 / 40° | one block alone | ddaslope default | brittle (δw = 0) | "
               + " | ".join(f"δw = {d:g} m" for d in DISTANCES[2:]) + " |")
         print("|---" * (7 + len(DISTANCES) - 2) + "|")
-        for spacing in ([50] if a.quick else [25, 50, 100]):
+        for spacing in ([50] if a.quick else (a.spacing or [40, 50, 100])):
             case = copy.deepcopy(base)
             case["section"]["joint_sets"][0]["spacing"] = spacing
             case.pop("expected", None)
@@ -77,7 +79,7 @@ def main():
             for d in DISTANCES:
                 extra = [] if d is None else ["--set", f"joints.sliding_surface.weakening_distance={d}"]
                 dda.append(ddaslope_critical(a.bin, path, extra)[0])
-            print(f"| {n} × {spacing} m | {kpa(le['spencer'])} | {kpa(le['morgenstern-price'])} | "
+            print(f"| {n} × {spacing:g} m | {kpa(le['spencer'])} | {kpa(le['morgenstern-price'])} | "
                   f"{kpa(le['wedges δ=0'])} / {kpa(le['wedges δ=40°'])} | {kpa(le['single block'])} | "
                   + " | ".join(kpa(v) for v in dda) + " |", flush=True)
         path = os.path.join(ROOT, "cases", "chair_slide.json")

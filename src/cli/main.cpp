@@ -52,6 +52,8 @@ void addModelOptions(CLI::App* cmd, Overrides& o) {
   cmd->add_option("--contact-treatment", o.model.contactTreatment,
                   "edge (one state per edge-to-edge contact) or vertex (original DDA)")
       ->check(CLI::IsMember({"edge", "vertex"}));
+  cmd->add_flag("--brittle-joints", o.model.brittleJoints,
+                "every joint's bond lost the moment it slides (original DDA): the first-failure answer");
   cmd->add_option("--set", o.settings, "json.path=value: override a number of the case (repeatable)");
 }
 
@@ -151,14 +153,22 @@ int runCommand(const std::string& casePath, const std::string& outDir, const Ove
   return kExitOk;
 }
 
+/// "softening", "brittle" (original DDA's bonds: a first-failure answer) or "mixed".
+const char* jointKind(const ddaslope::model::Scene& scene) {
+  int brittle = 0;
+  for (const auto& j : scene.joints) brittle += j.weakeningDistance && *j.weakeningDistance == 0;
+  return brittle == 0 ? "softening" : (brittle == static_cast<int>(scene.joints.size()) ? "brittle (first-failure)" : "mixed brittle/softening");
+}
+
 /// The settings every forward run of a command uses, and where Δt came from.
 std::string settingsLine(const ddaslope::model::Scene& scene) {
   const ddaslope::model::AnalysisSettings& s = scene.settings;
   char buf[320];
-  std::snprintf(buf, sizeof buf, "Δt %g s (%s), g2 %g, penalty %g N/m, %s blocks, %s contacts", s.timeStep,
+  std::snprintf(buf, sizeof buf, "Δt %g s (%s), g2 %g, penalty %g N/m, %s blocks, %s contacts, %s joints", s.timeStep,
                 s.timeStepOrigin.c_str(), s.maxDisplacementRatio, scene.normalPenalty(),
                 s.rigidBlocks ? "rigid" : "deformable",
-                s.contactTreatment == ddaslope::model::ContactTreatment::Edge ? "edge" : "vertex");
+                s.contactTreatment == ddaslope::model::ContactTreatment::Edge ? "edge" : "vertex",
+                jointKind(scene));
   return buf;
 }
 

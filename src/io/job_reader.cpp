@@ -77,7 +77,7 @@ BackanalysisJob readJob(const std::string& path) {
     r.fail("", std::string("invalid JSON: ") + e.what());
   }
   r.onlyKeys(doc, "", {"description", "case", "parameters", "observations", "optimiser", "grid_points", "threads",
-                       "preset", "blocks"});
+                       "preset", "blocks", "brittle_joints"});
   BackanalysisJob job;
   job.jobPath = path;
   job.casePath = r.resolve(r.string(r.required(doc, "", "case"), "case")).string();
@@ -176,6 +176,11 @@ BackanalysisJob readJob(const std::string& path) {
     own.blocks = r.string(doc.at("blocks"), "blocks");
     if (own.blocks != "rigid" && own.blocks != "deformable")
       r.fail("blocks", "expected rigid or deformable, found \"" + own.blocks + "\"");
+  }
+  if (doc.contains("brittle_joints")) {
+    if (!doc.at("brittle_joints").is_boolean())
+      r.fail("brittle_joints", "expected true or false, found " + doc.at("brittle_joints").dump());
+    own.brittleJoints = doc.at("brittle_joints").get<bool>();
   }
   job.model.push_back(own);
   return job;

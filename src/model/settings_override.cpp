@@ -18,6 +18,8 @@ void SettingsOverride::apply(Scene& scene) const {
   if (!blocks.empty()) s.rigidBlocks = blocks == "rigid";
   if (!contactTreatment.empty())
     s.contactTreatment = contactTreatment == "vertex" ? ContactTreatment::Vertex : ContactTreatment::Edge;
+  if (brittleJoints)
+    for (JointProperties& j : scene.joints) j.weakeningDistance = 0;
 }
 
 }  // namespace ddaslope::model
