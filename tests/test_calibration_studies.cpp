@@ -2,6 +2,7 @@
 // it expects (issue #4).
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 
@@ -53,6 +54,17 @@ TEST_P(CalibrationStudy, MeetsItsExpectedResult) {
       ASSERT_TRUE(it->converged) << label;
       EXPECT_GE(it->simulated, range.at(0).get<double>()) << label;
       EXPECT_LE(it->simulated, range.at(1).get<double>()) << label;
+    }
+  // A rough objective's estimate is a range (calibration/precision.hpp): the range the study
+  // reports must reach at least this far on each side of the estimate.
+  if (expected.contains("range_at_least"))
+    for (const auto& [name, half] : expected.at("range_at_least").items()) {
+      const auto it = std::find_if(r.precision.parameters.begin(), r.precision.parameters.end(),
+                                   [&](const auto& p) { return p.name == name; });
+      ASSERT_NE(it, r.precision.parameters.end()) << name << ": no precision measured";
+      EXPECT_LE(it->low, it->estimate - half.get<double>()) << name;
+      EXPECT_GE(it->high, it->estimate + half.get<double>()) << name;
+      EXPECT_TRUE(std::isfinite(it->noiseResolution)) << name;
     }
   if (expected.contains("factor_of_safety_at_estimate")) {
     const json& e = expected.at("factor_of_safety_at_estimate");

@@ -111,8 +111,12 @@ model::Scene sceneAt(const io::BackanalysisJob& job, const std::vector<double>& 
 
 double misfitAt(const io::BackanalysisJob& job, const std::vector<double>& x, int* runs,
                 const solver::HeldEquilibrium* shared, int searchThreads, std::vector<ObservationFit>* fit) {
+  return misfitOf(job, sceneAt(job, x), runs, shared, searchThreads, fit);
+}
+
+double misfitOf(const io::BackanalysisJob& job, const model::Scene& scene, int* runs,
+                const solver::HeldEquilibrium* shared, int searchThreads, std::vector<ObservationFit>* fit) {
   if (fit) fit->clear();
-  const model::Scene scene = sceneAt(job, x);
   double total = 0;
   bool needTrace = false;
   for (const auto& o : job.observations) needTrace |= o.kind != io::ObservationSpec::Kind::FactorOfSafety;
@@ -215,6 +219,13 @@ BackanalysisResult runBackanalysis(const io::BackanalysisJob& job) {
   }
   r.estimate = physical(job, u);
   r.misfit = best;
+  if (job.precision.enabled) {
+    std::vector<double> simulated;
+    for (const auto& f : r.fit) simulated.push_back(f.converged ? f.simulated : NAN);
+    int n = 0;
+    r.precision = measurePrecision(job, r.estimate, r.misfit, simulated, shared, n);
+    runs += n;
+  }
 
   if (job.parameters.size() == 2 && job.gridPoints >= 3) {
     const int n = job.gridPoints;

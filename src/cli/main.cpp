@@ -376,6 +376,34 @@ int fosCommand(const std::string& casePath, const Overrides& o, const FosOptions
   return r.found ? kExitOk : kExitNonConvergence;
 }
 
+/// result.json's "precision": each parameter's range and scan, the Δt ensemble, the statement.
+void appendPrecision(ddaslope::io::JsonRecord& j, const ddaslope::calibration::Precision& p,
+                     const ddaslope::io::BackanalysisJob& job) {
+  if (p.parameters.empty()) return;
+  ddaslope::io::JsonRecord out;
+  for (const auto& r : p.parameters) {
+    ddaslope::io::JsonRecord item;
+    item.set("name", r.name).set("estimate", r.estimate).set("low", r.low).set("high", r.high);
+    item.set("low_is_scan_end", r.openLow).set("high_is_scan_end", r.openHigh);
+    item.set("noise_resolution", r.noiseResolution);  // null: no slope to compare the noise with
+    for (const auto& s : r.scan) {
+      ddaslope::io::JsonRecord point;
+      point.set("value", s.value).set("misfit", s.misfit).set("simulated", s.simulated);
+      item.append("scan", point);
+    }
+    out.append("parameters", item);
+  }
+  for (const auto& m : p.ensemble) {
+    ddaslope::io::JsonRecord member;
+    member.set("time_step_factor", m.timeStepFactor).set("misfit", m.misfit).set("simulated", m.simulated);
+    out.append("time_step_ensemble", member);
+  }
+  std::vector<std::string> labels;
+  for (const auto& o : job.observations) labels.push_back(o.label);
+  out.set("observations", labels).set("noise", p.noise).set("statement", p.statement);
+  j.set("precision", out);
+}
+
 int backanalyseCommand(const std::string& jobPath, const std::string& outDir, bool json, const Overrides& o) {
   ddaslope::io::BackanalysisJob job = ddaslope::io::readJob(jobPath);
   // The command line's choices are applied after the job's own (its "preset", "blocks").
@@ -401,6 +429,7 @@ int backanalyseCommand(const std::string& jobPath, const std::string& outDir, bo
     if (!f.trials.empty()) ddaslope::calibration::appendTrials(item, f.trials, "factor");
     j.append("fit_at_estimate", item);
   }
+  appendPrecision(j, r.precision, job);
   const std::string result = outDir + "/result.json";
   {
     std::ofstream out(result + ".tmp");
@@ -432,6 +461,7 @@ int backanalyseCommand(const std::string& jobPath, const std::string& outDir, bo
       else std::printf("  %s: simulated %.6g, observed %.6g ± %.4g\n", f.label.c_str(), f.simulated, f.observed, f.sigma);
     }
     if (!r.statement.empty()) std::printf("  %s\n", r.statement.c_str());
+    if (!r.precision.statement.empty()) std::printf("  %s\n", r.precision.statement.c_str());
     std::printf("  wrote %s%s\n", result.c_str(), r.map.empty() ? "" : (" and " + outDir + "/misfit_map.csv, .png").c_str());
   }
   return kExitOk;

@@ -64,6 +64,41 @@ void readQuantity(const JobReader& r, const json& j, const std::string& p, Obser
     r.fail(p + ".quantity", "expected one of ux, uy, vx, vy, displacement, speed, found \"" + o.quantity + "\"");
 }
 
+/// "precision": false | true | {"scan_points", "half_width", "time_step_factors"}; absent: on
+/// when an observation is a run-out.
+void readPrecision(const JobReader& r, const json& doc, BackanalysisJob& job) {
+  PrecisionSpec& p = job.precision;
+  for (const auto& o : job.observations) p.enabled |= o.kind == ObservationSpec::Kind::Runout;
+  if (!doc.contains("precision")) return;
+  const json& j = doc.at("precision");
+  if (j.is_boolean()) {
+    p.enabled = j.get<bool>();
+    return;
+  }
+  r.onlyKeys(j, "precision", {"scan_points", "half_width", "time_step_factors"});
+  p.enabled = true;
+  if (j.contains("scan_points")) {
+    const double n = r.number(j.at("scan_points"), "precision.scan_points");
+    if (n != std::floor(n) || n < 2 || n > 101) r.fail("precision.scan_points", "expected an integer in [2, 101]");
+    p.scanPoints = static_cast<int>(n);
+  }
+  if (j.contains("half_width")) {
+    p.halfWidth = r.number(j.at("half_width"), "precision.half_width");
+    if (!(p.halfWidth > 0 && p.halfWidth <= 1)) r.fail("precision.half_width", "expected a fraction in (0, 1]");
+  }
+  if (j.contains("time_step_factors")) {
+    const json& f = j.at("time_step_factors");
+    if (!f.is_array()) r.fail("precision.time_step_factors", "expected an array of numbers");
+    p.timeStepFactors.clear();
+    for (size_t k = 0; k < f.size(); ++k) {
+      const std::string path = "precision.time_step_factors[" + std::to_string(k) + "]";
+      const double v = r.number(f[k], path);
+      if (!(v >= 0.1 && v <= 10)) r.fail(path, "expected a factor in [0.1, 10]");
+      p.timeStepFactors.push_back(v);
+    }
+  }
+}
+
 }  // namespace
 
 BackanalysisJob readJob(const std::string& path) {
@@ -77,7 +112,7 @@ BackanalysisJob readJob(const std::string& path) {
     r.fail("", std::string("invalid JSON: ") + e.what());
   }
   r.onlyKeys(doc, "", {"description", "case", "parameters", "observations", "optimiser", "grid_points", "threads",
-                       "preset", "blocks", "brittle_joints"});
+                       "preset", "blocks", "brittle_joints", "precision"});
   BackanalysisJob job;
   job.jobPath = path;
   job.casePath = r.resolve(r.string(r.required(doc, "", "case"), "case")).string();
@@ -163,6 +198,7 @@ BackanalysisJob readJob(const std::string& path) {
       job.optimiser.localEvaluations = static_cast<int>(r.number(o.at("local_evaluations"), "optimiser.local_evaluations"));
     if (o.contains("xtol_rel")) job.optimiser.xtolRel = r.number(o.at("xtol_rel"), "optimiser.xtol_rel");
   }
+  readPrecision(r, doc, job);
   if (doc.contains("grid_points")) job.gridPoints = static_cast<int>(r.number(doc.at("grid_points"), "grid_points"));
   if (doc.contains("threads")) job.threads = static_cast<int>(r.number(doc.at("threads"), "threads"));
   model::SettingsOverride own;

@@ -15,6 +15,8 @@ JsonRecord& JsonRecord::set(const std::string& k, int v) { impl_->j[k] = v; retu
 JsonRecord& JsonRecord::set(const std::string& k, bool v) { impl_->j[k] = v; return *this; }
 JsonRecord& JsonRecord::set(const std::string& k, const std::string& v) { impl_->j[k] = v; return *this; }
 JsonRecord& JsonRecord::set(const std::string& k, const std::vector<double>& v) { impl_->j[k] = v; return *this; }
+JsonRecord& JsonRecord::set(const std::string& k, const std::vector<std::string>& v) { impl_->j[k] = v; return *this; }
+JsonRecord& JsonRecord::set(const std::string& k, const JsonRecord& o) { impl_->j[k] = o.impl_->j; return *this; }
 JsonRecord& JsonRecord::append(const std::string& k, const JsonRecord& item) {
   impl_->j[k].push_back(item.impl_->j);
   return *this;

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "ddaslope/calibration/precision.hpp"
 #include "ddaslope/calibration/strength_search.hpp"
 
 #include "ddaslope/io/job_reader.hpp"
@@ -43,6 +44,8 @@ struct BackanalysisResult {
   /// of the optimum over at least 40 % of its range.
   bool lineOnly = false;
   std::string statement;            ///< the plain statement for the user
+  /// The estimate as ranges (job.precision; run-out observations), empty when not measured.
+  Precision precision;
 };
 
 /// The job's case with the parameter values x (physical units) applied.
@@ -54,6 +57,11 @@ model::Scene sceneAt(const io::BackanalysisJob& job, const std::vector<double>& 
 /// evaluates several points in parallel, as the misfit map does).
 /// `fit`: if given, receives how each observation is met.
 double misfitAt(const io::BackanalysisJob& job, const std::vector<double>& x, int* runs = nullptr,
+                const solver::HeldEquilibrium* shared = nullptr, int searchThreads = 1,
+                std::vector<ObservationFit>* fit = nullptr);
+
+/// Misfit of a scene already built (misfitAt with sceneAt(job, x) and, say, a Δt changed).
+double misfitOf(const io::BackanalysisJob& job, const model::Scene& scene, int* runs = nullptr,
                 const solver::HeldEquilibrium* shared = nullptr, int searchThreads = 1,
                 std::vector<ObservationFit>* fit = nullptr);
 

@@ -40,12 +40,22 @@ struct OptimiserSpec {
   double xtolRel = 1e-4;               ///< local search stops when steps are this small (of the range)
 };
 
+/// How the estimate's precision is measured (calibration/precision.hpp): on by default when an
+/// observation is a run-out (a rough objective), or when the job asks.
+struct PrecisionSpec {
+  bool enabled = false;
+  int scanPoints = 7;              ///< per parameter, over estimate ± halfWidth of its search range
+  double halfWidth = 0.1;          ///< fraction of the search range on each side
+  std::vector<double> timeStepFactors{0.8, 0.9, 1.1, 1.25};  ///< the Δt ensemble at the estimate
+};
+
 struct BackanalysisJob {
   std::string jobPath;
   std::string casePath;  ///< resolved relative to the job file
   std::vector<ParameterSpec> parameters;
   std::vector<ObservationSpec> observations;
   OptimiserSpec optimiser;
+  PrecisionSpec precision;
   int gridPoints = 15;   ///< per axis, for the misfit map of two parameters (0: none)
   int threads = 2;
   /// Imposed on every forward run's case, in order: the job's own "preset" and "blocks", then the

@@ -18,7 +18,9 @@ class JsonRecord {
   JsonRecord& set(const std::string& key, bool value);
   JsonRecord& set(const std::string& key, const std::string& value);
   JsonRecord& set(const std::string& key, const char* value) { return set(key, std::string(value)); }
-  JsonRecord& set(const std::string& key, const std::vector<double>& values);
+  JsonRecord& set(const std::string& key, const std::vector<double>& values);  ///< NaN: null
+  JsonRecord& set(const std::string& key, const std::vector<std::string>& values);
+  JsonRecord& set(const std::string& key, const JsonRecord& object);
   /// Appends `item` to the array at `key` (created if missing).
   JsonRecord& append(const std::string& key, const JsonRecord& item);
   std::string dump() const;

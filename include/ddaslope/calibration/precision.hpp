@@ -1,0 +1,68 @@
+#pragma once
+// The honest precision of a back-analysed estimate when the objective is rough (run-out
+// observables: a travel or a peak speed jumps when the contact history changes, so a misfit of
+// 0.007 at the optimum says nothing about how well the data fix the parameter).
+// Two measurements around the estimate:
+// - a scan of each parameter (the others held at the estimate): the values whose misfit lies
+//   within one standard deviation of the best seen (best + Σ weights, as judgeConstraint uses)
+//   form the range the data allow;
+// - an ensemble of forward runs at the estimate with Δt scaled by factors inside its documented
+//   range (which should not matter): the spread of each simulated observable is the objective's
+//   numerical noise, and divided by the observable's slope along the scan, a resolution.
+#include <string>
+#include <vector>
+
+#include "ddaslope/io/job_reader.hpp"
+#include "ddaslope/solver/simulation.hpp"
+
+namespace ddaslope::calibration {
+
+struct ScanPoint {
+  double value = 0;                ///< the parameter (physical units)
+  double misfit = 0;
+  std::vector<double> simulated;   ///< each observation's simulated value (NaN: not converged)
+};
+
+struct ParameterRange {
+  std::string name;
+  double estimate = 0;
+  double low = 0, high = 0;        ///< scanned values within one standard deviation of the best
+  bool openLow = false, openHigh = false;  ///< the range reaches the scan's end: it is at least this
+  /// ± in parameter units from the numerical noise (largest over the observations); NaN when the
+  /// scan shows no slope to divide by.
+  double noiseResolution = 0;
+  std::vector<ScanPoint> scan;     ///< sorted by value, the estimate included
+};
+
+struct EnsembleMember {
+  double timeStepFactor = 1;
+  double misfit = 0;
+  std::vector<double> simulated;
+};
+
+struct Precision {
+  std::vector<ParameterRange> parameters;
+  std::vector<EnsembleMember> ensemble;  ///< at the estimate, the unperturbed run first
+  std::vector<double> noise;             ///< per observation: half the ensemble's spread (max − min)/2
+  std::string statement;
+};
+
+/// Scans each parameter around `estimate` and runs the Δt ensemble there (job.precision), in
+/// parallel on job.threads. `bestMisfit` and `fitAtEstimate` (simulated values, one per
+/// observation) are the optimiser's, reused as the scan's centre and the ensemble's factor 1.
+/// Counts forward runs in `runs`.
+Precision measurePrecision(const io::BackanalysisJob& job, const std::vector<double>& estimate, double bestMisfit,
+                           const std::vector<double>& fitAtEstimate, const solver::HeldEquilibrium* shared,
+                           int& runs);
+
+/// The range of values within `threshold` of misfit among scan points (sorted by value): the
+/// smallest and largest such value, and whether each is the scan's end.
+void rangeWithin(ParameterRange& r, double threshold);
+
+/// Half the spread (max − min)/2 of observation `k` over the ensemble (NaN members skipped).
+double ensembleNoise(const std::vector<EnsembleMember>& ensemble, size_t k);
+
+/// |d simulated_k / d value| from a least-squares line through the scan's converged points.
+double scanSlope(const std::vector<ScanPoint>& scan, size_t k);
+
+}  // namespace ddaslope::calibration

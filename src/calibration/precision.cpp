@@ -1,0 +1,151 @@
+#include "ddaslope/calibration/precision.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <functional>
+#include <sstream>
+#include <thread>
+
+#include "ddaslope/calibration/backanalysis.hpp"
+
+namespace ddaslope::calibration {
+
+namespace {
+
+/// Runs `work(k)` for k in [0, n) on `threads` threads (each forward run is independent).
+void inParallel(int n, int threads, const std::function<void(int)>& work) {
+  std::atomic<int> next{0};
+  const auto loop = [&] {
+    for (int k = next++; k < n; k = next++) work(k);
+  };
+  std::vector<std::thread> pool;
+  for (int t = 1; t < std::min(std::max(1, threads), n); ++t) pool.emplace_back(loop);
+  loop();
+  for (auto& t : pool) t.join();
+}
+
+std::vector<double> simulatedValues(const std::vector<ObservationFit>& fit) {
+  std::vector<double> out;
+  for (const auto& f : fit) out.push_back(f.converged ? f.simulated : NAN);
+  return out;
+}
+
+std::string formatted(double v) {
+  std::ostringstream s;
+  s.precision(4);
+  s << v;
+  return s.str();
+}
+
+}  // namespace
+
+void rangeWithin(ParameterRange& r, double threshold) {
+  bool any = false;
+  for (size_t k = 0; k < r.scan.size(); ++k) {
+    if (!(r.scan[k].misfit <= threshold)) continue;
+    if (!any) r.low = r.scan[k].value, r.openLow = k == 0;
+    r.high = r.scan[k].value;
+    r.openHigh = k + 1 == r.scan.size();
+    any = true;
+  }
+  if (!any) r.low = r.high = r.estimate;
+}
+
+double ensembleNoise(const std::vector<EnsembleMember>& ensemble, size_t k) {
+  double lo = INFINITY, hi = -INFINITY;
+  for (const auto& m : ensemble)
+    if (k < m.simulated.size() && std::isfinite(m.simulated[k])) lo = std::min(lo, m.simulated[k]), hi = std::max(hi, m.simulated[k]);
+  return hi >= lo ? (hi - lo) / 2 : NAN;
+}
+
+double scanSlope(const std::vector<ScanPoint>& scan, size_t k) {
+  double n = 0, sx = 0, sy = 0, sxx = 0, sxy = 0;
+  for (const auto& p : scan) {
+    if (k >= p.simulated.size() || !std::isfinite(p.simulated[k])) continue;
+    n += 1, sx += p.value, sy += p.simulated[k], sxx += p.value * p.value, sxy += p.value * p.simulated[k];
+  }
+  const double d = n * sxx - sx * sx;
+  return n >= 2 && d > 0 ? std::abs((n * sxy - sx * sy) / d) : 0.0;
+}
+
+Precision measurePrecision(const io::BackanalysisJob& job, const std::vector<double>& estimate, double bestMisfit,
+                           const std::vector<double>& fitAtEstimate, const solver::HeldEquilibrium* shared,
+                           int& runs) {
+  Precision out;
+  const io::PrecisionSpec& spec = job.precision;
+  std::atomic<int> counted{0};
+  // The scan: each parameter over estimate ± halfWidth of its range, the others held.
+  for (size_t i = 0; i < job.parameters.size(); ++i) {
+    const io::ParameterSpec& p = job.parameters[i];
+    ParameterRange range;
+    range.name = p.name;
+    range.estimate = estimate[i];
+    const double half = spec.halfWidth * (p.max - p.min);
+    std::vector<double> values;
+    for (int k = 0; k < spec.scanPoints; ++k) {
+      const double v = estimate[i] - half + 2 * half * k / (spec.scanPoints - 1);
+      if (v >= p.min && v <= p.max && std::abs(v - estimate[i]) > 1e-9 * (p.max - p.min)) values.push_back(v);
+    }
+    range.scan.resize(values.size());
+    inParallel(static_cast<int>(values.size()), job.threads, [&](int k) {
+      std::vector<double> x = estimate;
+      x[i] = values[k];
+      int n = 0;
+      std::vector<ObservationFit> fit;
+      range.scan[k] = {values[k], misfitAt(job, x, &n, shared, 1, &fit), simulatedValues(fit)};
+      counted += n;
+    });
+    range.scan.push_back({estimate[i], bestMisfit, fitAtEstimate});
+    std::sort(range.scan.begin(), range.scan.end(), [](const auto& a, const auto& b) { return a.value < b.value; });
+    out.parameters.push_back(std::move(range));
+  }
+  // The Δt ensemble at the estimate.
+  out.ensemble.push_back({1.0, bestMisfit, fitAtEstimate});
+  out.ensemble.resize(1 + spec.timeStepFactors.size());
+  inParallel(static_cast<int>(spec.timeStepFactors.size()), job.threads, [&](int k) {
+    model::Scene scene = sceneAt(job, estimate);
+    scene.settings.timeStep *= spec.timeStepFactors[k];
+    int n = 0;
+    std::vector<ObservationFit> fit;
+    const double m = misfitOf(job, scene, &n, shared, 1, &fit);
+    out.ensemble[k + 1] = {spec.timeStepFactors[k], m, simulatedValues(fit)};
+    counted += n;
+  });
+  runs += counted;
+
+  // The range within one standard deviation (misfit + Σ weights) of the best point seen, and the
+  // resolution the noise allows along each parameter.
+  double weights = 0, best = bestMisfit;
+  for (const auto& o : job.observations) weights += o.weight;
+  for (const auto& r : out.parameters)
+    for (const auto& p : r.scan) best = std::min(best, p.misfit);
+  for (size_t k = 0; k < job.observations.size(); ++k) out.noise.push_back(ensembleNoise(out.ensemble, k));
+  std::ostringstream s;
+  s << "Precision, measured around the estimate:";
+  for (auto& r : out.parameters) {
+    rangeWithin(r, best + weights);
+    r.noiseResolution = 0;
+    for (size_t k = 0; k < job.observations.size(); ++k) {
+      if (job.observations[k].kind == io::ObservationSpec::Kind::Series || !std::isfinite(out.noise[k])) continue;
+      const double slope = scanSlope(r.scan, k);
+      r.noiseResolution = std::max(r.noiseResolution, slope > 0 ? out.noise[k] / slope : NAN);
+    }
+    s << " " << r.name << " = " << formatted(r.estimate) << ", within one standard deviation of the best fit for "
+      << (r.openLow ? "≤ " : "") << formatted(r.low) << " to " << (r.openHigh ? "≥ " : "") << formatted(r.high)
+      << " (" << r.scan.size() << " values scanned; an end marked ≤/≥ is the scan's); numerical noise alone "
+      << (std::isfinite(r.noiseResolution) ? "±" + formatted(r.noiseResolution)
+                                           : std::string("unresolved (the observables show no trend over the scan)"))
+      << ".";
+  }
+  s << " Δt ×";
+  for (size_t k = 1; k < out.ensemble.size(); ++k) s << (k > 1 ? "/" : "") << formatted(out.ensemble[k].timeStepFactor);
+  s << " moves";
+  for (size_t k = 0; k < job.observations.size(); ++k)
+    s << (k ? "," : "") << " " << job.observations[k].label << " by ±" << formatted(out.noise[k]);
+  s << ". State the parameter as its range, not the point.";
+  out.statement = s.str();
+  return out;
+}
+
+}  // namespace ddaslope::calibration

@@ -1,0 +1,41 @@
+// The estimate's precision on a rough objective (calibration/precision.hpp, issue #14): the
+// pure parts, on numbers worked by hand.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "ddaslope/calibration/precision.hpp"
+
+using namespace ddaslope::calibration;
+
+// Scan of φ at 4, 5, 6, 7, 8 with misfits 9, 0.5, 0.2, 1.1, 3: within 0.2 + 1 = 1.2 lie 5, 6 and 7,
+// none at an end of the scan.
+TEST(Precision, RangeIsTheScannedValuesWithinOneStandardDeviation) {
+  ParameterRange r;
+  r.estimate = 6;
+  for (auto [v, m] : {std::pair{4.0, 9.0}, {5.0, 0.5}, {6.0, 0.2}, {7.0, 1.1}, {8.0, 3.0}}) r.scan.push_back({v, m, {}});
+  rangeWithin(r, 1.2);
+  EXPECT_EQ(r.low, 5);
+  EXPECT_EQ(r.high, 7);
+  EXPECT_FALSE(r.openLow || r.openHigh);
+  // A rough objective: a lucky point beyond a bad one still counts (the range is not contiguous).
+  r.scan[0].misfit = 0.9;
+  rangeWithin(r, 1.2);
+  EXPECT_EQ(r.low, 4);
+  EXPECT_TRUE(r.openLow);
+  EXPECT_FALSE(r.openHigh);
+}
+
+// Noise: half the spread of the ensemble, 16.3 … 18.0 → 0.85; a run that did not converge (NaN)
+// is skipped. Slope: least squares through (1, 2), (2, 4.5), (3, 6) is exactly 2; its magnitude
+// is used, so a falling observable gives the same resolution.
+TEST(Precision, NoiseIsHalfTheEnsembleSpreadAndSlopeIsLeastSquares) {
+  std::vector<EnsembleMember> e{{1.0, 0, {16.3, 200}}, {0.8, 0, {18.0, 230}}, {1.1, 0, {NAN, 210}}, {1.25, 0, {17.1, 205}}};
+  EXPECT_NEAR(ensembleNoise(e, 0), 0.85, 1e-12);
+  EXPECT_NEAR(ensembleNoise(e, 1), 15, 1e-12);
+  std::vector<ScanPoint> scan{{1, 0, {2, -2}}, {2, 0, {4.5, -4.5}}, {3, 0, {6, -6}}};
+  EXPECT_NEAR(scanSlope(scan, 0), 2, 1e-12);
+  EXPECT_NEAR(scanSlope(scan, 1), 2, 1e-12);
+  scan[1].simulated[0] = NAN;  // two points left: (1, 2), (3, 6)
+  EXPECT_NEAR(scanSlope(scan, 0), 2, 1e-12);
+}
