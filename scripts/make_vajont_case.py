@@ -20,6 +20,9 @@ def main():
     ap.add_argument("--runout", type=float, default=None, metavar="PHI_RES",
                     help="write a run-out case instead: residual friction PHI_RES on the sliding surface, 45 s "
                          "(the quoted duration of the collapse)")
+    ap.add_argument("--trigger", type=float, nargs=3, default=None, metavar=("PHI_PEAK", "PHI_RES", "DW"),
+                    help="write a failure-to-run-out case instead: one sliding-surface law, peak friction PHI_PEAK "
+                         "falling to PHI_RES over a slip of DW m, from the failure level to rest (60 s)")
     ap.add_argument("--out", default=os.path.join(HERE, "..", "cases", "vajont.json"))
     a = ap.parse_args()
     data = json.load(open(SHARED))
@@ -52,7 +55,8 @@ def main():
     # so there the toe block keeps that strip. The static case keeps it: the critical friction
     # moves by 0.01 deg without it (18.025 against 18.016).
     toe_x = surface[-1][0]
-    last = toe_x - a.spacing / 2 if a.runout is not None else toe_x
+    moving = a.runout is not None or a.trigger is not None  # a run-out: no sliver at the toe
+    last = toe_x - a.spacing / 2 if moving else toe_x
     vertical_joints = [a.kink] if a.spacing <= 0 else sorted(
         round(a.kink + k * a.spacing, 3) for k in range(-int(a.kink // a.spacing), int((toe_x - a.kink) // a.spacing) + 1)
         if 0 < a.kink + k * a.spacing < last and abs(a.kink + k * a.spacing - seat_x) > 1e-6)
@@ -83,9 +87,9 @@ def main():
             "sliding_joint": "sliding_surface",
             # A joint set where it covers the mass; explicit joints where the run-out drops one.
             "joints": [[[seat_x, 0.0], [seat_x, 100.0]]] + (
-                [[[x, -1.0], [x, 700.0]] for x in vertical_joints] if a.runout is not None or a.spacing <= 0 else []),
+                [[[x, -1.0], [x, 700.0]] for x in vertical_joints] if moving or a.spacing <= 0 else []),
             "joint_sets": [{"angle": 90, "spacing": a.spacing, "origin": [a.kink, 0.0]}]
-                          if a.runout is None and a.spacing > 0 else [],
+                          if not moving and a.spacing > 0 else [],
         },
         "monitors": [{"id": "crown", "point": [400, 330]}, {"id": "toe", "point": [1100, 40]}],
         "water": {"level": round(a.reservoir - a.datum, 3)},
@@ -103,6 +107,23 @@ def main():
                                  "45 s, reservoir held at its level (the wave is not modelled).")
         case["joints"]["sliding_surface"]["friction_angle"] = a.runout
         case["analysis"] = {"duration": 45.0, "time_step": 0.01}
+        del case["expected"]
+    if a.trigger is not None:
+        peak, residual, distance = a.trigger
+        # One law for the seam from trigger to deposit (issue #14): the peak friction at which the
+        # slope fails at the failure level, softening over a slip to the residual friction of the
+        # run-out. The distance is assumed: ring-shear tests bring clays to residual over some
+        # hundreds of mm, and no Vajont value was retrieved (shared data README).
+        case["description"] += (f" TRIGGER-TO-RUN-OUT variant: one sliding-surface law, peak friction {peak:g} deg "
+                                 f"(just below the {18.016:g} deg critical at the failure level: F < 1, the slope fails) "
+                                 f"softening to a residual {residual:g} deg (the run-out's back-analysed value) over "
+                                 f"a slip of {distance:g} m (assumed), 60 s from the failure level to rest; reservoir "
+                                 "held at its level (the wave is not modelled). Observed: 300-400 m horizontal travel, "
+                                 "17-30 m/s, under 45 s.")
+        case["joints"]["sliding_surface"].update(
+            {"friction_angle": peak, "residual_friction_angle": residual, "weakening_distance": distance})
+        # The strength-reduction verdict of a fit's F = 1 observation as for the static case.
+        case["analysis"] = {"duration": 60.0, "time_step": 0.01, "failure_displacement": 5.0}
         del case["expected"]
     with open(a.out, "w") as f:
         json.dump(case, f, indent=2)

@@ -156,3 +156,21 @@ TEST(ChairSlide, CriticalCohesionMatchesLimitEquilibriumWithSofteningJoints) {
   brittle.joints[joint].weakeningDistance = 0;
   EXPECT_NEAR(critical(brittle), kSingleBlock, 0.1 * kSingleBlock);
 }
+
+// Vajont from trigger to deposit in one run (calibration/vajont_trigger/case.json): one law for
+// the sliding surface, peak φ 17.9° (just below the 18.016° critical at the failure level, so the
+// slope fails) softening over 1 m of slip to the run-out's residual 5.89°. The crown must travel
+// and move as observed (300–400 m horizontal, 17–30 m/s; ../shared/data/vajont/README.md, S8 p46,
+// S1 p147) and come to rest within the run (the collapse lasted under 45 s), and the energy budget
+// must only dissipate (largest rise below 1e-3 of the energy scale, as for the run-out table).
+TEST(VajontTrigger, FailsAndRunsOutInOneRun) {
+  const model::Scene scene = io::readCase(std::string(DDASLOPE_SOURCE_DIR) + "/calibration/vajont_trigger/case.json");
+  const io::Trace t = scenes::runTrace(scene);
+  EXPECT_GE(scenes::measureAt(t, "crown", "ux", std::nullopt), 300);
+  EXPECT_LE(scenes::measureAt(t, "crown", "ux", std::nullopt), 400);
+  EXPECT_GE(scenes::measureAt(t, "crown", "speed", std::nullopt), 17);
+  EXPECT_LE(scenes::measureAt(t, "crown", "speed", std::nullopt), 30);
+  EXPECT_LT(scenes::measureAt(t, "crown", "speed", 45.0), 0.1);
+  EXPECT_LE(t.largestEnergyGain(), 1e-3 * t.energyScale());
+  EXPECT_LE(t.largestStepGain(), 1e-3 * t.energyScale());  // issue #14: no step gains 0.1 % of the scale
+}

@@ -143,12 +143,20 @@ int runCommand(const std::string& casePath, const std::string& outDir, const Ove
   // The energy check a user should see: a correct run only dissipates (docs/case-format.md).
   const auto& first = r.trace.energy.front();
   const auto& last = r.trace.energy.back();
-  const double gain = r.trace.largestEnergyGain(), scale = r.trace.energyScale();
-  std::printf("  energy: %.4g J/m released (potential and load work), %.4g J/m dissipated; largest rise %.3g J/m\n",
-              first.potential - last.potential + last.loadWork, first.mechanical() - last.mechanical(), gain);
-  if (gain > 1e-4 * scale + 1e-12 * std::abs(first.mechanical()))
-    std::printf("  WARNING: the mechanical energy rose by %.3g of the energy scale: a spurious gain. Try a smaller "
-                "time step or max_displacement_ratio, and look at energy.png\n", gain / std::max(scale, 1e-300));
+  double stepTime = 0;
+  const double gain = r.trace.largestEnergyGain(), stepGain = r.trace.largestStepGain(&stepTime);
+  const double scale = r.trace.energyInPlay(), floor = 1e-12 * std::abs(first.mechanical());
+  std::printf("  energy: %.4g J/m released (potential and load work), %.4g J/m dissipated; largest rise %.3g J/m "
+              "since t = 0, %.3g J/m in one step\n",
+              first.potential - last.potential + last.loadWork, first.mechanical() - last.mechanical(), gain, stepGain);
+  // Since the start: 1e-4 of the energy in play. In one step: 1e-3 (issue #14's bar; the friction
+  // sources docs/accuracy.md lists stay below 6.4e-4 in impacts). A smaller Δt is not the cure.
+  if (gain > 1e-4 * scale + floor || stepGain > 1e-3 * scale + floor)
+    std::printf("  WARNING: the mechanical energy rose by %.3g of the energy in play (%.3g of it in one step, at t = "
+                "%.4g s): a spurious gain. Look at energy.png and the energy_gain column of history.csv, see "
+                "docs/accuracy.md (\"The energy budget\") for its known sources, and compare a run at half and at "
+                "twice the time step to see whether your result depends on it\n",
+                std::max(gain, stepGain) / std::max(scale, 1e-300), stepGain / std::max(scale, 1e-300), stepTime);
   std::printf("  wrote %s/history.csv, summary.json, history.png and energy.png\n", outDir.c_str());
   return kExitOk;
 }

@@ -26,6 +26,24 @@ double Trace::energyScale() const {
   return scale;
 }
 
+double Trace::largestStepGain(double* time) const {
+  double gain = 0;
+  for (size_t k = 1; k < energy.size(); ++k) {
+    const double g = energy[k].mechanical() - energy[k - 1].mechanical();
+    if (g > gain) {
+      gain = g;
+      if (time && k - 1 < steps.size()) *time = steps[k - 1].time;
+    }
+  }
+  return gain;
+}
+
+double Trace::energyInPlay() const {
+  double stored = 0;
+  for (const solver::EnergyBudget& e : energy) stored = std::max(stored, e.elastic);
+  return std::max(energyScale(), stored);
+}
+
 static double quantityOf(const MonitorSample& s, const std::string& q) {
   if (q == "ux") return s.ux;
   if (q == "uy") return s.uy;

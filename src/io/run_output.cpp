@@ -113,6 +113,8 @@ void writeSummary(const fs::path& dir, const model::Scene& scene, const RunOptio
     j["energy_J_per_m"] = {{"mechanical_at_start", o.trace.energy.front().mechanical()},
                            {"mechanical_at_end", o.trace.energy.back().mechanical()},
                            {"largest_gain", o.trace.largestEnergyGain()},
+                           {"largest_step_gain", o.trace.largestStepGain()},
+                           {"in_play", o.trace.energyInPlay()},
                            {"scale", o.trace.energyScale()}};
   j["symbolic_analyses"] = st.symbolicAnalyses;
   j["phase_times_s"] = {{"broad_phase", st.times.broadPhase}, {"contacts", st.times.contacts},

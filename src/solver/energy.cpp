@@ -5,6 +5,7 @@
 #include <Eigen/Cholesky>
 
 #include "ddaslope/assembly/block_terms.hpp"
+#include "ddaslope/contact/contact_law.hpp"
 
 namespace ddaslope::solver {
 
@@ -28,11 +29,13 @@ EnergyBudget storedEnergy(const model::Scene& scene, const std::vector<double>& 
     if (!c.closed()) continue;
     e.elastic += 0.5 * c.normalForce * c.normalForce / normalStiffness;
     // The shear spring is elastic-plastic: locked, it holds S; sliding, it stays stretched to
-    // the friction force N tan φ (a contact that sticks again keeps that force), so it stores
-    // ½ (N tan φ)² / p_s while it slides.
-    const double shear = c.state == contact::ContactState::Locked
-                             ? c.shearForce
-                             : std::max(0.0, c.normalForce) * std::tan(scene.joints[c.joint].frictionAngle);
+    // the resistance it slides against, N tan φ plus c·L while a softening bond lasts (a contact
+    // that sticks again keeps that force), so it stores ½ S² / p_s while it slides.
+    const double shear =
+        c.state == contact::ContactState::Locked
+            ? c.shearForce
+            : contact::shearStrength(c.bonded, c.normalForce,
+                                     contact::contactStrength(scene.joints[c.joint], c.intact, c.geometry.overlap / 2));
     e.elastic += 0.5 * shear * shear / shearStiffness;
   }
   return e;

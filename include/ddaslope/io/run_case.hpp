@@ -24,6 +24,12 @@ struct Trace {
   /// largest of the kinetic energy and the potential energy released).
   double largestEnergyGain() const;
   double energyScale() const;
+  /// Largest rise of the mechanical energy within one step (J/m), and the time of that step: an
+  /// impact that injects energy shows here even after the run has dissipated more than it gained.
+  double largestStepGain(double* time = nullptr) const;
+  /// What `run`'s warning judges a gain against: the energy scale, or the largest stored elastic
+  /// energy when that is more (a slope at rest releases almost nothing, yet its springs hold a lot).
+  double energyInPlay() const;
   int monitorIndex(const std::string& id) const;
 };
 
