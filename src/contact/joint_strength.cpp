@@ -21,11 +21,15 @@ double remainingStrength(const model::JointProperties& j, double slip) {
   return j.weakeningLaw == model::WeakeningLaw::Linear ? std::max(0.0, 1 - x) : std::exp(-x);
 }
 
-ContactStrength contactStrength(const model::JointProperties& j, double intact, double length) {
-  const double tanPeak = std::tan(j.frictionAngle), tanResidual = std::tan(j.residualFriction());
-  const double cResidual = j.residualCohesionUsed();
-  return {tanResidual + (tanPeak - tanResidual) * intact, (cResidual + (j.cohesion - cResidual) * intact) * length,
-          j.tensileStrength * intact * length, distanceOf(j) > 0};
+JointStrength jointStrength(const model::JointProperties& j) {
+  return {std::tan(j.frictionAngle), std::tan(j.residualFriction()), j.cohesion, j.residualCohesionUsed(),
+          j.tensileStrength, distanceOf(j) > 0};
+}
+
+ContactStrength contactStrength(const JointStrength& j, double intact, double length) {
+  return {j.tanResidual + (j.tanPeak - j.tanResidual) * intact,
+          (j.residualCohesion + (j.cohesion - j.residualCohesion) * intact) * length,
+          j.tensileStrength * intact * length, j.softens};
 }
 
 }  // namespace ddaslope::contact

@@ -54,7 +54,10 @@ Simulation::Simulation(model::Scene scene)
     : scene_(std::move(scene)),
       stepSize_(scene_.settings.timeStep, scene_.settings.stepCutFactor) {
   w0_ = scene_.modelHalfSize();
-  for (model::JointProperties& j : scene_.joints) j.weakeningDistance = j.weakeningDistanceIn(w0_);
+  for (model::JointProperties& j : scene_.joints) {
+    j.weakeningDistance = j.weakeningDistanceIn(w0_);
+    jointStrength_.push_back(contact::jointStrength(j));
+  }
   for (const model::Block& b : scene_.blocks) mass_.push_back(scene_.materials[b.material].density * b.moments.area);
   // Shi's step limit g2·w0 scales with the model. In a kilometre slope with a 15 m wedge it
   // exceeds the wedge, and the contact search (2.5 times the limit) then pairs corners farther
@@ -186,7 +189,7 @@ double Simulation::edgeLength(const Contact& c) const {
 
 contact::ContactStrength Simulation::strengthOf(const Contact& c) const {
   // Original DDA: each vertex-to-edge half of an edge-to-edge contact carries c·L/2.
-  return contact::contactStrength(scene_.joints[c.joint], c.intact, c.geometry.overlap / 2);
+  return contact::contactStrength(jointStrength_[c.joint], c.intact, c.geometry.overlap / 2);
 }
 
 double Simulation::slidingResistance(const Contact& c) const {

@@ -21,8 +21,21 @@ struct ContactStrength {
 /// the state rules then set 0 at once. The joint's distance must be resolved (set).
 double remainingStrength(const model::JointProperties& j, double slip);
 
+/// A joint's strength in the form the contact rules use, computed once per run (the open-close
+/// loop asks for it for every contact in every iteration).
+struct JointStrength {
+  double tanPeak = 0, tanResidual = 0;  ///< tan φ, tan φ_r as used (φ_r ≤ φ)
+  double cohesion = 0, residualCohesion = 0, tensileStrength = 0;  ///< Pa
+  bool softens = false;                 ///< weakening distance > 0: the bond survives slip
+};
+/// The joint's distance must be resolved (set).
+JointStrength jointStrength(const model::JointProperties& j);
+
 /// The strength of a contact share of length `length` whose remaining fraction is `intact`:
 /// tanφ = tanφ_r + (tanφ − tanφ_r)·w, c = c_r + (c − c_r)·w, σt·w.
-ContactStrength contactStrength(const model::JointProperties& j, double intact, double length);
+ContactStrength contactStrength(const JointStrength& j, double intact, double length);
+inline ContactStrength contactStrength(const model::JointProperties& j, double intact, double length) {
+  return contactStrength(jointStrength(j), intact, length);
+}
 
 }  // namespace ddaslope::contact

@@ -152,6 +152,7 @@ class Simulation {
   model::Scene scene_;
   double w0_ = 1;
   std::vector<double> mass_;   ///< per block (kg/m), fixed at the start: ρ·S₀
+  std::vector<contact::JointStrength> jointStrength_;  ///< per joint, resolved at the start
   double stepLimit_ = 0;       ///< largest vertex displacement in one step (m)
   double searchDistance_ = 0;  ///< 2.5 × stepLimit_
   double penalty_ = 0;
