@@ -46,6 +46,16 @@ def toppling_factor(blocks, *args):
     return float(out.split("limit-equilibrium factor of safety:")[1].split()[0])
 
 
+
+def two_wedge_case(toe_x):
+    """A 30 deg seat 100 m long onto a flat one ending at toe_x, the ground level with the crown:
+    two wedges, cut at the kink (density 2500, joints 40 deg)."""
+    drop = 100 * math.tan(math.radians(30))
+    return {"materials": {"rock": {"density": 2500}}, "joints": {"j": {"friction_angle": 40}},
+            "default_joint": "j",
+            "section": {"ground": [[0, drop], [toe_x, drop], [toe_x, 0]],
+                        "sliding_surface": [[0, drop], [100, 0], [toe_x, 0]]}}
+
 class LimitEquilibrium(unittest.TestCase):
     def test_dry_plane(self):
         # Closed form: a rigid mass on one plane with c = 0 slides when tan(phi) = tan(dip), whatever
@@ -66,13 +76,7 @@ class LimitEquilibrium(unittest.TestCase):
     def test_two_equal_wedges_without_interface_friction(self):
         # Closed form (two-wedge method, delta = 0): W1 tan(b1 - phi) + W2 tan(b2 - phi) = 0. With
         # equal weights and a flat seat (b2 = 0), tan(b1 - phi) = tan(phi): phi = b1 / 2.
-        import math
-        drop = 100 * math.tan(math.radians(30))
-        case = {"materials": {"rock": {"density": 2500}}, "joints": {"j": {"friction_angle": 40}},
-                "default_joint": "j",
-                "section": {"ground": [[0, drop], [150, drop], [150, 0]],
-                            "sliding_surface": [[0, drop], [100, 0], [150, 0]]}}
-        self.assertAlmostEqual(critical_friction(case, "--delta", "0"), 15, places=6)
+        self.assertAlmostEqual(critical_friction(two_wedge_case(150), "--delta", "0"), 15, places=6)
 
 
 class CohesiveWedges(unittest.TestCase):
@@ -114,12 +118,7 @@ class CohesiveWedges(unittest.TestCase):
         # friction): equal weights on 30 deg and 0 deg seats are critical at phi = 15 deg. Through the
         # imported functions with the base lengths carried and c = 0 given explicitly, and the thrust
         # bit-identical with and without the cohesion argument.
-        drop = 100 * math.tan(math.radians(30))
-        case = {"materials": {"rock": {"density": 2500}}, "joints": {"j": {"friction_angle": 40}},
-                "default_joint": "j",
-                "section": {"ground": [[0, drop], [150, drop], [150, 0]],
-                            "sliding_surface": [[0, drop], [100, 0], [150, 0]]}}
-        slices = section_slices(case)
+        slices = section_slices(two_wedge_case(150))
         phi = vajont_limit_equilibrium.critical_friction(slices, 0.0, cohesion=0.0)
         self.assertAlmostEqual(phi, 15, places=9)
         for tan_phi in (0.1, 0.3, 0.5):
@@ -133,12 +132,7 @@ class CohesiveWedges(unittest.TestCase):
         # the horizontal thrust it passes on as W tan(b - phi) - c L cos(phi) / cos(b - phi). The
         # pair is critical when the thrusts sum to zero: c = sum W tan(b - phi) / sum L cos(phi) /
         # cos(b - phi).
-        drop = 100 * math.tan(math.radians(30))
-        case = {"materials": {"rock": {"density": 2500}}, "joints": {"j": {"friction_angle": 40}},
-                "default_joint": "j",
-                "section": {"ground": [[0, drop], [160, drop], [160, 0]],
-                            "sliding_surface": [[0, drop], [100, 0], [160, 0]]}}
-        slices = section_slices(case)
+        slices = section_slices(two_wedge_case(160))
         phi = math.radians(10)  # the upper wedge drives and needs the lower one
         want = sum(w * math.tan(b - phi) for w, b, _ in slices) / \
             sum(length * math.cos(phi) / math.cos(b - phi) for _, b, length in slices)

@@ -25,6 +25,8 @@ EnergyBudget storedEnergy(const model::Scene& scene, const std::vector<double>& 
   }
   for (const model::FixedPoint& f : scene.fixedPoints)
     e.elastic += 0.5 * normalStiffness * (f.point.current - f.point.initial).squaredNorm();
+  std::vector<contact::JointStrength> joints;  // once per call, not per contact
+  for (const model::JointProperties& j : scene.joints) joints.push_back(contact::jointStrength(j));
   for (const contact::Contact& c : contacts) {
     if (!c.closed()) continue;
     e.elastic += 0.5 * c.normalForce * c.normalForce / normalStiffness;
@@ -35,7 +37,7 @@ EnergyBudget storedEnergy(const model::Scene& scene, const std::vector<double>& 
         c.state == contact::ContactState::Locked
             ? c.shearForce
             : contact::shearStrength(c.bonded, c.normalForce,
-                                     contact::contactStrength(scene.joints[c.joint], c.intact, c.geometry.overlap / 2));
+                                     contact::contactStrength(joints[c.joint], c.intact, c.geometry.overlap / 2));
     e.elastic += 0.5 * shear * shear / shearStiffness;
   }
   return e;
