@@ -74,6 +74,24 @@ TEST(NarrowPhase, DistantBlocksGiveNoContact) {
   EXPECT_TRUE(out.empty());
 }
 
+// An acute corner P hooked over a corner Q (the wedge of test_energy.cpp as it reaches the
+// bench): P lies 4 cm behind the line of the bench's vertical face but above the bench top, and Q
+// 2.3 cm outside the wedge's lower face. Both entrances are allowed by the angles, P on the face
+// the better; the new contact must be the open one, Q on the wedge's face (the entrance
+// penetrated least, Shi's shortest distance), not P 4 cm "deep" behind the face's extension.
+TEST(NarrowPhase, CornerOverACornerTakesTheSeparatingEntrance) {
+  const double rise = std::tan(30 * M_PI / 180), face = 56 * M_PI / 180;
+  const std::vector<Vec2> bench = {{-10, -2}, {12, -2}, {12, 0}, {0, 0}, {0, 2}, {-10, 2 + 10 * rise}};
+  const Vec2 p(-0.04, 2.1);
+  const std::vector<Vec2> wedge = {p, p + 2 * Vec2(std::cos(face), -std::sin(face)), p + Vec2(2, 0)};
+  std::vector<contact::ContactCandidate> out;
+  contact::findContacts(0, bench, 1, wedge, {0.1375, 0.0175}, none, out);
+  ASSERT_EQ(out.size(), 1u);
+  EXPECT_EQ(out[0].key, (contact::ContactKey{0, 4, 1, 0}));  // Q on the wedge's edge P → lower vertex
+  EXPECT_NEAR(out[0].gap, 0.1 * std::cos(face) - 0.04 * std::sin(face), 1e-12);
+  EXPECT_GT(out[0].gap, 0);
+}
+
 // Mohr-Coulomb judgement of one vertex-to-edge contact (dda-method.md §4).
 TEST(ContactLaw, VertexRule) {
   const contact::ContactStrength s{std::tan(30 * M_PI / 180), 100, 50};

@@ -8,6 +8,10 @@
 namespace ddaslope::contact {
 namespace {
 
+/// Entrances of a corner-to-corner contact whose gaps differ by less than this fraction of the
+/// search distance count as equally open.
+constexpr double kGapTieFraction = 1e-3;
+
 struct Poly {
   int block;
   const std::vector<Vec2>& p;
@@ -150,7 +154,23 @@ void vertexToVertex(const Poly& A, const Poly& B, const Region& region, const Na
           break;
         }
       }
-      emit(*best);
+      // A contact the corners start, or switch to, takes the entrance the corner has penetrated
+      // least (Shi: of the two entrances, the shortest distance), unless the one chosen above is
+      // as open up to a tie. Another entrance may measure the vertex against the extension of an
+      // edge it has already passed: a penetration the blocks do not have, whose spring would
+      // start with energy no work has paid for (corners passing each other in the Vajont
+      // run-out: 0.47 m, 4.4e10 J/m in one step). A contact kept from the last step goes on
+      // with the spring it has.
+      ContactCandidate chosen = makeCandidate(*best->vertexPoly, best->v, *best->edgePoly, best->e, s.parallelTolerance);
+      if (!known(chosen.key)) {
+        ContactCandidate open = chosen;
+        for (const Option& o : options) {
+          const ContactCandidate c = makeCandidate(*o.vertexPoly, o.v, *o.edgePoly, o.e, s.parallelTolerance);
+          if (c.gap > open.gap) open = c;
+        }
+        if (open.gap > chosen.gap + kGapTieFraction * s.searchDistance) chosen = open;
+      }
+      if (chosen.gap >= -0.5 * s.searchDistance) out.push_back(chosen);
     }
   }
 }
