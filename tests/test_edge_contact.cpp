@@ -140,6 +140,29 @@ TEST(EdgeContact, RuleJudgesTotalsAndSplitsAtAPivot) {
   EXPECT_TRUE(h.bonded);
 }
 
+// Halves of a softening joint that have slipped different distances carry different tan φ. The
+// whole's strength is Σ N_i tan φ_i, the resistance the halves meet once sliding; with one mean
+// tan φ, N (tan φ1 + tan φ2)/2, a locked pair failed below it, slid back against that resistance
+// and stuck again, for ever (the Vajont trigger run at rest at t = 29.5 s: halves at tan φ 0.189
+// and 0.103 under N 2.63e8 and 1.00e8 N/m, shear 5.9e7 N/m: mean-tan strength 5.3e7, resistance
+// 6.0e7). Numbers from that trace.
+TEST(EdgeContact, HalvesAtDifferentSofteningMeetTheResistanceTheyWouldSlideAgainst) {
+  using contact::ContactState;
+  const contact::HalfState locked{ContactState::Locked, 0, false};
+  const contact::ContactStrength heel{0.189, 0, 0, true}, toe{0.103, 0, 0, true};
+  const contact::ContactResponse rHeel{2.63e8, 4.83e7, 0}, rToe{1.0e8, 1.1e7, 0};
+  const double resistance = rHeel.normalForce * heel.tanPhi + rToe.normalForce * toe.tanPhi;  // 6.0e7
+  ASSERT_GT(resistance, rHeel.lockedShear + rToe.lockedShear);  // 5.93e7: within the strength
+  auto [h, t] = contact::judgeEdgeContact(locked, locked, rHeel, rToe, heel, toe);
+  EXPECT_EQ(h.state, ContactState::Locked);
+  EXPECT_EQ(t.state, ContactState::Locked);
+  // 2 % more shear than Σ N_i tan φ_i: the pair slides, as one.
+  const contact::ContactResponse more{rHeel.normalForce, rHeel.lockedShear + 0.02 * resistance, 0};
+  std::tie(h, t) = contact::judgeEdgeContact(locked, locked, more, rToe, heel, toe);
+  EXPECT_EQ(h.state, ContactState::Sliding);
+  EXPECT_EQ(t.state, ContactState::Sliding);
+}
+
 // The comparison table of docs/contact-model.md: on 27 inclines (α 30–50°, h/b 0.25–1,
 // φ 10–30°) the edge treatment's critical cohesion is within 1 % of the closed form
 // c_cr = (W sin α − W cos α tan φ)/b in every row (issue #3); the original treatment's error is

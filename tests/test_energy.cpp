@@ -27,7 +27,7 @@ double largestStepGain(const io::Trace& t) {
 model::Scene wedgePastACorner(double dt) {
   model::Scene s;
   s.materials.push_back({"rock", 2600, 1e10, 0.25});
-  s.joints.push_back({"joint", degToRad(20), 0, 0});
+  s.joints.push_back(model::JointProperties::coulomb("joint", degToRad(20)));
   const double bench = 2, rise = std::tan(degToRad(30));
   model::Block ground;
   ground.id = "ground";

@@ -54,7 +54,6 @@ std::pair<ContactJudgement, ContactJudgement> judgeEdgeContact(const HalfState& 
             alone(h2, r2, s2, !open2 && pivotKeepsBond && h2.bonded)};
   }
   const bool bondedWhileSliding = bonded && s1.bondSurvivesSlip && s2.bondSurvivesSlip;
-  const double n = r1.normalForce + r2.normalForce;
   if (h1.state == ContactState::Sliding && h2.state == ContactState::Sliding && h1.direction == h2.direction) {
     const int dir = h1.direction;
     const ContactJudgement stopped{ContactState::Locked, 0, bondedWhileSliding};
@@ -68,9 +67,13 @@ std::pair<ContactJudgement, ContactJudgement> judgeEdgeContact(const HalfState& 
     return h.state == ContactState::Locked ? r.lockedShear : h.direction * shearStrength(h.bonded, r.normalForce, s);
   };
   const double shear = carried(h1, r1, s1) + carried(h2, r2, s2);
-  const ContactStrength whole{(s1.tanPhi + s2.tanPhi) / 2, s1.cohesionForce + s2.cohesionForce,
-                              s1.tensileForce + s2.tensileForce, bondedWhileSliding};
-  if (std::abs(shear) > shearStrength(bonded, n, whole) + tol.force) {
+  // The strength of the whole: c·L + Σ N_i tan φ_i. Each half's friction counts with its own
+  // tan φ, as the sliding resistance does (halves of a softening joint have slipped different
+  // distances): with one mean tan φ a locked pair could fail below the resistance it meets
+  // once sliding, and stick and slip in turn for ever.
+  const double friction = r1.normalForce * s1.tanPhi + r2.normalForce * s2.tanPhi;
+  const double strength = std::max(0.0, friction + (bonded ? s1.cohesionForce + s2.cohesionForce : 0.0));
+  if (std::abs(shear) > strength + tol.force) {
     const int dir = shear > 0 ? 1 : -1;
     const ContactJudgement sliding{ContactState::Sliding, dir, bondedWhileSliding};
     return {sliding, sliding};

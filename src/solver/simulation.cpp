@@ -685,7 +685,10 @@ StepRecord Simulation::advance() {
       for (int i = 0; i < nActive_; ++i) loadWork_ += a.loads[i].dot(a.d.segment<6>(6 * i));
       commit(a, dt, true);
       time_ = (dt == remaining) ? scene_.settings.duration : time_ + dt;
-      stepSize_.accepted(dt, cuts > 0);
+      // A step accepted only by freezing cycling contacts was not cured by its cuts: the next
+      // starts from the Δt before them, or a cycle met at rest would shrink Δt step after step
+      // without end (it reached 1e-9 s in the Vajont trigger run).
+      stepSize_.accepted(dt, cuts > 0 && !a.frozeContacts);
       ++stats_.steps;
       stats_.cuts += cuts;
       stats_.iterations += a.iterations;

@@ -50,7 +50,7 @@ struct HalfState {
 
 /// The founding paper's rule (Zhang et al. 2014; dda-method.md §5): the two vertex-to-edge halves
 /// of one edge-to-edge contact of overlap L are judged as one contact.
-/// - Shear: total S = S1 + S2 against c·L + (N1 + N2) tanφ while intact, N tanφ after; one state
+/// - Shear: total S = S1 + S2 against c·L + N1 tanφ1 + N2 tanφ2 while intact, the friction after; one state
 ///   (locked or sliding, one direction) for both halves; the bond is lost by both at once (kept
 ///   while sliding if the joint softens with slip).
 /// - Tension is judged at the ends: two end springs stand for a linear stress distribution whose
