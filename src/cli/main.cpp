@@ -150,7 +150,8 @@ int runCommand(const std::string& casePath, const std::string& outDir, const Ove
               "since t = 0, %.3g J/m in one step\n",
               first.potential - last.potential + last.loadWork, first.mechanical() - last.mechanical(), gain, stepGain);
   // Since the start: 1e-4 of the energy in play. In one step: 1e-3 (issue #14's bar; the friction
-  // sources docs/accuracy.md lists stay below 6.4e-4 in impacts). A smaller Δt is not the cure.
+  // sources docs/accuracy.md lists stay below 2e-4 in the Vajont run-out's impacts at Δt 1-10 ms).
+  // A smaller Δt is not the cure.
   if (gain > 1e-4 * scale + floor || stepGain > 1e-3 * scale + floor)
     std::printf("  WARNING: the mechanical energy rose by %.3g of the energy in play (%.3g of it in one step, at t = "
                 "%.4g s): a spurious gain. Look at energy.png and the energy_gain column of history.csv, see "
