@@ -121,10 +121,7 @@ Errors evaluate(const Knobs& k) {
     model::Scene s = io::readCase(std::string(DDASLOPE_SOURCE_DIR) + "/calibration/two_block_slide/case.json");
     apply(s, k);
     const io::RunOutcome o = io::runScene(s, {});
-    model::Expectation toe{};
-    toe.monitor = "toe";
-    toe.quantity = "ux";
-    toe.time = 2.0;
+    const model::Expectation toe{.monitor = "toe", .quantity = "ux", .time = 2.0};
     e.twoBlockToe = o.completed ? io::measure(o.trace, toe) : NAN;
   }
   e.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -44,8 +44,9 @@ TEST_P(CalibrationStudy, MeetsItsExpectedResult) {
                                                           : e.at("absolute_tolerance").get<double>();
       EXPECT_NEAR(got, want, tol) << name;
     }
-  if (expected.contains("constrains_only_a_line"))
+  if (expected.contains("constrains_only_a_line")) {
     EXPECT_EQ(r.lineOnly, expected.at("constrains_only_a_line").get<bool>());
+  }
   // An observed range the simulated value at the estimate must fall in (what the data say).
   if (expected.contains("fit_within"))
     for (const auto& [label, range] : expected.at("fit_within").items()) {

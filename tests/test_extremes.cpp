@@ -47,8 +47,9 @@ TEST_P(ExtremeCase, FiniteBoundedAndClosedForm) {
   // (1 % and the shear springs' released energy aside); more only by the integrator's damping of
   // its elastic vibration (the kilometre block at Δt = 10 ms: +3.8 %). A soft block's base slips
   // less than its centre travels, so d does not measure its slip.
-  if (GetParam().slides && GetParam().spec.young >= 1e9)
+  if (GetParam().slides && GetParam().spec.young >= 1e9) {
     EXPECT_GE(r.energyLost, 0.99 * r.frictionWork - r.elasticRelease - 1e-9 * r.heldPotential);
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(Extremes, ExtremeCase, ::testing::ValuesIn(io::extremeInclines()), [](const auto& info) {

@@ -92,10 +92,18 @@ TEST(StrengthReduction, SteppedToppingSlopeDoesNotDependOnSettings) {
     int threads = 2;
   };
   std::vector<Variant> variants = {{"case settings", {}}, {"1 thread", {}, 1}};
-  for (double dt : {2e-4, 5e-4, 1e-3, 2e-3, 4e-3}) variants.push_back({"dt", {"", dt}});
-  for (const char* p : {"fast", "balanced", "accurate"}) variants.push_back({p, {p}});
-  variants.push_back({"vertex", {"", 0, "", "vertex"}});
-  variants.push_back({"rigid", {"", 0, "rigid"}});
+  const auto with = [](std::string preset, double dt, std::string blocks, std::string treatment) {
+    model::SettingsOverride o;
+    o.preset = std::move(preset);
+    o.timeStep = dt;
+    o.blocks = std::move(blocks);
+    o.contactTreatment = std::move(treatment);
+    return o;
+  };
+  for (double dt : {2e-4, 5e-4, 1e-3, 2e-3, 4e-3}) variants.push_back({"dt", with("", dt, "", "")});
+  for (const char* p : {"fast", "balanced", "accurate"}) variants.push_back({p, with(p, 0, "", "")});
+  variants.push_back({"vertex", with("", 0, "", "vertex")});
+  variants.push_back({"rigid", with("", 0, "rigid", "")});
   std::vector<double> factors;
   for (const Variant& v : variants) {
     model::Scene s = io::readCase(kStepped);

@@ -131,7 +131,7 @@ double misfitOf(const io::BackanalysisJob& job, const model::Scene& scene, int* 
   for (const auto& o : job.observations) {
     double sum = 0;
     int count = 0;
-    ObservationFit met{o.label, NAN, o.target, o.sigma, o.kind == io::ObservationSpec::Kind::Series};
+    ObservationFit met{o.label, NAN, o.target, o.sigma, o.kind == io::ObservationSpec::Kind::Series, true, {}};
     if (o.kind == io::ObservationSpec::Kind::FactorOfSafety) {
       std::vector<int> joints;
       for (const auto& n : o.joints) joints.push_back(jointNamed(scene, n, job.jobPath));

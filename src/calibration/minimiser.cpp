@@ -32,7 +32,8 @@ MinimiserResult minimise(const std::string& algorithm, const std::function<doubl
   nlopt::opt opt(static_cast<nlopt::algorithm>(a), n);
   opt.set_lower_bounds(std::vector<double>(n, 0.0));
   opt.set_upper_bounds(std::vector<double>(n, 1.0));
-  Objective o{&f};
+  Objective o;
+  o.f = &f;
   opt.set_min_objective(trampoline, &o);
   opt.set_maxeval(std::max(1, maxEvaluations));
   opt.set_xtol_rel(xtolRel);

@@ -20,6 +20,7 @@ double secondsSince(std::chrono::steady_clock::time_point t0) {
 
 /// Wraps a verdict function so that every forward run is counted and recorded (thread-safe).
 struct CountedVerdict {
+  explicit CountedVerdict(std::function<TrialResult(double)> v) : verdict(std::move(v)) {}
   std::function<TrialResult(double)> verdict;
   std::atomic<int> runs{0};
   std::mutex mutex;

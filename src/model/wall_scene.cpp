@@ -35,7 +35,10 @@ Scene makeBrickWall(int n) {
     }
     for (const auto& [x0, x1] : spans) {
       if (made == n) break;
-      add("b" + std::to_string(made++), false, {{x0, y0}, {x1, y0}, {x1, y0 + bh}, {x0, y0 + bh}});
+      // Appended, not "b" + to_string(): GCC 12 warns falsely (-Wrestrict) on that operator+.
+      std::string id = std::to_string(made++);
+      id.insert(id.begin(), 'b');
+      add(id, false, {{x0, y0}, {x1, y0}, {x1, y0 + bh}, {x0, y0 + bh}});
     }
   }
   s.settings.timeStep = 1e-3;

@@ -1,5 +1,7 @@
 #include "ddaslope/solver/sparse_cholesky.hpp"
 
+#include <array>
+
 #include <cholmod.h>
 
 #include <algorithm>
@@ -111,11 +113,20 @@ bool SparseCholesky::modify(const std::vector<Column>& columns, bool add) {
   for (size_t j = 0; j < columns.size(); ++j) {
     p[j] = static_cast<int>(k);
     const Column& c = columns[j];
-    int order[12];
-    for (int e = 0; e < c.count; ++e) order[e] = e;
+    // A column holds a contact spring's entries: two blocks of at most 6 unknowns each, sorted by
+    // row. Insertion sort over at most 12: std::sort's introsort made GCC 12 warn (-Warray-bounds)
+    // about heap indices it cannot reach, since it did not know the bound.
+    DDASLOPE_ASSERT(c.count >= 0 && c.count <= 12, "a spring column has at most 12 entries");
+    const int n = std::clamp(c.count, 0, 12);
+    std::array<int, 12> order{};
     const auto row = [&](int e) { return m.inversePerm[static_cast<size_t>(c.rows[e])]; };
-    std::sort(order, order + c.count, [&](int a, int b) { return row(a) < row(b); });
-    for (int e = 0; e < c.count; ++e, ++k) {
+    for (int e = 0; e < n; ++e) {
+      int at = e;
+      for (; at > 0 && row(order[static_cast<size_t>(at - 1)]) > row(e); --at)
+        order[static_cast<size_t>(at)] = order[static_cast<size_t>(at - 1)];
+      order[static_cast<size_t>(at)] = e;
+    }
+    for (int e = 0; e < n; ++e, ++k) {
       i[k] = row(order[e]);
       x[k] = c.values[order[e]];
     }

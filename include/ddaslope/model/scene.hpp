@@ -38,15 +38,15 @@ struct FixedPoint {
 
 /// An expected value a shipped case carries with it (checked by the test suite and `run`).
 struct Expectation {
-  std::string monitor;
-  std::string quantity;  ///< ux, uy, vx, vy, displacement (|u|), speed (|v|)
-  std::optional<double> time;  ///< at this time; absent: the maximum over the run
-  std::optional<double> value;
+  std::string monitor{};
+  std::string quantity{};  ///< ux, uy, vx, vy, displacement (|u|), speed (|v|)
+  std::optional<double> time{};  ///< at this time; absent: the maximum over the run
+  std::optional<double> value{};
   double relativeTolerance = 0;
   double absoluteTolerance = 0;
-  std::optional<double> atMost;
-  std::optional<double> atLeast;
-  std::string source;
+  std::optional<double> atMost{};
+  std::optional<double> atLeast{};
+  std::string source{};
 };
 
 struct Scene {
