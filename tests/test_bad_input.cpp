@@ -136,7 +136,7 @@ TEST(CaseReader, BadPolygons) {
   d["blocks"][1]["vertices"] = json::parse("[[2,1],[3,1],[4,1]]");  // collinear: zero area
   expectError(d, "blocks[1].vertices", "");
   d["blocks"][1]["vertices"] = json::parse("[[2,1],[3,1]]");
-  expectError(d, "blocks[1].vertices", "at least 3 points");
+  expectError(d, "blocks[1].vertices", "3 to 10000 points");
 }
 
 TEST(CaseReader, UnknownReferences) {
@@ -160,13 +160,13 @@ TEST(CaseReader, OutOfRangeValues) {
   expectError(d, "joints.bedding.friction_angle", "[0, 90)");
   d = minimal();
   d["analysis"]["time_step"] = 0;
-  expectError(d, "analysis.time_step", "a time step in (0, 1e6] s, found 0");
+  expectError(d, "analysis.time_step", "a time step in [1e-7, 10] s, found 0");
   d = minimal();
   d["analysis"]["time_step"] = -0.001;
-  expectError(d, "analysis.time_step", "a time step in (0, 1e6] s, found -0.001");
+  expectError(d, "analysis.time_step", "a time step in [1e-7, 10] s, found -0.001");
   d = minimal();
   d["analysis"]["time_step"] = 1e7;
-  expectError(d, "analysis.time_step", "a time step in (0, 1e6] s, found 1e+07");
+  expectError(d, "analysis.time_step", "a time step in [1e-7, 10] s, found 1e+07");
   d = minimal();
   d["materials"]["rock"]["density"] = "heavy";
   expectError(d, "materials.rock.density", "expected a number, found a string");
@@ -341,7 +341,7 @@ TEST(CaseReader, WaterErrors) {
   d["water"] = {{"phreatic_line", json::array({json::array({1, 1}), json::array({0, 1})})}};
   expectError(d, "water.phreatic_line[1]", "x increasing");
   d["water"] = {{"level_series", {{"csv", "no_such_levels.csv"}}}};
-  expectError(d, "water.level_series.csv", "cannot open the CSV file");
+  expectError(d, "water.level_series.csv", "does not exist");
 }
 
 // --set overrides a case number by JSON path; a malformed one is bad input (exit 2).
@@ -377,7 +377,7 @@ TEST(Cli, ModelOptionsAreReportedInTheSummary) {
   EXPECT_EQ(settings["blocks"], "rigid");
   const std::string job = std::string(DDASLOPE_SOURCE_DIR) + "/calibration/two_block_slide/job.json";
   EXPECT_EQ(runCli("backanalyse " + job + " --time-step 0 --out " + out.string(), &err), 2);
-  EXPECT_NE(err.find("expected a time step in (0, 1e6] s, found 0"), std::string::npos) << err;
+  EXPECT_NE(err.find("expected a time step in [1e-7, 10] s, found 0"), std::string::npos) << err;
   EXPECT_EQ(runCli("critical " + path + " --joint interface --preset quick", &err), 2);
   EXPECT_NE(err.find("quick"), std::string::npos) << err;
   fs::remove_all(out);
@@ -432,4 +432,188 @@ TEST(SettingsOverride, CommandLineWinsInOrder) {
   EXPECT_TRUE(s.settings.rigidBlocks);
   EXPECT_EQ(s.settings.contactTreatment, model::ContactTreatment::Vertex);
   EXPECT_EQ(s.settings.timeStepOrigin, "--time-step");
+}
+
+// ---- Issue #15: every class of the fuzzer's table gives exit 2 (bad input, with file and JSON
+// path) or exit 3 (a budget stop); none crashes, hangs or exits 0. ----
+
+namespace {
+
+/// The chair slide's section (cases/chair_slide.json) as JSON, for section mutations.
+json chairSlide() {
+  std::ifstream in(std::string(DDASLOPE_SOURCE_DIR) + "/cases/chair_slide.json");
+  return json::parse(in);
+}
+
+/// The CLI's exit code and stderr on a case written to a temporary file.
+int runCliOn(const json& doc, const std::string& command, const std::string& extra, std::string* err) {
+  const std::string path = writeTemp("fuzzed.json", doc.dump());
+  const int code = runCli(command + " " + path + " " + extra, err);
+  fs::remove(path);
+  return code;
+}
+
+}  // namespace
+
+// Crash: 100 000 nested arrays overflowed the parser's stack (signal 11). Now refused at depth 64.
+TEST(RobustInput, DeeplyNestedJsonIsRefusedNotACrash) {
+  const std::string deep = std::string(100000, '[') + std::string(100000, ']');
+  std::string text = kMinimal;
+  text.replace(text.find("\"block sliding on a 30 degree plane\""), 36, deep);
+  try {
+    io::parseCase(text, "case.json");
+    ADD_FAILURE() << "accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.file(), "case.json");
+    EXPECT_NE(std::string(e.what()).find("nested more than 64"), std::string::npos) << e.what();
+  }
+}
+
+// Hangs: values outside a physical range are refused at their JSON path (docs/case-format.md,
+// "Limits"), before any step is taken.
+TEST(RobustInput, ValuesThatHungAreRefusedWithTheirPath) {
+  json d = minimal();
+  d["gravity"] = {0, -2.1e9};
+  expectError(d, "gravity", "at most 1000");
+  d = minimal();
+  d["gravity"] = {0, -1e308};
+  expectError(d, "gravity", "at most 1000");
+  d = minimal();
+  d["analysis"]["duration"] = 1e9;
+  expectError(d, "analysis.duration", "(0, 1e6]");
+  d = minimal();
+  d["analysis"]["duration"] = 1e5;  // within range, but 1e8 steps of 1 ms
+  expectError(d, "analysis.duration", "more than the 1e7");
+  d = minimal();
+  d["analysis"]["time_step"] = 1e-12;
+  expectError(d, "analysis.time_step", "[1e-7, 10]");
+  d = minimal();
+  d["analysis"]["max_displacement_ratio"] = 1e-12;
+  expectError(d, "analysis.max_displacement_ratio", "[1e-5, 0.1]");
+  d = minimal();
+  d["blocks"][1]["angular_velocity"] = 1e6;
+  expectError(d, "blocks[1].angular_velocity", "at most 1000 m/s");
+  d = minimal();
+  d["blocks"][1]["velocity"] = {1e308, 0};
+  expectError(d, "blocks[1].velocity", "at most 1000 m/s");
+  d = minimal();
+  d["materials"]["rock"]["density"] = 1e-10;
+  expectError(d, "materials.rock.density", "[1, 1e5]");
+  d = minimal();
+  d["materials"]["rock"]["young_modulus"] = 1e15;
+  expectError(d, "materials.rock.young_modulus", "[1e3, 1e13]");
+  // A 10 m × 3e-8 m sliver, and a block scaled to 1e-9 m, in a 20 m scene.
+  d = minimal();
+  d["blocks"][1]["vertices"] = {{2, 1}, {12, 1}, {12, 1 + 3e-8}, {2, 1 + 3e-8}};
+  expectError(d, "blocks[1].vertices", "below the 1e-6");
+  d = minimal();
+  d["blocks"][1]["vertices"] = {{2, 1}, {2 + 1e-9, 1}, {2 + 1e-9, 1 + 1e-9}, {2, 1 + 1e-9}};
+  expectError(d, "blocks[1].vertices", "below the 1e-6");
+  // 100 000 vertices: refused by count, before the O(n²) simplicity check.
+  d = minimal();
+  json ring = json::array();
+  for (int k = 0; k < 100000; ++k) {
+    const double a = 2 * M_PI * k / 100000;
+    ring.push_back({3 + 0.5 * std::cos(a), 1.5 + 0.5 * std::sin(a)});
+  }
+  d["blocks"][1]["vertices"] = ring;
+  expectError(d, "blocks[1].vertices", "3 to 10000 points");
+}
+
+// A joint set spacing of 1 cm across the 850 m chair slide would cut millions of blocks.
+TEST(RobustInput, SectionCutIntoTooManyBlocksIsRefusedBeforeCutting) {
+  json d = chairSlide();
+  d["section"]["joint_sets"][0]["spacing"] = 0.01;
+  expectError(d, "section.joint_sets[0].spacing", "at most 50000");
+}
+
+// Accepted invalid: a sliding surface above the ground between crown and toe.
+TEST(RobustInput, SlidingSurfaceAboveTheGroundIsRefused) {
+  json d = chairSlide();
+  json& surface = d["section"]["sliding_surface"];
+  const json crown = surface.front(), toe = surface.back();
+  surface = {crown, toe};
+  d["section"]["ground"] = {{crown[0].get<double>() - 100, crown[1].get<double>()},
+                            {crown[0].get<double>() + 1, crown[1].get<double>() - 400},
+                            {toe[0].get<double>() + 100, toe[1].get<double>()}};
+  expectError(d, "section.sliding_surface", "below the ground");
+}
+
+// Nonsense: a comma in a monitor id shifted history.csv's columns. Names are now restricted.
+TEST(RobustInput, NamesThatWouldBreakTheOutputAreRefused) {
+  json d = minimal();
+  d["monitors"][0]["id"] = "crest,toe";
+  expectError(d, "monitors[0].id", "letters, digits");
+  d = minimal();
+  d["blocks"][1]["id"] = "slider\n";
+  expectError(d, "blocks[1].id", "letters, digits");
+}
+
+// Wrong code: a number the double cannot hold was an internal error (exit 1). Now bad input.
+TEST(RobustInput, OverflowingNumberTokenIsBadInput) {
+  std::string text = kMinimal;
+  text.replace(text.find("2600"), 4, "1e400");
+  try {
+    io::parseCase(text, "case.json");
+    ADD_FAILURE() << "accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.file(), "case.json");
+    EXPECT_NE(std::string(e.what()).find("invalid JSON"), std::string::npos) << e.what();
+  }
+}
+
+// Unhelpful: a bad CSV row now names the case file and JSON path that referred to the CSV, the
+// CSV and the row; a special file (/dev/zero) is refused without reading it.
+TEST(RobustInput, CsvErrorsNameTheCaseAndTheCsv) {
+  const std::string csv = writeTemp("levels.csv", "time,level\n0,1\n1,abc\n");
+  json d = minimal();
+  d["water"] = {{"level_series", {{"csv", csv}}}};
+  expectError(d, "water.level_series.csv", "row 3");
+  fs::remove(csv);
+  d["water"] = {{"level_series", {{"csv", "/dev/zero"}}}};
+  expectError(d, "water.level_series.csv", "regular file");
+}
+
+// The command line: the same ranges, and outputs that cannot be written are bad input (exit 2).
+TEST(RobustInput, CommandLineNumbersAndOutputsAreChecked) {
+  const std::string path = std::string(DDASLOPE_SOURCE_DIR) + "/cases/stable_block_40deg.json";
+  std::string err;
+  EXPECT_EQ(runCli("run " + path + " --duration inf --out /tmp/ddaslope_never", &err), 2) << err;
+  EXPECT_EQ(runCli("run " + path + " --time-step 1e-12 --out /tmp/ddaslope_never", &err), 2) << err;
+  EXPECT_EQ(runCli("run " + path + " --duration 1e5 --out /tmp/ddaslope_never", &err), 2) << err;
+  EXPECT_NE(err.find("analysis.duration"), std::string::npos) << err;
+  EXPECT_EQ(runCli("critical " + path + " --joint joint --solve friction --cohesion inf", &err), 2) << err;
+  EXPECT_EQ(runCli("fos " + path + " --width nan", &err), 2) << err;
+  EXPECT_EQ(runCli("fos " + path + " --width 1e-300", &err), 2) << err;
+  EXPECT_EQ(runCli("run " + path + " --set gravity[1]=inf --out /tmp/ddaslope_never", &err), 2) << err;
+  // --out naming an existing file, or a path under one.
+  const std::string file = writeTemp("not_a_dir", "x");
+  EXPECT_EQ(runCli("run " + path + " --out " + file, &err), 2) << err;
+  EXPECT_EQ(runCli("run " + path + " --out " + file + "/sub", &err), 2) << err;
+  fs::remove(file);
+  // A special file is not read; a 50 MB case is refused from its size, without parsing it.
+  EXPECT_EQ(runCli("check /dev/zero", &err), 2) << err;
+  EXPECT_NE(err.find("regular file"), std::string::npos) << err;
+  const std::string big = writeTemp("big.json", "{\"description\": \"" + std::string(50u << 20, 'x') + "\"}");
+  EXPECT_EQ(runCli("check " + big, &err), 2) << err;
+  EXPECT_NE(err.find("more than the 16 MB"), std::string::npos) << err;
+  fs::remove(big);
+}
+
+// Bounded work: analysis.max_steps stops a run with exit 3, a partial history (no history.csv)
+// and a summary whose status says why.
+TEST(RobustInput, StepBudgetStopsTheRunCleanly) {
+  json d = minimal();
+  d["analysis"]["max_steps"] = 50;  // the run needs 1000 steps of 1 ms
+  const fs::path out = fs::temp_directory_path() / ("ddaslope_budget_" + std::to_string(::getpid()));
+  std::string err;
+  EXPECT_EQ(runCliOn(d, "run", "--out " + out.string(), &err), 3) << err;
+  EXPECT_NE(err.find("budget exceeded"), std::string::npos) << err;
+  EXPECT_TRUE(fs::exists(out / "history.partial.csv"));
+  EXPECT_FALSE(fs::exists(out / "history.csv"));
+  std::ifstream in(out / "summary.json");
+  const json summary = json::parse(in);
+  EXPECT_EQ(summary["status"], "budget_exceeded");
+  EXPECT_EQ(summary["steps"], 50);
+  fs::remove_all(out);
 }

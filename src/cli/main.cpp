@@ -1,4 +1,5 @@
 // ddaslope: one command line, subcommands per question.
+#include <cerrno>
 #include <unistd.h>
 
 #include <chrono>
@@ -21,6 +22,7 @@
 #include "ddaslope/model/presets.hpp"
 #include "ddaslope/model/settings_override.hpp"
 #include "ddaslope/core/errors.hpp"
+#include "ddaslope/model/input_limits.hpp"
 #include "ddaslope/io/case_reader.hpp"
 #include "ddaslope/io/run_case.hpp"
 #include "ddaslope/solver/simulation.hpp"
@@ -37,16 +39,27 @@ struct Overrides {
   std::vector<std::string> settings;  ///< "json.path=value", applied before the case is read
 };
 
+/// A command-line number checked like a case number: finite (no nan, inf or overflow) and in
+/// [lo, hi].
+CLI::Validator finiteIn(double lo, double hi, const std::string& what) {
+  return CLI::Validator(
+      [=](std::string& text) -> std::string {
+        char* end = nullptr;
+        errno = 0;
+        const double x = std::strtod(text.c_str(), &end);
+        const bool ok = end != text.c_str() && *end == 0 && errno != ERANGE && std::isfinite(x) && x >= lo && x <= hi;
+        return ok ? "" : "expected " + what + ", found " + text;
+      },
+      what);
+}
+
 /// The options every command that runs forward models shares.
 void addModelOptions(CLI::App* cmd, Overrides& o) {
   cmd->add_option("--preset", o.model.preset, "fast, balanced or accurate: Δt, g2 and penalty (docs/accuracy.md)")
       ->check(CLI::IsMember({"fast", "balanced", "accurate"}));
   cmd->add_option("--time-step", o.model.timeStep, "override analysis.time_step (s)")
-      ->check([](const std::string& v) -> std::string {
-        char* end = nullptr;
-        const double dt = std::strtod(v.c_str(), &end);
-        return end != v.c_str() && *end == 0 && dt > 0 && dt <= 1e6 ? "" : "expected a time step in (0, 1e6] s, found " + v;
-      });
+      ->check(finiteIn(ddaslope::model::limits::kMinTimeStep, ddaslope::model::limits::kMaxTimeStep,
+                       "a time step in [1e-7, 10] s"));
   cmd->add_option("--blocks", o.model.blocks, "rigid (3 unknowns) or deformable (6)")
       ->check(CLI::IsMember({"rigid", "deformable"}));
   cmd->add_option("--contact-treatment", o.model.contactTreatment,
@@ -65,9 +78,9 @@ ddaslope::io::CaseOverride parseSetting(const std::string& text) {
     if (eq == std::string::npos) throw std::invalid_argument("");
     size_t used = 0;
     v = std::stod(text.substr(eq + 1), &used);
-    if (used != text.size() - eq - 1) throw std::invalid_argument("");
+    if (used != text.size() - eq - 1 || !std::isfinite(v)) throw std::invalid_argument("");
   } catch (const std::exception&) {
-    throw ddaslope::InputError("--set", text, "expected json.path=number, e.g. joints.clay.friction_angle=20");
+    throw ddaslope::InputError("--set", text, "expected json.path=number (finite), e.g. joints.clay.friction_angle=20");
   }
   return {text.substr(0, eq), v};
 }
@@ -79,9 +92,10 @@ ddaslope::model::Scene loadCase(const std::string& casePath, const Overrides& o,
   return ddaslope::io::readCase(casePath, extra);
 }
 
-void applyOverrides(ddaslope::model::Scene& scene, const Overrides& o) {
+void applyOverrides(ddaslope::model::Scene& scene, const Overrides& o, const std::string& casePath) {
   o.model.apply(scene);
   if (o.duration > 0) scene.settings.duration = o.duration;
+  ddaslope::io::checkWorkload(scene, casePath);
 }
 
 int compareContactsCommand(bool deformable, const std::string& csvPath) {
@@ -123,7 +137,7 @@ int compareContactsCommand(bool deformable, const std::string& csvPath) {
 int runCommand(const std::string& casePath, const std::string& outDir, const Overrides& o, bool quiet,
                bool verbose, const std::vector<double>& snapshots) {
   ddaslope::model::Scene scene = loadCase(casePath, o);
-  applyOverrides(scene, o);
+  applyOverrides(scene, o, casePath);
   ddaslope::io::RunOptions opt;
   opt.outputDir = outDir;
   opt.casePath = casePath;
@@ -132,7 +146,7 @@ int runCommand(const std::string& casePath, const std::string& outDir, const Ove
   opt.snapshotTimes = snapshots;
   const ddaslope::io::RunOutcome r = ddaslope::io::runScene(scene, opt);
   if (!r.completed) {
-    std::cerr << "ddaslope: " << casePath << ": non-convergence: " << r.failure << "\n"
+    std::cerr << "ddaslope: " << casePath << (r.budgetStop ? ": budget exceeded: " : ": non-convergence: ") << r.failure << "\n"
               << "  partial history: " << outDir << "/history.partial.csv\n";
     return kExitNonConvergence;
   }
@@ -183,7 +197,7 @@ std::string settingsLine(const ddaslope::model::Scene& scene) {
 
 int checkCommand(const std::string& casePath, const Overrides& o) {
   ddaslope::model::Scene scene = loadCase(casePath, o);
-  applyOverrides(scene, o);
+  applyOverrides(scene, o, casePath);
   const ddaslope::solver::Simulation sim(scene);
   int closed = 0;
   for (const auto& c : sim.contacts().contacts()) closed += c.closed();
@@ -271,7 +285,7 @@ void warnAboutTrials(const std::string& casePath, const std::string& warning) {
 
 int criticalCommand(const std::string& casePath, const Overrides& o, const CriticalOptions& opt) {
   ddaslope::model::Scene scene = loadCase(casePath, o);
-  applyOverrides(scene, o);
+  applyOverrides(scene, o, casePath);
   const int joint = jointIndex(scene, opt.joint, casePath);
   if (!opt.curve.empty()) return curveCommand(casePath, scene, joint, opt);
   ddaslope::calibration::SearchSettings s;
@@ -330,8 +344,9 @@ int fosSweep(const std::string& casePath, const Overrides& o, const FosOptions& 
   const size_t eq = opt.sweep.find('=');
   double lo = 0, hi = 0;
   int n = 0;
-  if (eq == std::string::npos || std::sscanf(opt.sweep.c_str() + eq + 1, "%lf:%lf:%d", &lo, &hi, &n) != 3 || n < 2)
-    throw ddaslope::InputError("--sweep", opt.sweep, "expected json.path=min:max:n with n ≥ 2");
+  if (eq == std::string::npos || std::sscanf(opt.sweep.c_str() + eq + 1, "%lf:%lf:%d", &lo, &hi, &n) != 3 || n < 2 ||
+      n > 1000 || !std::isfinite(lo) || !std::isfinite(hi))
+    throw ddaslope::InputError("--sweep", opt.sweep, "expected json.path=min:max:n with finite min, max and 2 ≤ n ≤ 1000");
   const std::string path = opt.sweep.substr(0, eq);
   std::filesystem::create_directories(opt.outDir);
   const std::string csv = opt.outDir + "/fos_sweep.csv", png = opt.outDir + "/fos_sweep.png";
@@ -342,7 +357,7 @@ int fosSweep(const std::string& casePath, const Overrides& o, const FosOptions& 
   for (int i = 0; i < n; ++i) {
     const double v = lo + (hi - lo) * i / (n - 1);
     ddaslope::model::Scene scene = loadCase(casePath, o, {{path, v}});
-    applyOverrides(scene, o);
+    applyOverrides(scene, o, casePath);
     const auto r = factorFor(scene, casePath, opt);
     out << v << "," << r.factor << "," << r.stableEnd << "," << r.failingEnd << "," << r.found << "," << r.runs << ","
         << r.wallTime << "\n";
@@ -362,7 +377,7 @@ int fosSweep(const std::string& casePath, const Overrides& o, const FosOptions& 
 int fosCommand(const std::string& casePath, const Overrides& o, const FosOptions& opt) {
   if (!opt.sweep.empty()) return fosSweep(casePath, o, opt);
   ddaslope::model::Scene scene = loadCase(casePath, o);
-  applyOverrides(scene, o);
+  applyOverrides(scene, o, casePath);
   const auto r = factorFor(scene, casePath, opt);
   if (opt.json) {
     ddaslope::io::JsonRecord j;
@@ -510,11 +525,14 @@ int main(int argc, char** argv) {
   run->add_option("case", casePath, "case file (JSON)")->required();
   run->add_option("--out", outDir, "output directory")->capture_default_str();
   addModelOptions(run, overrides);
-  run->add_option("--duration", overrides.duration, "override analysis.duration (s)");
+  run->add_option("--duration", overrides.duration, "override analysis.duration (s)")
+      ->check(finiteIn(1e-9, ddaslope::model::limits::kMaxDuration, "a duration in (0, 1e6] s"));
   run->add_flag("--quiet", quiet, "no progress on stderr");
   run->add_flag("--verbose", verbose, "log equilibrium steps and time-step cuts on stderr");
   std::vector<double> snapshots;
-  run->add_option("--snapshots", snapshots, "times (s) of PNG pictures snapshot_NN.png in --out, e.g. 0,0.5,1")->delimiter(',');
+  run->add_option("--snapshots", snapshots, "times (s) of PNG pictures snapshot_NN.png in --out, e.g. 0,0.5,1")
+      ->delimiter(',')
+      ->check(finiteIn(0, ddaslope::model::limits::kMaxDuration, "times in [0, 1e6] s"));
 
   CLI::App* check = app.add_subcommand("check", "validate a case file without running it");
   check->add_option("case", casePath, "case file (JSON)")->required();
@@ -537,10 +555,14 @@ int main(int argc, char** argv) {
   critical->add_option("case", casePath, "case file (JSON)")->required();
   critical->add_option("--joint", crit.joint, "joint to search")->required();
   critical->add_option("--solve", crit.solve, "cohesion or friction")->check(CLI::IsMember({"cohesion", "friction"}))->capture_default_str();
-  critical->add_option("--friction", crit.friction, "friction angle (degrees) while solving for cohesion (default: the case's)");
-  critical->add_option("--cohesion", crit.cohesion, "cohesion (Pa) while solving for friction (default: the case's)");
-  critical->add_option("--width", crit.width, "final bracket width (Pa or degrees; default 10 Pa or 0.01°)");
-  critical->add_option("--threads", crit.threads, "forward runs at once")->capture_default_str();
+  critical->add_option("--friction", crit.friction, "friction angle (degrees) while solving for cohesion (default: the case's)")
+      ->check(finiteIn(0, 89.9, "a friction angle in [0, 89.9] degrees"));
+  critical->add_option("--cohesion", crit.cohesion, "cohesion (Pa) while solving for friction (default: the case's)")
+      ->check(finiteIn(0, 1e12, "a cohesion in [0, 1e12] Pa"));
+  // Widths below 1e-6 would ask the bisection for more digits than the verdict has.
+  critical->add_option("--width", crit.width, "final bracket width (Pa or degrees; default 10 Pa or 0.01°)")
+      ->check(finiteIn(1e-6, 1e12, "a width in [1e-6, 1e12]"));
+  critical->add_option("--threads", crit.threads, "forward runs at once")->capture_default_str()->check(CLI::Range(1, 256));
   addModelOptions(critical, overrides);
   critical->add_flag("--json", crit.json, "print the result as JSON");
   critical->add_option("--curve", crit.curve, "φmin:φmax:n: the critical (c, φ) curve as CSV and PNG in --out");
@@ -550,8 +572,9 @@ int main(int argc, char** argv) {
   CLI::App* fos = app.add_subcommand("fos", "strength-reduction factor of safety: largest F with c/F, atan(tan φ/F) stable");
   fos->add_option("case", casePath, "case file (JSON)")->required();
   fos->add_option("--joints", fosOpt.joints, "joints to reduce (default: all)")->delimiter(',');
-  fos->add_option("--width", fosOpt.width, "final bracket width of F")->capture_default_str();
-  fos->add_option("--threads", fosOpt.threads, "trial factors per round, run at once")->capture_default_str();
+  fos->add_option("--width", fosOpt.width, "final bracket width of F")->capture_default_str()
+      ->check(finiteIn(1e-4, 1, "a width of F in [1e-4, 1]"));
+  fos->add_option("--threads", fosOpt.threads, "trial factors per round, run at once")->capture_default_str()->check(CLI::Range(1, 256));
   fos->add_option("--sweep", fosOpt.sweep, "json.path=min:max:n: F at n values of one case number (CSV and PNG in --out)");
   fos->add_option("--out", fosOpt.outDir, "output directory for --sweep")->capture_default_str();
   addModelOptions(fos, overrides);
@@ -584,6 +607,10 @@ int main(int argc, char** argv) {
   } catch (const ddaslope::NonConvergenceError& e) {
     std::cerr << "ddaslope: non-convergence: " << e.what() << "\n";
     return kExitNonConvergence;
+  } catch (const std::filesystem::filesystem_error& e) {
+    // An --out that is a file, or a place the user may not write to: their input, not our bug.
+    std::cerr << "ddaslope: error: cannot write the output: " << e.what() << "\n";
+    return kExitBadInput;
   } catch (const std::exception& e) {
     std::cerr << "ddaslope: internal error: " << e.what() << "\n";
     return 1;

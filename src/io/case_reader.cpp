@@ -1,5 +1,6 @@
 #include "ddaslope/io/case_reader.hpp"
 
+#include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -11,11 +12,15 @@
 #include "ddaslope/core/errors.hpp"
 #include "ddaslope/geometry/polygon.hpp"
 #include "ddaslope/io/csv_series.hpp"
+#include "ddaslope/io/input_file.hpp"
+#include "ddaslope/model/input_limits.hpp"
 #include "ddaslope/model/presets.hpp"
 #include "ddaslope/model/section.hpp"
 
 namespace ddaslope::io {
 namespace {
+
+namespace limits = model::limits;
 
 using nlohmann::json;
 
@@ -112,6 +117,16 @@ class Reader {
     }
     return v;
   }
+  /// A name that appears in output headers and file names (history.csv columns, summary.json):
+  /// letters, digits, '_', '-' and '.', 1 to 64 of them, so no output can be misread.
+  std::string identifier(const std::string& name, const std::string& path) const {
+    bool safe = !name.empty() && name.size() <= 64;
+    for (const char ch : name)
+      safe = safe && (std::isalnum(static_cast<unsigned char>(ch)) || ch == '_' || ch == '-' || ch == '.');
+    if (!safe)
+      fail(path, "expected a name of 1-64 letters, digits, '_', '-' or '.', found \"" + name.substr(0, 80) + "\"");
+    return name;
+  }
   Vec2 point(const json& j, const std::string& path) const {
     if (!j.is_array() || j.size() != 2) fail(path, "expected a point [x, y], found " + typeName(j));
     return {number(j[0], index(path, 0)), number(j[1], index(path, 1))};
@@ -131,11 +146,11 @@ void readMaterials(const Reader& r, const json& doc, model::Scene& s, std::map<s
     const std::string p = "materials." + name;
     r.onlyKeys(m, p, {"density", "young_modulus", "poisson_ratio"});
     model::Material mat;
-    mat.name = name;
-    mat.density = r.numberIn(r.required(m, p, "density"), p + ".density", 0, 1e6, true, false,
-                             "a density > 0 kg/m³");
-    mat.youngModulus = r.numberIn(r.required(m, p, "young_modulus"), p + ".young_modulus", 0, 1e15,
-                                  true, false, "a Young's modulus > 0 Pa");
+    mat.name = r.identifier(name, p);
+    mat.density = r.numberIn(r.required(m, p, "density"), p + ".density", limits::kMinDensity, limits::kMaxDensity,
+                             false, false, "a density in [1, 1e5] kg/m³");
+    mat.youngModulus = r.numberIn(r.required(m, p, "young_modulus"), p + ".young_modulus", limits::kMinYoungModulus,
+                                  limits::kMaxYoungModulus, false, false, "a Young's modulus in [1e3, 1e13] Pa");
     mat.poissonRatio = r.numberIn(r.required(m, p, "poisson_ratio"), p + ".poisson_ratio", 0, 0.5,
                                   false, true, "a Poisson's ratio in [0, 0.5)");
     ids[name] = static_cast<int>(s.materials.size());
@@ -172,7 +187,7 @@ void readJoints(const Reader& r, const json& doc, model::Scene& s, std::map<std:
     r.onlyKeys(jn, p, {"friction_angle", "cohesion", "tensile_strength", "bond", "residual_friction_angle",
                        "residual_cohesion", "weakening_distance", "weakening_law"});
     model::JointProperties jp;
-    jp.name = name;
+    jp.name = r.identifier(name, p);
     jp.frictionAngle = degToRad(r.numberIn(r.required(jn, p, "friction_angle"), p + ".friction_angle",
                                            0, 90, false, true, "a friction angle in [0, 90) degrees"));
     jp.cohesion = r.optionalIn(jn, p, "cohesion", 0, 0, 1e12, false, false, "a cohesion ≥ 0 Pa");
@@ -263,6 +278,38 @@ void readSection(const Reader& r, const json& doc, model::Scene& s, const std::m
   }
 }
 
+/// Sizes the numbers can resolve: the scene from a laboratory sample to a mountain range, each
+/// block at least 1e-6 of it thick, and a bounded number of blocks.
+void checkGeometry(const Reader& r, const model::Scene& s) {
+  if (s.blocks.size() > static_cast<size_t>(limits::kMaxBlocks))
+    r.fail("blocks", "expected at most " + std::to_string(limits::kMaxBlocks) + " blocks, found " +
+                         std::to_string(s.blocks.size()));
+  geometry::Aabb box = geometry::boundingBox(s.blocks.front().vertices);
+  for (const model::Block& b : s.blocks) {
+    const geometry::Aabb bb = geometry::boundingBox(b.vertices);
+    box.lo = box.lo.cwiseMin(bb.lo);
+    box.hi = box.hi.cwiseMax(bb.hi);
+  }
+  const double size = (box.hi - box.lo).maxCoeff();
+  std::ostringstream m;
+  if (!(size >= limits::kMinSceneSize && size <= limits::kMaxSceneSize)) {
+    m << "expected a scene between 1 mm and 1000 km across, found " << size << " m";
+    r.fail("blocks", m.str());
+  }
+  for (size_t b = 0; b < s.blocks.size(); ++b) {
+    const model::Block& blk = s.blocks[b];
+    double perimeter = 0;
+    for (size_t k = 0; k < blk.vertices.size(); ++k)
+      perimeter += (blk.vertices[(k + 1) % blk.vertices.size()] - blk.vertices[k]).norm();
+    const double thickness = 2 * std::abs(blk.moments.area) / perimeter;
+    if (thickness < limits::kMinRelativeThickness * size) {
+      m << "block \"" << blk.id << "\" is " << thickness << " m thick (2·area/perimeter) in a scene " << size
+        << " m across: below the 1e-6 of it that the numbers resolve; merge it with a neighbour or remove it";
+      r.fail(Reader::index("blocks", b) + ".vertices", m.str());
+    }
+  }
+}
+
 void readBlocks(const Reader& r, const json& doc, model::Scene& s,
                 const std::map<std::string, int>& materialIds) {
   if (!doc.contains("blocks") && !s.blocks.empty()) return;  // all blocks come from the section
@@ -276,15 +323,16 @@ void readBlocks(const Reader& r, const json& doc, model::Scene& s,
     const json& jb = blocks[b];
     r.onlyKeys(jb, p, {"id", "material", "fixed", "vertices", "velocity", "angular_velocity"});
     model::Block blk;
-    blk.id = r.string(r.required(jb, p, "id"), p + ".id");
+    blk.id = r.identifier(r.string(r.required(jb, p, "id"), p + ".id"), p + ".id");
     if (!seen.insert(blk.id).second) r.fail(p + ".id", "duplicate block id \"" + blk.id + "\"");
     const std::string mat = r.string(r.required(jb, p, "material"), p + ".material");
     if (!materialIds.count(mat)) r.fail(p + ".material", "unknown material \"" + mat + "\" (not in materials)");
     blk.material = materialIds.at(mat);
     blk.fixed = r.boolean(jb, p, "fixed", false);
     const json& verts = r.required(jb, p, "vertices");
-    if (!verts.is_array() || verts.size() < 3)
-      r.fail(p + ".vertices", "expected an array of at least 3 points, found " + typeName(verts));
+    if (!verts.is_array() || verts.size() < 3 || verts.size() > static_cast<size_t>(limits::kMaxBlockVertices))
+      r.fail(p + ".vertices", "expected an array of 3 to " + std::to_string(limits::kMaxBlockVertices) +
+                                  " points, found " + typeName(verts));
     for (size_t k = 0; k < verts.size(); ++k) blk.vertices.push_back(r.point(verts[k], Reader::index(p + ".vertices", k)));
     if (!geometry::isSimple(blk.vertices))
       r.fail(p + ".vertices", "expected a simple polygon, found one that is self-intersecting, folded or has repeated vertices");
@@ -300,6 +348,12 @@ void readBlocks(const Reader& r, const json& doc, model::Scene& s,
       blk.velocity[1] = v.y();
     }
     if (jb.contains("angular_velocity")) blk.velocity[2] = r.number(jb.at("angular_velocity"), p + ".angular_velocity");
+    // The fastest point of the block: |v| + |ω| · (its farthest vertex from the centroid).
+    double reach = 0;
+    for (const Vec2& v : blk.vertices) reach = std::max(reach, (v - blk.moments.centroid).norm());
+    if (blk.velocity.head<2>().norm() + std::abs(blk.velocity[2]) * reach > limits::kMaxInitialSpeed)
+      r.fail(p + (jb.contains("angular_velocity") ? ".angular_velocity" : ".velocity"),
+             "expected an initial speed of at most 1000 m/s at every point of the block (|v| + |ω|·r)");
     if (blk.fixed && !blk.velocity.isZero()) r.fail(p + ".velocity", "a fixed block cannot have an initial velocity");
     s.blocks.push_back(blk);
   }
@@ -343,7 +397,7 @@ void readPointsAndLoads(const Reader& r, const json& doc, model::Scene& s) {
       const std::string p = Reader::index("monitors", i);
       r.onlyKeys((*mons)[i], p, {"id", "block", "point"});
       model::Monitor m;
-      m.id = r.string(r.required((*mons)[i], p, "id"), p + ".id");
+      m.id = r.identifier(r.string(r.required((*mons)[i], p, "id"), p + ".id"), p + ".id");
       if (!seen.insert(m.id).second) r.fail(p + ".id", "duplicate monitor id \"" + m.id + "\"");
       m.point = blockPoint(r, (*mons)[i], p, s);
       s.monitors.push_back(m);
@@ -395,7 +449,7 @@ void readWater(const Reader& r, const json& doc, model::Scene& s) {
   if (!doc.contains("water")) return;
   const json& w = doc.at("water");
   r.onlyKeys(w, "water", {"level", "phreatic_line", "level_series", "unit_weight"});
-  s.water.unitWeight = r.optionalIn(w, "water", "unit_weight", 9810, 0, 1e6, true, false, "a unit weight > 0 N/m³");
+  s.water.unitWeight = r.optionalIn(w, "water", "unit_weight", 9810, 10, 1e6, false, false, "a unit weight in [10, 1e6] N/m³");
   const int given = w.contains("level") + w.contains("phreatic_line") + w.contains("level_series");
   if (given != 1)
     r.fail("water", "expected exactly one of level (a horizontal water surface), phreatic_line or level_series");
@@ -436,12 +490,13 @@ void readAnalysis(const Reader& r, const json& doc, model::Scene& s) {
   const std::string p = "analysis";
   r.onlyKeys(a, p, {"duration", "time_step", "mode", "plane", "penalty", "penalty_factor",
                     "shear_penalty_ratio", "max_displacement_ratio", "open_close_max_iterations",
-                    "friction_tolerance", "max_step_cuts", "step_cut_factor", "initial_equilibrium",
+                    "friction_tolerance", "max_step_cuts", "max_steps", "wall_clock_limit", "step_cut_factor", "initial_equilibrium",
                     "equilibrium_max_steps", "edge_parallel_tolerance", "initial_contact_tolerance",
                     "contact_state_tolerance", "contact_treatment", "failure_displacement", "resting_speed", "preset",
                     "blocks"});
   model::AnalysisSettings& st = s.settings;
-  st.duration = r.numberIn(r.required(a, p, "duration"), p + ".duration", 0, 1e9, true, false, "a duration > 0 s");
+  st.duration = r.numberIn(r.required(a, p, "duration"), p + ".duration", 0, limits::kMaxDuration, true, false,
+                           "a duration in (0, 1e6] s");
   // A preset sets Δt, g2 and the penalty from the model's size; explicit keys below still win.
   // A case with neither a preset nor a time step runs at the default preset (balanced).
   if (a.contains("preset") || !a.contains("time_step")) {
@@ -450,7 +505,8 @@ void readAnalysis(const Reader& r, const json& doc, model::Scene& s) {
     if (!a.contains("preset")) st.timeStepOrigin = "default " + st.timeStepOrigin;
   }
   if (a.contains("time_step")) {
-    st.timeStep = r.numberIn(a.at("time_step"), p + ".time_step", 0, 1e6, true, false, "a time step in (0, 1e6] s");
+    st.timeStep = r.numberIn(a.at("time_step"), p + ".time_step", limits::kMinTimeStep, limits::kMaxTimeStep, false,
+                             false, "a time step in [1e-7, 10] s");
     st.timeStepOrigin = "analysis.time_step";
   }
   st.mode = r.choice(a, p, "mode", "dynamic", {"dynamic", "static"}) == "static" ? model::AnalysisMode::Static
@@ -466,11 +522,14 @@ void readAnalysis(const Reader& r, const json& doc, model::Scene& s) {
   st.penalty = r.optionalIn(a, p, "penalty", 0, 0, 1e18, false, false, "a penalty ≥ 0 N/m (0: automatic)");
   st.penaltyFactor = r.optionalIn(a, p, "penalty_factor", st.penaltyFactor, 0, 1e6, true, false, "a factor > 0");
   st.shearPenaltyRatio = r.optionalIn(a, p, "shear_penalty_ratio", st.shearPenaltyRatio, 0, 10, true, false, "a ratio > 0");
-  st.maxDisplacementRatio = r.optionalIn(a, p, "max_displacement_ratio", st.maxDisplacementRatio, 0, 0.1,
-                                         true, false, "a ratio in (0, 0.1]");
+  st.maxDisplacementRatio = r.optionalIn(a, p, "max_displacement_ratio", st.maxDisplacementRatio,
+                                         limits::kMinDisplacementRatio, 0.1, false, false, "a ratio in [1e-5, 0.1]");
   st.openCloseMaxIterations = r.integerIn(a, p, "open_close_max_iterations", st.openCloseMaxIterations, 1, 1000);
   st.frictionTolerance = r.optionalIn(a, p, "friction_tolerance", st.frictionTolerance, 0, 1, true, false, "a tolerance in (0, 1]");
   st.maxStepCuts = r.integerIn(a, p, "max_step_cuts", st.maxStepCuts, 0, 100);
+  st.maxSteps = r.integerIn(a, p, "max_steps", st.maxSteps, 0, 1000000000);
+  st.wallClockLimit = r.optionalIn(a, p, "wall_clock_limit", st.wallClockLimit, 0, 1e7, false, false,
+                                   "a wall time ≥ 0 s (0: none)");
   st.stepCutFactor = r.optionalIn(a, p, "step_cut_factor", st.stepCutFactor, 0, 1, true, true, "a factor in (0, 1)");
   st.initialEquilibrium = r.boolean(a, p, "initial_equilibrium", st.initialEquilibrium);
   st.equilibriumMaxSteps = r.integerIn(a, p, "equilibrium_max_steps", st.equilibriumMaxSteps, 1, 100000);
@@ -517,28 +576,51 @@ void readExpectations(const Reader& r, const json& doc, model::Scene& s) {
 
 model::Scene parseCase(const std::string& text, const std::string& file) {
   const Reader r(file);
-  json doc;
-  try {
-    doc = json::parse(text);
-  } catch (const json::parse_error& e) {
-    r.fail("", std::string("invalid JSON: ") + e.what());
-  }
+  const json doc = parseJsonText(text, file);
   r.onlyKeys(doc, "", {"description", "gravity", "materials", "joints", "default_joint", "joint_pairs", "section",
                        "blocks", "monitors", "point_loads", "fixed_points", "water", "analysis", "expected"});
   model::Scene s;
   if (doc.contains("description")) s.description = r.string(doc.at("description"), "description");
-  if (doc.contains("gravity")) s.gravity = r.point(doc.at("gravity"), "gravity");
+  if (doc.contains("gravity")) {
+    s.gravity = r.point(doc.at("gravity"), "gravity");
+    if (s.gravity.norm() > model::limits::kMaxGravity) {
+      std::ostringstream m;
+      m << "expected gravity of at most " << model::limits::kMaxGravity << " m/s² (100 g), found " << s.gravity.norm();
+      r.fail("gravity", m.str());
+    }
+  }
   std::map<std::string, int> materialIds, jointIds;
   readMaterials(r, doc, s, materialIds);
   readJoints(r, doc, s, jointIds);
   readSection(r, doc, s, materialIds, jointIds);
   readBlocks(r, doc, s, materialIds);
+  checkGeometry(r, s);
   readJointPairs(r, doc, s, jointIds);
   readPointsAndLoads(r, doc, s);
   readWater(r, doc, s);
   readAnalysis(r, doc, s);
   readExpectations(r, doc, s);
+  checkWorkload(s, file);
   return s;
+}
+
+void checkWorkload(const model::Scene& s, const std::string& file) {
+  const model::AnalysisSettings& st = s.settings;
+  const double steps = st.duration / st.timeStep;
+  std::ostringstream m;
+  if (!(steps <= model::limits::kMaxNominalSteps)) {
+    m << "duration / time_step = " << st.duration << " s / " << st.timeStep << " s = " << steps
+      << " steps, more than the 1e7 a run may take: shorten analysis.duration or lengthen the time step";
+    throw InputError(file, "analysis.duration", m.str());
+  }
+  // About 10 µs per block and step (the 1000-block wall: 8.5 ms per step, bench/): 1e10 is a day.
+  const double work = steps * static_cast<double>(s.blocks.size());
+  if (!(work <= 1e10)) {
+    m << steps << " steps of " << s.blocks.size() << " blocks (" << work
+      << " block-steps, about a day per 1e10): more than a run may take; shorten analysis.duration, lengthen "
+         "the time step or use fewer blocks";
+    throw InputError(file, "analysis.duration", m.str());
+  }
 }
 
 namespace {
@@ -570,16 +652,7 @@ json* locate(json& doc, const std::string& path) {
 }  // namespace
 
 model::Scene readCase(const std::string& path, const std::vector<CaseOverride>& overrides) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path, "", "cannot open the file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  json doc;
-  try {
-    doc = json::parse(text.str());
-  } catch (const json::parse_error& e) {
-    throw InputError(path, "", std::string("invalid JSON: ") + e.what());
-  }
+  json doc = readJsonFile(path);
   for (const CaseOverride& o : overrides) {
     json* at = locate(doc, o.jsonPath);
     if (!at) {
@@ -601,8 +674,7 @@ model::Scene readCase(const std::string& path, const std::vector<CaseOverride>& 
 
 std::string expandSection(const std::string& path) {
   const model::Scene scene = readCase(path);
-  std::ifstream in(path);
-  nlohmann::ordered_json doc = nlohmann::ordered_json::parse(in);
+  nlohmann::ordered_json doc = nlohmann::ordered_json::parse(readInputFile(path, kMaxJsonFileBytes));
   doc.erase("section");
   nlohmann::ordered_json blocks = nlohmann::ordered_json::array();
   for (const model::Block& b : scene.blocks) {
@@ -628,12 +700,6 @@ std::string expandSection(const std::string& path) {
   return doc.dump(2) + "\n";
 }
 
-model::Scene readCase(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path, "", "cannot open the file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return parseCase(text.str(), path);
-}
+model::Scene readCase(const std::string& path) { return parseCase(readInputFile(path, kMaxJsonFileBytes), path); }
 
 }  // namespace ddaslope::io

@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "ddaslope/core/errors.hpp"
+#include "ddaslope/io/input_file.hpp"
 #include "ddaslope/io/csv_series.hpp"
 
 namespace ddaslope::io {
@@ -103,14 +104,7 @@ void readPrecision(const JobReader& r, const json& doc, BackanalysisJob& job) {
 
 BackanalysisJob readJob(const std::string& path) {
   const JobReader r(path);
-  std::ifstream in(path);
-  if (!in) throw InputError(path, "", "cannot open the file");
-  json doc;
-  try {
-    doc = json::parse(in);
-  } catch (const json::parse_error& e) {
-    r.fail("", std::string("invalid JSON: ") + e.what());
-  }
+  const json doc = readJsonFile(path);
   r.onlyKeys(doc, "", {"description", "case", "parameters", "observations", "optimiser", "grid_points", "threads",
                        "preset", "blocks", "brittle_joints", "precision"});
   BackanalysisJob job;

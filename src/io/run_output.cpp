@@ -87,7 +87,7 @@ void writeSummary(const fs::path& dir, const model::Scene& scene, const RunOptio
   ordered_json j;
   j["case"] = opt.casePath;
   j["description"] = scene.description;
-  j["status"] = o.completed ? "completed" : "non_convergence";
+  j["status"] = o.completed ? "completed" : (o.budgetStop ? "budget_exceeded" : "non_convergence");
   if (!o.completed) j["failure"] = o.failure;
   const solver::RunStatistics& st = o.statistics;
   j["time"] = o.trace.steps.empty() ? 0.0 : o.trace.steps.back().time;
@@ -242,6 +242,7 @@ RunOutcome runScene(const model::Scene& scene, const RunOptions& opt) {
     o.completed = true;
   } catch (const NonConvergenceError& e) {
     o.failure = e.what();
+    o.budgetStop = dynamic_cast<const BudgetExceededError*>(&e) != nullptr;
     if (opt.progress) std::fprintf(stderr, "\n");
   }
   o.statistics = sim.statistics();

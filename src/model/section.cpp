@@ -6,6 +6,7 @@
 
 #include "ddaslope/core/errors.hpp"
 #include "ddaslope/geometry/cutting.hpp"
+#include "ddaslope/model/input_limits.hpp"
 
 namespace ddaslope::model {
 namespace {
@@ -78,6 +79,8 @@ void cutAll(std::vector<std::vector<Vec2>>& pieces, const Vec2& p, const Vec2& d
 
 SectionBlocks cutSection(const SectionSpec& s) {
   if (s.ground.size() < 2) fail("ground", "expected at least two points");
+  if (s.joints.size() > static_cast<size_t>(limits::kMaxBlocks))
+    fail("joints", "expected at most " + std::to_string(limits::kMaxBlocks) + " joints");
   for (size_t i = 1; i < s.ground.size(); ++i)
     if (s.ground[i].x() < s.ground[i - 1].x()) fail("ground[" + std::to_string(i) + "]", "expected x non-decreasing");
   if (s.slidingSurface.size() < 2) fail("sliding_surface", "expected at least two points");
@@ -95,6 +98,21 @@ SectionBlocks cutSection(const SectionSpec& s) {
   for (size_t i = 1; i + 1 < s.slidingSurface.size(); ++i)
     if (s.slidingSurface[i].y() >= groundAt(s.ground, s.slidingSurface[i].x()) - tol)
       fail("sliding_surface[" + std::to_string(i) + "]", "expected the sliding surface below the ground between crown and toe");
+  // Everywhere between crown and toe (at every vertex of either line and midway between them) the
+  // sliding surface runs below the ground; crown and toe may touch it.
+  std::vector<double> xs;
+  for (const Vec2& p : s.ground) xs.push_back(p.x());
+  for (const Vec2& p : s.slidingSurface) xs.push_back(p.x());
+  std::sort(xs.begin(), xs.end());
+  const size_t vertexCount = xs.size();
+  for (size_t i = 0; i + 1 < vertexCount; ++i) xs.push_back(0.5 * (xs[i] + xs[i + 1]));
+  for (const double x : xs)
+    if (x > crown.x() + tol && x < toe.x() - tol && groundAt(s.slidingSurface, x) >= groundAt(s.ground, x) - tol) {
+      std::ostringstream m;
+      m << "expected the sliding surface below the ground between crown and toe; at x = " << x << " m it is at "
+        << groundAt(s.slidingSurface, x) << " m, the ground at " << groundAt(s.ground, x) << " m";
+      fail("sliding_surface", m.str());
+    }
   if (!(s.baseDepth > 0)) fail("base_depth", "expected a depth > 0 m");
 
   const double crownAt = positionOnPolyline(s.ground, crown, tol), toeAt = positionOnPolyline(s.ground, toe, tol);
@@ -132,6 +150,9 @@ SectionBlocks cutSection(const SectionSpec& s) {
     cutAll(pieces, s.joints[i].first, d, "joints[" + std::to_string(i) + "]", minArea);
   }
   const geometry::Aabb box = geometry::boundingBox(mass);
+  // Each set's lines multiply the pieces at most by their number plus one: refuse before cutting
+  // what would exceed the block limit (a spacing of 1 cm across a 500 m slide).
+  double pieceBound = static_cast<double>(s.joints.size() + 1);
   for (size_t i = 0; i < s.jointSets.size(); ++i) {
     const JointSet& js = s.jointSets[i];
     const std::string path = "joint_sets[" + std::to_string(i) + "]";
@@ -144,8 +165,15 @@ SectionBlocks cutSection(const SectionSpec& s) {
       const double o = n.dot(c - js.origin);
       lo = std::min(lo, o), hi = std::max(hi, o);
     }
+    const double lines = std::floor(hi / js.spacing) - std::ceil(lo / js.spacing) + 1;
+    pieceBound *= std::max(lines, 0.0) + 1;
+    if (pieceBound > limits::kMaxBlocks) {
+      std::ostringstream m;
+      m << "this spacing (" << js.spacing << " m) would cut the slide mass into up to " << pieceBound
+        << " blocks; at most " << limits::kMaxBlocks << " are allowed";
+      fail(path + ".spacing", m.str());
+    }
     const long first = static_cast<long>(std::ceil(lo / js.spacing)), last = static_cast<long>(std::floor(hi / js.spacing));
-    if (last - first > 10000) fail(path + ".spacing", "expected fewer than 10000 joints across the slide mass");
     for (long k = first; k <= last; ++k) cutAll(pieces, js.origin + (k * js.spacing) * n, d, path, minArea);
   }
   std::sort(pieces.begin(), pieces.end(), [](const auto& p, const auto& q) {

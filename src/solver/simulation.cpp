@@ -53,6 +53,10 @@ class Stopwatch {
 Simulation::Simulation(model::Scene scene)
     : scene_(std::move(scene)),
       stepSize_(scene_.settings.timeStep, scene_.settings.stepCutFactor) {
+  if (scene_.settings.wallClockLimit > 0)
+    deadline_ = std::chrono::steady_clock::now() +
+                std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                    std::chrono::duration<double>(scene_.settings.wallClockLimit));
   w0_ = scene_.modelHalfSize();
   for (model::JointProperties& j : scene_.joints) {
     j.weakeningDistance = j.weakeningDistanceIn(w0_);
@@ -505,6 +509,7 @@ bool Simulation::settle(Regime regime, double& dt, double largestDt) {
   constexpr int kConfirmationSteps = 30;
   int stepsSinceRest = 0;
   for (int s = 0; s < scene_.settings.equilibriumMaxSteps; ++s) {
+    checkDeadline();
     if (firstRest && stepsSinceRest++ >= kConfirmationSteps) break;
     detectContacts(false);
     Attempt a = tryStep(dt, regime, true);
@@ -672,7 +677,17 @@ bool Simulation::finished() const {
   return time_ >= scene_.settings.duration * (1 - 1e-12);
 }
 
+void Simulation::checkDeadline() const {
+  if (!deadline_ || std::chrono::steady_clock::now() < *deadline_) return;
+  std::ostringstream why;
+  why << "stopped at t = " << time_ << " s after " << stats_.steps << " steps"
+      << (stats_.steps == 0 ? " (still bringing the scene to equilibrium)" : "")
+      << ": the budget analysis.wall_clock_limit (" << scene_.settings.wallClockLimit << " s) is spent";
+  throw BudgetExceededError(why.str());
+}
+
 StepRecord Simulation::advance() {
+  checkDeadline();
   detectContacts(false);
   const double remaining = scene_.settings.duration - time_;
   double dt = stepSize_.proposal(remaining);
@@ -684,6 +699,14 @@ StepRecord Simulation::advance() {
       if (a.frozeContacts) ++stats_.frozenSteps;
       for (int i = 0; i < nActive_; ++i) loadWork_ += a.loads[i].dot(a.d.segment<6>(6 * i));
       commit(a, dt, true);
+      // A state that overflowed would fill the history with inf and NaN: stop at the first one.
+      for (const model::Block& b : scene_.blocks)
+        if (!b.velocity.allFinite() || !b.vertices.front().allFinite()) {
+          std::ostringstream msg;
+          msg << "the model diverged at t = " << time_ << " s: block \"" << b.id
+              << "\" no longer has a finite position and velocity (look at the loads, gravity and initial velocities)";
+          throw NonConvergenceError(msg.str());
+        }
       time_ = (dt == remaining) ? scene_.settings.duration : time_ + dt;
       // A step accepted only by freezing cycling contacts was not cured by its cuts: the next
       // starts from the Δt before them, or a cycle met at rest would shrink Δt step after step
@@ -720,9 +743,20 @@ Vec2 Simulation::monitorVelocity(int m) const {
 }
 
 void runAnalysis(Simulation& sim, const StepObserver& observe, const HeldEquilibrium* shared) {
+  const model::AnalysisSettings& st = sim.scene().settings;
+  const double maxSteps = st.maxSteps > 0 ? st.maxSteps : 100 * st.duration / st.timeStep + 1000;
   sim.bringToEquilibrium(shared);
   observe(sim, StepRecord{});
-  while (!sim.finished()) observe(sim, sim.advance());
+  while (!sim.finished()) {
+    std::ostringstream why;
+    if (sim.statistics().steps >= maxSteps) {
+      why << "stopped at t = " << sim.time() << " s after " << sim.statistics().steps << " steps, the budget "
+          << (st.maxSteps > 0 ? "analysis.max_steps" : "(100 × duration/Δt + 1000: Δt has collapsed)")
+          << "; raise analysis.max_steps or look at the time-step cuts (--verbose)";
+      throw BudgetExceededError(why.str());
+    }
+    observe(sim, sim.advance());
+  }
 }
 
 }  // namespace ddaslope::solver

@@ -31,6 +31,13 @@ class NonConvergenceError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+/// A run stopped by its budget (analysis.max_steps or analysis.wall_clock_limit): reported like a
+/// non-convergence (exit 3), with its own status.
+class BudgetExceededError : public NonConvergenceError {
+ public:
+  using NonConvergenceError::NonConvergenceError;
+};
+
 }  // namespace ddaslope
 
 #define DDASLOPE_ASSERT(cond, msg)                                      \

@@ -16,6 +16,11 @@ std::string expandSection(const std::string& path);
 /// Same, from text already loaded (`file` names it in errors).
 model::Scene parseCase(const std::string& text, const std::string& file);
 
+/// Refuses a run that cannot finish in reasonable time (duration / Δt beyond 1e7 steps, or more
+/// than 1e10 block-steps), naming `file` and the setting to change. parseCase calls it; call it
+/// again after changing the settings (command-line overrides).
+void checkWorkload(const model::Scene& scene, const std::string& file);
+
 /// A number to put at a JSON path of the case before it is read ("materials.rock.young_modulus",
 /// "point_loads[0].rate[0]"): how a back-analysis varies any case value.
 struct CaseOverride {

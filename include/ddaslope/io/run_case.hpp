@@ -43,6 +43,7 @@ struct ExpectationResult {
 struct RunOutcome {
   bool completed = false;
   std::string failure;  ///< non-convergence message when not completed
+  bool budgetStop = false;  ///< stopped by analysis.max_steps or wall_clock_limit (exit 3)
   Trace trace;
   solver::RunStatistics statistics;
   double wallTime = 0;

@@ -57,6 +57,11 @@ struct AnalysisSettings {
   /// 1e-9 of the largest contact force. Larger: fewer open-close iterations on unloaded
   /// contacts, a blunter strength threshold.
   double contactStateTolerance = 1e-12;
+  /// Budget of a run (issue #15): it stops with exit 3, a partial history and a summary saying
+  /// why after this many analysis steps (0: automatic, 100 × duration/Δt + 1000, which only a run
+  /// whose Δt has collapsed reaches) or this many seconds of wall time (0: none).
+  int maxSteps = 0;
+  double wallClockLimit = 0;
   /// Successive Δt cuts allowed for one step before the analysis reports non-convergence.
   int maxStepCuts = 12;
   /// Factor applied to Δt when a step is cut (0 < f < 1).

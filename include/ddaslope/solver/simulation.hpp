@@ -1,4 +1,6 @@
 #pragma once
+#include <optional>
+#include <chrono>
 // The DDA forward model. One step reads top-down (STYLE.md):
 // broad phase → contacts → (assemble → factorise → solve → judge states)* → accept or cut Δt
 // → update geometry → commit contacts.
@@ -171,6 +173,10 @@ class Simulation {
   StepSizeController stepSize_;
   std::vector<Eigen::Matrix3d> elasticity_;
   RunStatistics stats_;
+  /// analysis.wall_clock_limit as a deadline from construction (equilibrium included), or none.
+  std::optional<std::chrono::steady_clock::time_point> deadline_;
+  /// Throws BudgetExceededError once the deadline has passed.
+  void checkDeadline() const;
   std::function<void(const std::string&)> log_;
 };
 
