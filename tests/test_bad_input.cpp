@@ -617,3 +617,25 @@ TEST(RobustInput, StepBudgetStopsTheRunCleanly) {
   EXPECT_EQ(summary["steps"], 50);
   fs::remove_all(out);
 }
+
+// A section cut by 3000 joints: a legitimate 3002-block scene, which `check` accepts (0.4 s); its
+// run (minutes of equilibrium for 3000 slender slices) is bounded by analysis.wall_clock_limit,
+// which covers the equilibrium too: exit 3, budget_exceeded.
+TEST(RobustInput, ThousandsOfSectionJointsAreCheckedFastAndRunUnderABudget) {
+  json d = chairSlide();
+  d["section"].erase("joint_sets");
+  json joints = json::array();
+  for (int i = 0; i < 3000; ++i) {
+    const double x = 0.1 + i * 850.0 / 3000;
+    joints.push_back({{x, -200}, {x, 500}});
+  }
+  d["section"]["joints"] = joints;
+  std::string err;
+  EXPECT_EQ(runCliOn(d, "check", "", &err), 0) << err;
+  d["analysis"]["wall_clock_limit"] = 1;
+  const fs::path out = fs::temp_directory_path() / ("ddaslope_slices_" + std::to_string(::getpid()));
+  EXPECT_EQ(runCliOn(d, "run", "--out " + out.string(), &err), 3) << err;
+  std::ifstream in(out / "summary.json");
+  EXPECT_EQ(json::parse(in)["status"], "budget_exceeded");
+  fs::remove_all(out);
+}

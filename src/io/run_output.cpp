@@ -238,6 +238,9 @@ RunOutcome runScene(const model::Scene& scene, const RunOptions& opt) {
     }
   };
   try {
+    // The equilibrium of a large scene can take minutes before the first step: say so.
+    if (opt.progress)
+      std::fprintf(stderr, "  bringing %zu blocks to rest under their static loads ...", scene.blocks.size());
     solver::runAnalysis(sim, observe, opt.sharedEquilibrium);
     o.completed = true;
   } catch (const NonConvergenceError& e) {
