@@ -47,6 +47,18 @@ void expectError(const json& doc, const std::string& path, const std::string& wh
 
 json minimal() { return json::parse(kMinimal); }
 
+/// Expects parseCase to refuse raw text (not a JSON document we could build) for a reason
+/// containing `what`, naming the file.
+void expectTextError(const std::string& text, const std::string& what) {
+  try {
+    io::parseCase(text, "case.json");
+    ADD_FAILURE() << "accepted bad input; expected " << what;
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.file(), "case.json");
+    EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << e.what();
+  }
+}
+
 int runCli(const std::string& args, std::string* stderrText) {
   const fs::path err = fs::temp_directory_path() / ("ddaslope_err_" + std::to_string(::getpid()));
   const std::string cmd = std::string(DDASLOPE_CLI) + " " + args + " >/dev/null 2>" + err.string();
@@ -460,13 +472,7 @@ TEST(RobustInput, DeeplyNestedJsonIsRefusedNotACrash) {
   const std::string deep = std::string(100000, '[') + std::string(100000, ']');
   std::string text = kMinimal;
   text.replace(text.find("\"block sliding on a 30 degree plane\""), 36, deep);
-  try {
-    io::parseCase(text, "case.json");
-    ADD_FAILURE() << "accepted";
-  } catch (const InputError& e) {
-    EXPECT_EQ(e.file(), "case.json");
-    EXPECT_NE(std::string(e.what()).find("nested more than 64"), std::string::npos) << e.what();
-  }
+  expectTextError(text, "nested more than 64");
 }
 
 // Hangs: values outside a physical range are refused at their JSON path (docs/case-format.md,
@@ -553,13 +559,7 @@ TEST(RobustInput, NamesThatWouldBreakTheOutputAreRefused) {
 TEST(RobustInput, OverflowingNumberTokenIsBadInput) {
   std::string text = kMinimal;
   text.replace(text.find("2600"), 4, "1e400");
-  try {
-    io::parseCase(text, "case.json");
-    ADD_FAILURE() << "accepted";
-  } catch (const InputError& e) {
-    EXPECT_EQ(e.file(), "case.json");
-    EXPECT_NE(std::string(e.what()).find("invalid JSON"), std::string::npos) << e.what();
-  }
+  expectTextError(text, "invalid JSON");
 }
 
 // Unhelpful: a bad CSV row now names the case file and JSON path that referred to the CSV, the
