@@ -157,6 +157,35 @@ TEST(ChairSlide, CriticalCohesionMatchesLimitEquilibriumWithSofteningJoints) {
   EXPECT_NEAR(critical(brittle), kSingleBlock, 0.1 * kSingleBlock);
 }
 
+// A planar multi-block slide (cases/planar_multiblock_slide.json: a wedge on one 30° plane, thick
+// at the crown, joints normal to the plane) is a rigid mechanism, so limit equilibrium is exact:
+// c_cr = γA(sinα − cosα tanφ)/L = 24525 × 10000 × 0.218616 / 461.880 = 116.08 kPa at φ = 18°.
+// With the scene settled at rest before t = 0 (analysis.settle_dynamically), DDA's critical
+// cohesion must match it within 2 % (measured +0.6 % edge, +0.2 % vertex); the thick crown blocks
+// need up to twice the mean alone, so brittle bonds (original DDA, the first-failure answer) must
+// lie well above it (measured 190.6 kPa: the crown blocks fail one after another).
+TEST(PlanarMultiBlockSlide, CriticalCohesionMatchesTheClosedFormWhenSettledAtRest) {
+  const model::Scene scene = io::readCase(std::string(DDASLOPE_SOURCE_DIR) + "/cases/planar_multiblock_slide.json");
+  ASSERT_TRUE(scene.settings.settleDynamically);
+  int joint = 0;
+  while (scene.joints[joint].name != "sliding_surface") ++joint;
+  const auto critical = [&](model::Scene s) {
+    const calibration::CriticalResult r = calibration::criticalCohesion(s, joint, 18, 300, {});
+    EXPECT_TRUE(r.found) << r.message;
+    return r.critical;
+  };
+  const double tanPhi = std::tan(18 * M_PI / 180), alpha = 30 * M_PI / 180;
+  const double closedForm = 2500 * 9.81 * (0.5 * 50 * 400) * (std::sin(alpha) - std::cos(alpha) * tanPhi) /
+                            (400 / std::cos(alpha));
+  EXPECT_NEAR(critical(scene), closedForm, 0.02 * closedForm);
+  model::Scene vertex = scene;
+  vertex.settings.contactTreatment = model::ContactTreatment::Vertex;
+  EXPECT_NEAR(critical(vertex), closedForm, 0.02 * closedForm);
+  model::Scene brittle = scene;
+  brittle.joints[joint].weakeningDistance = 0;
+  EXPECT_GT(critical(brittle), 1.5 * closedForm);
+}
+
 // Vajont from trigger to deposit in one run (calibration/vajont_trigger/case.json): one law for
 // the sliding surface, peak φ 17.9° (just below the 18.016° critical at the failure level, so the
 // slope fails) softening over 1 m of slip to the run-out's residual 5.89°. The crown must travel

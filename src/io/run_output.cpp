@@ -104,7 +104,9 @@ void writeSummary(const fs::path& dir, const model::Scene& scene, const RunOptio
   j["equilibrium"] = {{"steps", st.equilibriumSteps},
                       {"residual", st.equilibriumResidual},
                       {"converged", st.equilibriumConverged},
-                      {"relaxed", st.relaxationConverged}};
+                      {"relaxed", st.relaxationConverged},
+                      {"settling_steps", st.settlingSteps},
+                      {"started_at_rest", st.startedAtRest}};
   j["max_contacts"] = st.maxContacts;
   j["max_penetration_m"] = st.maxPenetration;
   j["step_limit_m"] = o.stepLimit;
@@ -150,6 +152,7 @@ void writeSummary(const fs::path& dir, const model::Scene& scene, const RunOptio
                    {"max_step_cuts", s.maxStepCuts},
                    {"step_cut_factor", s.stepCutFactor},
                    {"initial_equilibrium", s.initialEquilibrium},
+                   {"settle_dynamically", s.settleDynamically},
                    {"edge_parallel_tolerance", s.edgeParallelToleranceDeg},
                    {"initial_contact_tolerance", s.initialContactTolerance},
                    {"contact_state_tolerance", s.contactStateTolerance},

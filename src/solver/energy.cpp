@@ -9,6 +9,11 @@
 
 namespace ddaslope::solver {
 
+double kineticEnergy(const model::Block& b, double mass) {
+  const Mat6 m = (mass / b.moments.area) * assembly::unitMassMatrix(b.moments);
+  return 0.5 * b.velocity.dot(m * b.velocity);
+}
+
 EnergyBudget storedEnergy(const model::Scene& scene, const std::vector<double>& mass,
                           const std::vector<Eigen::Matrix3d>& elasticity,
                           const std::vector<contact::Contact>& contacts, double normalStiffness,
@@ -17,8 +22,7 @@ EnergyBudget storedEnergy(const model::Scene& scene, const std::vector<double>& 
   for (size_t k = 0; k < scene.blocks.size(); ++k) {
     const model::Block& b = scene.blocks[k];
     if (b.fixed) continue;
-    const Mat6 m = (mass[k] / b.moments.area) * assembly::unitMassMatrix(b.moments);
-    e.kinetic += 0.5 * b.velocity.dot(m * b.velocity);
+    e.kinetic += kineticEnergy(b, mass[k]);
     e.potential -= mass[k] * scene.gravity.dot(b.moments.centroid);
     // σ = E ε accumulated from zero, so the strain energy is ½ σᵀ E⁻¹ σ per unit area.
     e.elastic += 0.5 * b.moments.area * b.stress.dot(elasticity[b.material].ldlt().solve(b.stress));

@@ -34,6 +34,8 @@ constexpr int kFactorFollowingMinUnknowns = 3000;
 /// factorisation, a break-even near 1100; its equilibrium took 28.5 s with a limit of 400, 21.6 s
 /// with 800, 22.8 s with none, and 55.8 s refactorising every change.
 constexpr size_t kMaxFactorModificationRank = 800;
+/// Stage 3's budget, in steps per analysis.equilibrium_max_steps (200 by default: 4000 steps).
+constexpr int kSettlingStepsPerEquilibriumStep = 20;
 
 class Stopwatch {
  public:
@@ -205,8 +207,8 @@ void Simulation::assembleBlockTerms(double dt, Regime regime, std::vector<Mat6>&
   k.assign(nActive_, Mat6::Zero());
   f.assign(nActive_, Vec6::Zero());
   loads.assign(nActive_, Vec6::Zero());
-  const bool carryVelocity =
-      regime == Regime::Analysis && scene_.settings.mode == model::AnalysisMode::Dynamic;
+  const bool carryVelocity = (regime == Regime::Analysis || regime == Regime::Settling) &&
+                             scene_.settings.mode == model::AnalysisMode::Dynamic;
   // Water (and any load history) at the end of the step; equilibrium is found at t = 0.
   const model::WaterTable water = scene_.water.at(regime == Regime::Analysis ? time_ + dt : 0.0);
   for (size_t b = 0; b < scene_.blocks.size(); ++b) {
@@ -381,6 +383,10 @@ Simulation::Attempt Simulation::tryStep(double dt, Regime regime, bool freezeCyc
       Contact& c = a.contacts[q];
       const contact::ContactResponse& r = response[q];
       contact::ContactJudgement j = verdict[q];
+      // Before t = 0 a contact pulled open by the start (gravity switched on at once) keeps its
+      // bond, as slip then does not soften: that is the slope's loading history, not damage.
+      if (scene_.settings.settleDynamically && (regime == Regime::Relaxation || regime == Regime::Settling))
+        j.bonded = j.bonded || (c.bonded && j.state == ContactState::Open);
       if (j.state != c.state || j.direction != c.slideDirection) {
         const bool closing = c.state == ContactState::Open;
         if (freezeCycling && flips[q] >= kFlipsBeforeFreeze && !closing) {
@@ -498,16 +504,27 @@ void Simulation::commit(const Attempt& a, double dt, bool weakens) {
   stats_.times.update += sw.lap();
 }
 
-bool Simulation::settle(Regime regime, double& dt, double largestDt) {
+double Simulation::restAcceleration() const {
   // At rest when the acceleration a static step implies, 2|D|/Δt², is below 1e-6 g: a measure
   // of the out-of-balance force that does not depend on the Δt the step control ended up with.
-  const double restAcceleration = 1e-6 * std::max(scene_.gravity.norm(), 1e-3);
+  return 1e-6 * std::max(scene_.gravity.norm(), 1e-3);
+}
+
+Simulation::Rest Simulation::settle(Regime regime, double& dt, double largestDt) {
   // A scene that moves this far while settling is failing, not settling.
   const double failingTravel = scene_.settings.maxDisplacementRatio * w0_;
   double travel = 0;
-  std::optional<std::pair<model::Scene, contact::ContactSet>> firstRest;  // an unconfirmed rest
+  // Without stage 3 an unconfirmed rest is kept as a fallback while static steps from the
+  // analysis Δt look for a confirmed one (many-block scenes near failure, e.g. Vajont, creep on).
+  std::optional<std::pair<model::Scene, contact::ContactSet>> firstRest;
   constexpr int kConfirmationSteps = 30;
   int stepsSinceRest = 0;
+  const auto fallBack = [&] {
+    if (!firstRest) return Rest::NotFound;
+    scene_ = std::move(firstRest->first);
+    contacts_ = std::move(firstRest->second);
+    return Rest::Unconfirmed;
+  };
   for (int s = 0; s < scene_.settings.equilibriumMaxSteps; ++s) {
     checkDeadline();
     if (firstRest && stepsSinceRest++ >= kConfirmationSteps) break;
@@ -520,10 +537,7 @@ bool Simulation::settle(Regime regime, double& dt, double largestDt) {
       a = tryStep(dt, regime, true);
       cut = true;
     }
-    if (!a.converged) {
-      if (firstRest) break;
-      return false;
-    }
+    if (!a.converged) return fallBack();
     // Slip while the model settles under gravity switched on at once is an artefact of that start
     // (in nature the slope was loaded over its history), so it does not soften a joint; a brittle
     // bond that slides is still lost (original DDA).
@@ -539,32 +553,78 @@ bool Simulation::settle(Regime regime, double& dt, double largestDt) {
         << "out-of-balance " << stats_.equilibriumResidual << " g, travel " << travel << " m";
       log_(m.str());
     }
-    if (2 * worst / (dt * dt) < restAcceleration) {
+    if (2 * worst / (dt * dt) < restAcceleration()) {
       // Stage 1 holds every contact, so its rest is exact. A relaxation step may be accepted
-      // with cycling contacts frozen against their own criteria, and at a static Δt of seconds
-      // 2|D|/Δt² hides a residual force the stiffness takes up; the analysis would then release
-      // it dynamically, and the vibration it starts outlives the run at small Δt (a column slope
-      // at 0.2 ms: 2 mm/s after 2 s). So the relaxed state is confirmed by one step from rest at
-      // the analysis Δt with every contact judged by its real law. Unconfirmed, settling goes on
-      // from the analysis Δt for a few steps; if no confirmed rest turns up, the first rest is
-      // kept, as before the check (many-block scenes near failure, e.g. Vajont, creep on).
-      if (regime != Regime::Relaxation || confirmedAtRest(a, restAcceleration)) return true;
+      // with cycling contacts frozen against their own criteria (on the chair slide, bonded
+      // contacts held locked in 150 MN/m of tension that their law opens), and at a static Δt of
+      // seconds 2|D|/Δt² hides a residual force the stiffness takes up. The analysis would
+      // release either dynamically, and on a slope near its strength that release slides and
+      // softens joints. So the relaxed state is confirmed by one step from rest at the analysis
+      // Δt with every contact judged by its real law; unconfirmed, stage 3 settles it.
+      if (regime != Regime::Relaxation || confirmedAtRest(a, restAcceleration())) return Rest::Confirmed;
+      if (scene_.settings.settleDynamically) return Rest::Unconfirmed;
       if (!firstRest) firstRest.emplace(scene_, contacts_);
       if (log_) log_("equilibrium (relaxation): rest not confirmed at the analysis Δt; settling on");
       dt = scene_.settings.timeStep;
       continue;
     }
-    if (travel > failingTravel) {
-      if (firstRest) break;
-      return false;
-    }
+    if (travel > failingTravel) return fallBack();
     // A cut Δt makes the static step a slow dynamic relaxation: grow it back once it passes.
     if (!cut) dt = std::min(largestDt, 3 * dt);
   }
-  if (!firstRest) return false;
-  scene_ = std::move(firstRest->first);
-  contacts_ = std::move(firstRest->second);
-  return true;
+  return fallBack();
+}
+
+bool Simulation::settleDynamically() {
+  // Kinetic damping (Cundall's dynamic relaxation for explicit codes; here on the implicit
+  // Newmark step): steps at the analysis Δt carry velocity, and whenever the kinetic energy has
+  // passed a peak every velocity is set to zero, which removes the energy of the mode that
+  // peaked while the out-of-balance force keeps pushing towards equilibrium. The scene is at rest
+  // when a step started from zero velocity converges without freezing contacts and implies an
+  // acceleration below restAcceleration(): the test confirmedAtRest() applies to stage 2.
+  const double failingTravel = scene_.settings.maxDisplacementRatio * w0_;
+  const int budget = kSettlingStepsPerEquilibriumStep * scene_.settings.equilibriumMaxSteps;
+  double travel = 0, lastKinetic = 0;
+  bool fromRest = true;  // stage 2 ends with every velocity zero (static steps)
+  for (int s = 0; s < budget; ++s) {
+    checkDeadline();
+    detectContacts(false);
+    double dt = scene_.settings.timeStep;
+    Attempt a = tryStep(dt, Regime::Settling, false);
+    for (int k = 0; !a.converged && k < scene_.settings.maxStepCuts; ++k) {
+      if (log_) log_("settling Δt " + std::to_string(dt) + " s cut: " + a.failure);
+      dt *= scene_.settings.stepCutFactor;
+      a = tryStep(dt, Regime::Settling, k >= 1);
+    }
+    if (!a.converged) return false;
+    commit(a, dt, false);
+    ++stats_.settlingSteps;
+    const double worst = largestVertexDisplacement(a);
+    travel += worst;
+    const double implied = 2 * worst / (dt * dt);
+    if (log_) {
+      std::ostringstream m;
+      m << "settling step " << s + 1 << ": Δt " << dt << " s, " << a.iterations << " open-close iterations"
+        << (fromRest ? ", from rest: " : ", ") << "implied acceleration " << implied / std::max(scene_.gravity.norm(), 1e-3)
+        << " g, travel " << travel << " m";
+      log_(m.str());
+    }
+    if (fromRest && !a.frozeContacts && implied < restAcceleration()) {
+      stats_.equilibriumResidual = implied / std::max(scene_.gravity.norm(), 1e-3);
+      return true;
+    }
+    if (travel > failingTravel) return false;
+    double kinetic = 0;
+    for (size_t b = 0; b < scene_.blocks.size(); ++b)
+      if (active_[b] >= 0) kinetic += kineticEnergy(scene_.blocks[b], mass_[b]);
+    fromRest = kinetic < lastKinetic;
+    if (fromRest) {
+      for (model::Block& b : scene_.blocks) b.velocity.setZero();
+      kinetic = 0;
+    }
+    lastKinetic = kinetic;
+  }
+  return false;
 }
 
 double Simulation::largestVertexDisplacement(const Attempt& a) const {
@@ -623,7 +683,7 @@ HeldEquilibrium Simulation::holdEquilibrium() {
       if (!b.fixed) maxMass = std::max(maxMass, scene_.materials[b.material].density * b.moments.area);
     h.dt = std::sqrt(2e8 * maxMass / penalty_);
     const int before = stats_.equilibriumSteps;
-    h.converged = settle(Regime::HeldEquilibrium, h.dt, h.dt);
+    h.converged = settle(Regime::HeldEquilibrium, h.dt, h.dt) != Rest::NotFound;
     h.steps = stats_.equilibriumSteps - before;
   }
   h.blocks = scene_.blocks;
@@ -662,11 +722,26 @@ void Simulation::bringToEquilibrium(const HeldEquilibrium* shared) {
     // Releasing every held contact at once in one huge static step rarely converges: start the
     // relaxation at the analysis Δt and let it grow.
     double relaxDt = std::min(shared->dt, scene_.settings.timeStep);
-    stats_.relaxationConverged = settle(Regime::Relaxation, relaxDt, shared->dt);
-    if (!stats_.relaxationConverged) {
+    const Rest rest = settle(Regime::Relaxation, relaxDt, shared->dt);
+    stats_.relaxationConverged = rest != Rest::NotFound;
+    stats_.startedAtRest = rest == Rest::Confirmed;
+    if (rest == Rest::NotFound) {
       scene_ = heldScene;
       contacts_ = heldContacts;
+    } else if (rest == Rest::Unconfirmed && scene_.settings.settleDynamically) {
+      const model::Scene relaxedScene = scene_;
+      const contact::ContactSet relaxedContacts = contacts_;
+      if (log_) log_("equilibrium (relaxation): rest not confirmed at the analysis Δt; settling dynamically");
+      stats_.startedAtRest = settleDynamically();
+      if (!stats_.startedAtRest) {
+        // Failing (or still moving after the budget): start from stage 2's rest, as before stage 3.
+        if (log_) log_("settling: no rest found; the analysis starts from the relaxed state");
+        scene_ = relaxedScene;
+        contacts_ = relaxedContacts;
+      }
     }
+  } else {
+    stats_.startedAtRest = stats_.equilibriumConverged;
   }
   for (size_t b = 0; b < scene_.blocks.size(); ++b) scene_.blocks[b].velocity = initialVelocity[b];
   markActiveBlocks({});

@@ -19,6 +19,9 @@ struct EnergyBudget {
   double mechanical() const { return kinetic + potential + elastic - loadWork; }
 };
 
+/// ½ Vᵀ M V of one block of mass `mass` (kg/m).
+double kineticEnergy(const model::Block& b, double mass);
+
 /// The stored energies of the scene's current state; `loadWork` is left 0 (the caller sums it).
 /// `mass[b]`: block b's mass (kg/m); the spring stiffnesses are those of every contact.
 EnergyBudget storedEnergy(const model::Scene& scene, const std::vector<double>& mass,

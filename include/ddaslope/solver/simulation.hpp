@@ -44,6 +44,8 @@ struct RunStatistics {
   double equilibriumResidual = 0;  ///< last equilibrium step's implied acceleration 2|D|/Δt², in g
   bool equilibriumConverged = true;  ///< stage 1 (contacts held) reached rest
   bool relaxationConverged = true;   ///< stage 2 (real contact law) reached rest and was kept
+  int settlingSteps = 0;             ///< stage 3: dynamic steps at the analysis Δt (kinetic damping)
+  bool startedAtRest = true;         ///< the analysis starts from a confirmed rest (stage 2 or 3)
   int symbolicAnalyses = 0;
   long factorisations = 0;         ///< numeric Cholesky factorisations
   long factorUpdates = 0;          ///< low-rank factor updates that replaced one (large systems)
@@ -78,6 +80,11 @@ class Simulation {
   /// exceeds their strength (the heel of a block on a slope) slip quasi-statically and hand it
   /// to their neighbours. If stage 2 finds no rest (the scene is failing), the stage-1 state is
   /// kept and the analysis starts from it. Blocks not resting on a fixed block are held still.
+  /// (3) If stage 2's rest is not confirmed at the analysis Δt (a static step of seconds froze
+  /// contacts that cycle, or hid an out-of-balance force), the scene settles dynamically at the
+  /// analysis Δt under the real law with kinetic damping, its slip not softening any joint, until
+  /// a step from rest stays at rest; if it travels as far as a failing scene, stage 2's state is
+  /// kept (the scene is failing).
   /// `shared`: start stage 2 from this stage-1 state (from holdEquilibrium() of a scene that
   /// differs from this one at most in joint strengths) instead of computing stage 1.
   void bringToEquilibrium(const HeldEquilibrium* shared = nullptr);
@@ -108,7 +115,9 @@ class Simulation {
   void setFactorFollowing(bool on) { factorFollowing_ = on; }
 
  private:
-  enum class Regime { Analysis, HeldEquilibrium, Relaxation };
+  /// Settling: dynamic steps before t = 0 (velocity carried, loads at t = 0).
+  enum class Regime { Analysis, HeldEquilibrium, Relaxation, Settling };
+  enum class Rest { Confirmed, Unconfirmed, NotFound };
   struct Attempt {
     bool converged = false;
     std::string failure;
@@ -123,9 +132,15 @@ class Simulation {
   void markActiveBlocks(const std::vector<bool>& held);
   /// Blocks that rest on no fixed block or fixed point through closed contacts.
   std::vector<bool> unsupportedBlocks() const;
-  /// Static steps in `regime` until at rest (implied acceleration < 1e-6 g); false if the scene
-  /// travels more than g2·w0 (failing) or the step budget runs out.
-  bool settle(Regime regime, double& dt, double largestDt);
+  /// Static steps in `regime` until at rest (implied acceleration < 1e-6 g); NotFound if the
+  /// scene travels more than g2·w0 (failing) or the step budget runs out. A relaxation rest is
+  /// Unconfirmed unless confirmedAtRest().
+  Rest settle(Regime regime, double& dt, double largestDt);
+  /// Stage 3: dynamic steps at the analysis Δt with kinetic damping until a step from rest stays
+  /// at rest (true), or until the scene travels g2·w0 or the budget runs out (false).
+  bool settleDynamically();
+  /// Acceleration (m/s²) below which a step from rest counts as rest: 1e-6 g.
+  double restAcceleration() const;
   /// True when `last` (a step at rest) froze no contact and one step from rest at the analysis
   /// Δt, every contact judged by its real law, converges with an implied acceleration below
   /// `restAcceleration`: the analysis will start at rest.
