@@ -15,7 +15,7 @@ and, for the 50 m blocks, the default joint under other settings.
 
 Run from the repository root after building:
     python3 calibration/chair_slide/study.py [--bin build/ddaslope] [--quick]
-It takes about 3 minutes (--quick: the 50 m blocks only; --spacing 25 adds toppling columns).
+It takes about 2.5 minutes (--quick: the 50 m blocks only; --spacing 25 adds toppling columns).
 """
 import argparse, copy, json, math, os, re, subprocess, sys, tempfile
 
@@ -28,6 +28,7 @@ from vajont_limit_equilibrium import section_slices  # noqa: E402
 
 PHI = 18.0
 DISTANCES = [None, 0.0, 0.01, 0.03, 0.3, 1.0]  # None: the automatic default
+KINK_OFFSETS = [0.0, 10.0, 25.0, 40.0]  # m up the slope from the kink to the nearest joint
 SETTINGS = [("vertex treatment", ["--contact-treatment", "vertex"]), ("accurate preset", ["--preset", "accurate"]),
             ("Δt 1 ms", ["--time-step", "0.001"]), ("1 thread", ["--threads", "1"]),
             ("fast preset", ["--preset", "fast"]), ("rigid blocks", ["--blocks", "rigid"])]
@@ -52,6 +53,44 @@ def limit_equilibrium(case):
         "wedges δ=40°": multi_wedge(slices, tan_phi, math.tan(math.radians(40))),
         "single block": max(single_block_cohesion(*s, tan_phi) for s in slices),
     }, len(slices)
+
+
+def kink_layouts(binary, base, tmp, kpa):
+    """50 m blocks with the joint set shifted up the slope, so that a block spans the kink."""
+    print("\nWhere the joints meet the kink (50 m blocks; offset: the nearest joint lies this far up the slope "
+          "from the kink, 0 = through it), critical c in kPa\n")
+    print("| offset | Spencer | wedges δ = 40° | ddaslope default |\n|---|---|---|---|")
+    for offset in KINK_OFFSETS:
+        case = copy.deepcopy(base)
+        origin = case["section"]["joint_sets"][0]["origin"]
+        case["section"]["joint_sets"][0]["origin"] = [origin[0] - offset, origin[1]]
+        case.pop("expected", None)
+        path = os.path.join(tmp, f"chair_offset_{offset}.json")
+        json.dump(case, open(path, "w"))
+        le, _ = limit_equilibrium(case)
+        c, _ = ddaslope_critical(binary, path, [])
+        print(f"| {offset:g} m | {kpa(le['spencer'])} | {kpa(le['wedges δ=40°'])} | {kpa(c)} |", flush=True)
+
+
+def planar_slide(binary, tmp, kpa):
+    """The exact multi-block reference: cases/planar_multiblock_slide.json, with and without stage 3."""
+    path = os.path.join(ROOT, "cases", "planar_multiblock_slide.json")
+    case = json.load(open(path))
+    alpha, tan_phi = math.radians(30), math.tan(math.radians(PHI))
+    exact = 2500 * 9.81 * (0.5 * 50 * 400) * (math.sin(alpha) - math.cos(alpha) * tan_phi) / (400 / math.cos(alpha))
+    unsettled = copy.deepcopy(case)
+    unsettled["analysis"]["settle_dynamically"] = False
+    unsettled_path = os.path.join(tmp, "planar_unsettled.json")
+    json.dump(unsettled, open(unsettled_path, "w"))
+    rows = [("default (start settled at rest)", path, []),
+            ("start not settled (analysis.settle_dynamically false, before issue #14's fix)", unsettled_path, []),
+            ("brittle (δw = 0)", path, ["--brittle-joints"])]
+    rows += [(f"default, {label}", path, extra) for label, extra in SETTINGS]
+    print(f"\nPlanar multi-block slide (cases/planar_multiblock_slide.json): exact limit equilibrium {kpa(exact)} kPa\n")
+    print("| ddaslope | critical c (kPa) | error |\n|---|---|---|")
+    for label, p, extra in rows:
+        c, _ = ddaslope_critical(binary, p, extra)
+        print(f"| {label} | {kpa(c)} | {100 * (c - exact) / exact:+.1f} % |", flush=True)
 
 
 def main():
@@ -82,6 +121,9 @@ def main():
             print(f"| {n} × {spacing:g} m | {kpa(le['spencer'])} | {kpa(le['morgenstern-price'])} | "
                   f"{kpa(le['wedges δ=0'])} / {kpa(le['wedges δ=40°'])} | {kpa(le['single block'])} | "
                   + " | ".join(kpa(v) for v in dda) + " |", flush=True)
+        if not a.quick:
+            kink_layouts(a.bin, base, tmp, kpa)
+            planar_slide(a.bin, tmp, kpa)
         path = os.path.join(ROOT, "cases", "chair_slide.json")
         print("\nThe default joint on the 50 m blocks under other settings (ddaslope critical, kPa)\n")
         print("| setting | critical c | forward runs |\n|---|---|---|")

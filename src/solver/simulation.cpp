@@ -520,6 +520,9 @@ Simulation::Rest Simulation::settle(Regime regime, double& dt, double largestDt)
   constexpr int kConfirmationSteps = 30;
   int stepsSinceRest = 0;
   const auto fallBack = [&] {
+    // Stage 3 settles a relaxation whose static steps ran out of budget or stopped converging
+    // (contacts cycling in static steps: the chair slide with a block across its kink).
+    if (regime == Regime::Relaxation && scene_.settings.settleDynamically) return Rest::Unsettled;
     if (!firstRest) return Rest::NotFound;
     scene_ = std::move(firstRest->first);
     contacts_ = std::move(firstRest->second);
@@ -568,7 +571,7 @@ Simulation::Rest Simulation::settle(Regime regime, double& dt, double largestDt)
       dt = scene_.settings.timeStep;
       continue;
     }
-    if (travel > failingTravel) return fallBack();
+    if (travel > failingTravel) return scene_.settings.settleDynamically ? Rest::NotFound : fallBack();
     // A cut Δt makes the static step a slow dynamic relaxation: grow it back once it passes.
     if (!cut) dt = std::min(largestDt, 3 * dt);
   }
@@ -723,15 +726,17 @@ void Simulation::bringToEquilibrium(const HeldEquilibrium* shared) {
     // relaxation at the analysis Δt and let it grow.
     double relaxDt = std::min(shared->dt, scene_.settings.timeStep);
     const Rest rest = settle(Regime::Relaxation, relaxDt, shared->dt);
-    stats_.relaxationConverged = rest != Rest::NotFound;
+    stats_.relaxationConverged = rest == Rest::Confirmed || rest == Rest::Unconfirmed;
     stats_.startedAtRest = rest == Rest::Confirmed;
     if (rest == Rest::NotFound) {
       scene_ = heldScene;
       contacts_ = heldContacts;
-    } else if (rest == Rest::Unconfirmed && scene_.settings.settleDynamically) {
+    } else if ((rest == Rest::Unconfirmed || rest == Rest::Unsettled) && scene_.settings.settleDynamically) {
       const model::Scene relaxedScene = scene_;
       const contact::ContactSet relaxedContacts = contacts_;
-      if (log_) log_("equilibrium (relaxation): rest not confirmed at the analysis Δt; settling dynamically");
+      if (log_)
+        log_(rest == Rest::Unsettled ? "equilibrium (relaxation): no static rest; settling dynamically"
+                                     : "equilibrium (relaxation): rest not confirmed at the analysis Δt; settling dynamically");
       stats_.startedAtRest = settleDynamically();
       if (!stats_.startedAtRest) {
         // Failing (or still moving after the budget): start from stage 2's rest, as before stage 3.

@@ -71,9 +71,10 @@ struct AnalysisSettings {
   /// joints the static problem would keep (dda-method.md §6). Costs a few static solves.
   bool initialEquilibrium = true;
   /// Stage 3 of the equilibrium (Simulation::bringToEquilibrium): a relaxed state that is not
-  /// confirmed at rest at the analysis Δt settles dynamically (kinetic damping) before t = 0.
-  /// Off by default until the studies it changes are re-measured (issue #14).
-  bool settleDynamically = false;
+  /// confirmed at rest at the analysis Δt settles dynamically (kinetic damping) before t = 0, so
+  /// the analysis starts at rest. Off: the analysis may start with an out-of-balance force whose
+  /// release slides and softens joints (before issue #14's fix; kept for comparison).
+  bool settleDynamically = true;
   /// Largest number of static solves spent on the initial equilibrium.
   int equilibriumMaxSteps = 200;
   /// Two edges of different blocks within this angle (degrees) are an edge-to-edge contact.

@@ -81,7 +81,8 @@ class Simulation {
   /// to their neighbours. If stage 2 finds no rest (the scene is failing), the stage-1 state is
   /// kept and the analysis starts from it. Blocks not resting on a fixed block are held still.
   /// (3) If stage 2's rest is not confirmed at the analysis Δt (a static step of seconds froze
-  /// contacts that cycle, or hid an out-of-balance force), the scene settles dynamically at the
+  /// contacts that cycle, or hid an out-of-balance force), or its static steps found no rest
+  /// without travelling like a failing scene, the scene settles dynamically at the
   /// analysis Δt under the real law with kinetic damping, its slip not softening any joint, until
   /// a step from rest stays at rest; if it travels as far as a failing scene, stage 2's state is
   /// kept (the scene is failing).
@@ -117,7 +118,9 @@ class Simulation {
  private:
   /// Settling: dynamic steps before t = 0 (velocity carried, loads at t = 0).
   enum class Regime { Analysis, HeldEquilibrium, Relaxation, Settling };
-  enum class Rest { Confirmed, Unconfirmed, NotFound };
+  /// How settle() ended: at a rest confirmed at the analysis Δt, at an unconfirmed one, with no
+  /// static rest but no sign of failure either (stage 3 settles it), or failing.
+  enum class Rest { Confirmed, Unconfirmed, Unsettled, NotFound };
   struct Attempt {
     bool converged = false;
     std::string failure;
