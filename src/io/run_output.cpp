@@ -42,7 +42,7 @@ nlohmann::ordered_json jointsEcho(const model::Scene& scene) {
                     {"residual_friction_angle", radToDeg(jp.residualFriction())},
                     {"residual_cohesion", jp.residualCohesionUsed()},
                     {"weakening_distance", jp.weakeningDistanceIn(w0)},
-                    {"weakening_distance_origin", jp.weakeningDistance ? "case" : "automatic (1e-4 w0)"},
+                    {"weakening_distance_origin", jp.weakeningDistance ? "case" : "automatic (5e-4 w0)"},
                     {"weakening_law", jp.weakeningLaw == model::WeakeningLaw::Linear ? "linear" : "exponential"},
                     {"bond", jp.bond == model::BondPolicy::Initial ? "initial"
                                                                     : (jp.bond == model::BondPolicy::None ? "none" : "always")}};

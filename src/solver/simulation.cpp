@@ -1,5 +1,6 @@
 #include "ddaslope/solver/simulation.hpp"
 
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <map>
@@ -385,6 +386,11 @@ Simulation::Attempt Simulation::tryStep(double dt, Regime regime, bool freezeCyc
       contact::ContactJudgement j = verdict[q];
       // Before t = 0 a contact pulled open by the start (gravity switched on at once) keeps its
       // bond, as slip then does not soften: that is the slope's loading history, not damage.
+      // Only an open contact: it carries nothing either way, so a rest found so is a rest under
+      // the analysis law too. (Keeping the bond of a closed contact, e.g. the pivot half of a
+      // brittle edge-to-edge contact whose other half opens, would let settling lean on a
+      // strength the first analysis step removes: the planar multi-block slide then "rested" at
+      // 122 kPa and ran away at t = 0. Such a brittle pair loses its bond, as in original DDA.)
       if (scene_.settings.settleDynamically && (regime == Regime::Relaxation || regime == Regime::Settling))
         j.bonded = j.bonded || (c.bonded && j.state == ContactState::Open);
       if (j.state != c.state || j.direction != c.slideDirection) {
@@ -549,6 +555,7 @@ Simulation::Rest Simulation::settle(Regime regime, double& dt, double largestDt)
     const double worst = largestVertexDisplacement(a);
     stats_.equilibriumResidual = 2 * worst / (dt * dt) / std::max(scene_.gravity.norm(), 1e-3);
     travel += worst;
+    if (regime == Regime::Relaxation) relaxationTravel_ = travel;
     if (log_) {
       std::ostringstream m;
       m << (regime == Regime::HeldEquilibrium ? "equilibrium (contacts held)" : "equilibrium (relaxation)")
@@ -587,8 +594,12 @@ bool Simulation::settleDynamically() {
   // acceleration below restAcceleration(): the test confirmedAtRest() applies to stage 2.
   const double failingTravel = scene_.settings.maxDisplacementRatio * w0_;
   const int budget = kSettlingStepsPerEquilibriumStep * scene_.settings.equilibriumMaxSteps;
-  double travel = 0, lastKinetic = 0;
-  bool fromRest = true;  // stage 2 ends with every velocity zero (static steps)
+  const bool dynamic = scene_.settings.mode == model::AnalysisMode::Dynamic;
+  // The travel of stage 2 counts: the two stages together may not move like a failing scene.
+  double travel = relaxationTravel_, lastKinetic = 0;
+  // Static steps leave no meaningful velocity (commit() sums 2D/Δt over them): start from rest.
+  for (model::Block& b : scene_.blocks) b.velocity.setZero();
+  bool fromRest = true;
   for (int s = 0; s < budget; ++s) {
     checkDeadline();
     detectContacts(false);
@@ -620,7 +631,8 @@ bool Simulation::settleDynamically() {
     double kinetic = 0;
     for (size_t b = 0; b < scene_.blocks.size(); ++b)
       if (active_[b] >= 0) kinetic += kineticEnergy(scene_.blocks[b], mass_[b]);
-    fromRest = kinetic < lastKinetic;
+    // A static analysis carries no velocity: each of its steps starts from rest.
+    fromRest = !dynamic || kinetic < lastKinetic;
     if (fromRest) {
       for (model::Block& b : scene_.blocks) b.velocity.setZero();
       kinetic = 0;
@@ -699,7 +711,10 @@ HeldEquilibrium Simulation::holdEquilibrium() {
 }
 
 void Simulation::bringToEquilibrium(const HeldEquilibrium* shared) {
-  if (!scene_.settings.initialEquilibrium) return;
+  if (!scene_.settings.initialEquilibrium) {
+    stats_.startedAtRest = false;  // not brought to rest: the analysis starts as the case is
+    return;
+  }
   std::vector<Vec6> initialVelocity;
   for (const model::Block& b : scene_.blocks) initialVelocity.push_back(b.velocity);
   HeldEquilibrium own;
@@ -739,14 +754,19 @@ void Simulation::bringToEquilibrium(const HeldEquilibrium* shared) {
                                      : "equilibrium (relaxation): rest not confirmed at the analysis Δt; settling dynamically");
       stats_.startedAtRest = settleDynamically();
       if (!stats_.startedAtRest) {
-        // Failing (or still moving after the budget): start from stage 2's rest, as before stage 3.
-        if (log_) log_("settling: no rest found; the analysis starts from the relaxed state");
-        scene_ = relaxedScene;
-        contacts_ = relaxedContacts;
+        // Failing, or still moving after the budget: start from stage 2's rest, or from stage 1's
+        // state if stage 2 found none, as without stage 3.
+        const bool relaxed = rest == Rest::Unconfirmed;
+        if (log_)
+          log_(std::string("settling: no rest found; the analysis starts from the ") +
+               (relaxed ? "relaxed state" : "state with every contact held"));
+        scene_ = relaxed ? relaxedScene : heldScene;
+        contacts_ = relaxed ? relaxedContacts : heldContacts;
       }
     }
   } else {
-    stats_.startedAtRest = stats_.equilibriumConverged;
+    // No block to settle: at rest unless blocks are held because nothing supports them.
+    stats_.startedAtRest = std::none_of(shared->held.begin(), shared->held.end(), [](bool h) { return h; });
   }
   for (size_t b = 0; b < scene_.blocks.size(); ++b) scene_.blocks[b].velocity = initialVelocity[b];
   markActiveBlocks({});

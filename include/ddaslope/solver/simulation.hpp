@@ -45,7 +45,8 @@ struct RunStatistics {
   bool equilibriumConverged = true;  ///< stage 1 (contacts held) reached rest
   bool relaxationConverged = true;   ///< stage 2 (real contact law) reached rest and was kept
   int settlingSteps = 0;             ///< stage 3: dynamic steps at the analysis Δt (kinetic damping)
-  bool startedAtRest = true;         ///< the analysis starts from a confirmed rest (stage 2 or 3)
+  bool startedAtRest = true;         ///< the analysis starts from a confirmed rest (stage 2 or 3;
+                                     ///< false without initial_equilibrium)
   int symbolicAnalyses = 0;
   long factorisations = 0;         ///< numeric Cholesky factorisations
   long factorUpdates = 0;          ///< low-rank factor updates that replaced one (large systems)
@@ -179,6 +180,7 @@ class Simulation {
   double lightestPenetration_ = INFINITY;  ///< 1e-3 of the lightest free block's W/p (m)
   double time_ = 0;
   double loadWork_ = 0;  ///< work of water and point loads since t = 0 (J/m)
+  double relaxationTravel_ = 0;  ///< summed largest vertex displacement of stage 2's steps (m)
   std::vector<int> active_;  ///< dof block index per block, −1 when fixed or held
   int nActive_ = 0;
   contact::ContactSet contacts_;
