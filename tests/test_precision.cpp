@@ -39,3 +39,15 @@ TEST(Precision, NoiseIsHalfTheEnsembleSpreadAndSlopeIsLeastSquares) {
   scan[1].simulated[0] = NAN;  // two points left: (1, 2), (3, 6)
   EXPECT_NEAR(scanSlope(scan, 0), 2, 1e-12);
 }
+
+// Resolution: noise/slope, largest over the observations that trend along the parameter. Over a
+// scan 4…8 (width 4): travel rises 10 m per unit with noise 5 m → 0.5; speed 2 per unit, noise 1
+// → 0.5; a factor of safety flat to round-off (slope 1e-15, noise 0.0026) is skipped, as its
+// quotient (2.6e12) says nothing. With only the flat one, the resolution is NaN (unresolved).
+TEST(Precision, ResolutionIgnoresObservablesWithoutATrend) {
+  std::vector<ScanPoint> scan;
+  for (double v : {4.0, 5.0, 6.0, 7.0, 8.0}) scan.push_back({v, 0, {10 * v, 2 * v, 1.0 + 1e-15 * v}});
+  EXPECT_NEAR(noiseResolution(scan, {5, 1, 0.0026}, {true, true, true}), 0.5, 1e-12);
+  EXPECT_NEAR(noiseResolution(scan, {8, 1, 0.0026}, {true, true, true}), 0.8, 1e-12);
+  EXPECT_TRUE(std::isnan(noiseResolution(scan, {5, 1, 0.0026}, {false, false, true})));
+}

@@ -69,6 +69,21 @@ double scanSlope(const std::vector<ScanPoint>& scan, size_t k) {
   return n >= 2 && d > 0 ? std::abs((n * sxy - sx * sy) / d) : 0.0;
 }
 
+double noiseResolution(const std::vector<ScanPoint>& scan, const std::vector<double>& noise,
+                       const std::vector<bool>& used) {
+  double lo = INFINITY, hi = -INFINITY;
+  for (const auto& p : scan) lo = std::min(lo, p.value), hi = std::max(hi, p.value);
+  double resolution = NAN;
+  for (size_t k = 0; k < noise.size(); ++k) {
+    if (!used[k] || !std::isfinite(noise[k])) continue;
+    const double slope = scanSlope(scan, k);
+    if (!(slope * (hi - lo) > noise[k])) continue;  // no trend above the noise along this parameter
+    const double r = noise[k] / slope;
+    resolution = std::isfinite(resolution) ? std::max(resolution, r) : r;
+  }
+  return resolution;
+}
+
 Precision measurePrecision(const io::BackanalysisJob& job, const std::vector<double>& estimate, double bestMisfit,
                            const std::vector<double>& fitAtEstimate, const solver::HeldEquilibrium* shared,
                            int& runs) {
@@ -123,14 +138,11 @@ Precision measurePrecision(const io::BackanalysisJob& job, const std::vector<dou
   for (size_t k = 0; k < job.observations.size(); ++k) out.noise.push_back(ensembleNoise(out.ensemble, k));
   std::ostringstream s;
   s << "Precision, measured around the estimate:";
+  std::vector<bool> scalar;  // a series' simulated value is its misfit, not an observable
+  for (const auto& o : job.observations) scalar.push_back(o.kind != io::ObservationSpec::Kind::Series);
   for (auto& r : out.parameters) {
     rangeWithin(r, best + weights);
-    r.noiseResolution = 0;
-    for (size_t k = 0; k < job.observations.size(); ++k) {
-      if (job.observations[k].kind == io::ObservationSpec::Kind::Series || !std::isfinite(out.noise[k])) continue;
-      const double slope = scanSlope(r.scan, k);
-      r.noiseResolution = std::max(r.noiseResolution, slope > 0 ? out.noise[k] / slope : NAN);
-    }
+    r.noiseResolution = noiseResolution(r.scan, out.noise, scalar);
     s << " " << r.name << " = " << formatted(r.estimate) << ", within one standard deviation of the best fit for "
       << (r.openLow ? "≤ " : "") << formatted(r.low) << " to " << (r.openHigh ? "≥ " : "") << formatted(r.high)
       << " (" << r.scan.size() << " values scanned; an end marked ≤/≥ is the scan's); numerical noise alone "

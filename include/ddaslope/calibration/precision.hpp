@@ -28,8 +28,8 @@ struct ParameterRange {
   double estimate = 0;
   double low = 0, high = 0;        ///< scanned values within one standard deviation of the best
   bool openLow = false, openHigh = false;  ///< the range reaches the scan's end: it is at least this
-  /// ± in parameter units from the numerical noise (largest over the observations); NaN when the
-  /// scan shows no slope to divide by.
+  /// ± in parameter units from the numerical noise (largest over the observations that trend
+  /// along this parameter); NaN when none does.
   double noiseResolution = 0;
   std::vector<ScanPoint> scan;     ///< sorted by value, the estimate included
 };
@@ -64,5 +64,13 @@ double ensembleNoise(const std::vector<EnsembleMember>& ensemble, size_t k);
 
 /// |d simulated_k / d value| from a least-squares line through the scan's converged points.
 double scanSlope(const std::vector<ScanPoint>& scan, size_t k);
+
+/// The parameter change that matches the numerical noise: noise_k / slope_k, largest over the
+/// observations k marked `used` whose trend over the scan (slope × the scan's width) exceeds
+/// their noise. An observation that does not trend along this parameter (the factor of safety
+/// along the residual friction) says nothing about its resolution; dividing by its slope of
+/// round-off gave ±1e12. NaN when no observation trends.
+double noiseResolution(const std::vector<ScanPoint>& scan, const std::vector<double>& noise,
+                       const std::vector<bool>& used);
 
 }  // namespace ddaslope::calibration
