@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
 
 #include "ddaslope/calibration/strength_search.hpp"
 #include "ddaslope/contact/joint_strength.hpp"
@@ -36,6 +37,23 @@ std::pair<double, double> speedWhenDisplaced(const io::Trace& t, double d) {
     }
   ADD_FAILURE() << "never displaced by " << d << " m";
   return {0, 0};
+}
+
+/// The critical cohesion (Pa) of the joint named `joint` at φ = 18° to a bracket of `width` Pa;
+/// a search that brackets nothing fails the test.
+double criticalCohesionAt18(const model::Scene& scene, const std::string& joint, double width) {
+  int j = 0;
+  while (scene.joints[j].name != joint) ++j;
+  const calibration::CriticalResult r = calibration::criticalCohesion(scene, j, 18, width, {});
+  EXPECT_TRUE(r.found) << r.message;
+  return r.critical;
+}
+
+/// The scene with the joint named `joint` brittle (weakening_distance 0: original DDA's bond).
+model::Scene withBrittleJoint(model::Scene scene, const std::string& joint) {
+  for (model::JointProperties& j : scene.joints)
+    if (j.name == joint) j.weakeningDistance = 0;
+  return scene;
 }
 
 }  // namespace
@@ -144,21 +162,13 @@ TEST(JointStrength, BrittleJointSlidesAtResidualFromTheStart) {
 //   docs/calibration.md). The exact multi-block comparison is PlanarMultiBlockSlide below.
 TEST(ChairSlide, SofteningJointsKeepTheButtressThatBrittleBondsLose) {
   const model::Scene scene = io::readCase(std::string(DDASLOPE_SOURCE_DIR) + "/cases/chair_slide.json");
-  int joint = 0;
-  while (scene.joints[joint].name != "sliding_surface") ++joint;
-  const auto critical = [&](model::Scene s) {
-    const calibration::CriticalResult r = calibration::criticalCohesion(s, joint, 18, 500, {});
-    EXPECT_TRUE(r.found) << r.message;
-    return r.critical;
-  };
+  const auto critical = [](const model::Scene& s) { return criticalCohesionAt18(s, "sliding_surface", 500); };
   constexpr double kSpencer = 66.24e3, kSingleBlock = 268.07e3;
   EXPECT_LT(critical(scene), 1.1 * kSpencer);
   model::Scene vertex = scene;
   vertex.settings.contactTreatment = model::ContactTreatment::Vertex;
   EXPECT_LT(critical(vertex), 1.1 * kSpencer);
-  model::Scene brittle = scene;
-  brittle.joints[joint].weakeningDistance = 0;
-  EXPECT_NEAR(critical(brittle), kSingleBlock, 0.1 * kSingleBlock);
+  EXPECT_NEAR(critical(withBrittleJoint(scene, "sliding_surface")), kSingleBlock, 0.1 * kSingleBlock);
 }
 
 // A planar multi-block slide (cases/planar_multiblock_slide.json: a wedge on one 30° plane, thick
@@ -174,13 +184,7 @@ TEST(ChairSlide, SofteningJointsKeepTheButtressThatBrittleBondsLose) {
 TEST(PlanarMultiBlockSlide, CriticalCohesionMatchesTheClosedFormWhenSettledAtRest) {
   const model::Scene scene = io::readCase(std::string(DDASLOPE_SOURCE_DIR) + "/cases/planar_multiblock_slide.json");
   ASSERT_TRUE(scene.settings.settleDynamically);
-  int joint = 0;
-  while (scene.joints[joint].name != "sliding_surface") ++joint;
-  const auto critical = [&](model::Scene s) {
-    const calibration::CriticalResult r = calibration::criticalCohesion(s, joint, 18, 300, {});
-    EXPECT_TRUE(r.found) << r.message;
-    return r.critical;
-  };
+  const auto critical = [](const model::Scene& s) { return criticalCohesionAt18(s, "sliding_surface", 300); };
   const double tanPhi = std::tan(18 * M_PI / 180), alpha = 30 * M_PI / 180;
   const double closedForm = 2500 * 9.81 * (0.5 * 50 * 400) * (std::sin(alpha) - std::cos(alpha) * tanPhi) /
                             (400 / std::cos(alpha));
@@ -188,9 +192,7 @@ TEST(PlanarMultiBlockSlide, CriticalCohesionMatchesTheClosedFormWhenSettledAtRes
   model::Scene vertex = scene;
   vertex.settings.contactTreatment = model::ContactTreatment::Vertex;
   EXPECT_NEAR(critical(vertex), closedForm, 0.02 * closedForm);
-  model::Scene brittle = scene;
-  brittle.joints[joint].weakeningDistance = 0;
-  EXPECT_GT(critical(brittle), 1.5 * closedForm);
+  EXPECT_GT(critical(withBrittleJoint(scene, "sliding_surface")), 1.5 * closedForm);
 }
 
 // Vajont from trigger to deposit in one run (calibration/vajont_trigger/case.json): one law for
