@@ -2,6 +2,11 @@
 // time by phase, open-close iterations and Δt cuts. Speed targets live here, not in tests.
 //   build/ddaslope_bench [--steps S] [--sizes 10,100,...] [--contact-treatment edge|vertex] [--blocks rigid|deformable]
 //                        [--compare-search]  (also time the narrow phase on every pair, on stderr)
+//   build/ddaslope_bench --anchor-rows 22,31,45 [--sudden] [--steps 100] [--blocks rigid|deformable]
+//       the wall timed side by side with Shi's DDA (../shared/ntdda, issue #16): rows 22, 31, 45, 71,
+//       100, 141 give 495, 976, 2047, 5076, 10050, 19951 bricks; --sudden starts it as ntdda does,
+//       full gravity at step 1 without the initial equilibrium (sudden loading).
+// One core, as the side-by-side table: run with OMP_NUM_THREADS=1.
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -86,7 +91,16 @@ int main(int argc, char** argv) {
   bool rigid = false;
   bool allPairs = false;
   bool refactoriseOnly = false;
+  bool sudden = false;
+  int threads = 1;
   std::vector<int> sizes{10, 50, 100, 200, 500, 1000, 2000};
+  std::vector<int> anchorRows;
+  const auto list = [](const char* text) {
+    std::vector<int> out;
+    std::stringstream ss(text);
+    for (std::string tok; std::getline(ss, tok, ',');) out.push_back(std::stoi(tok));
+    return out;
+  };
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--steps") && i + 1 < argc) steps = std::atoi(argv[++i]);
     else if (!std::strcmp(argv[i], "--contact-treatment") && i + 1 < argc)
@@ -97,26 +111,34 @@ int main(int argc, char** argv) {
       refactoriseOnly = true;
     else if (!std::strcmp(argv[i], "--blocks") && i + 1 < argc)
       rigid = !std::strcmp(argv[++i], "rigid");
-    else if (!std::strcmp(argv[i], "--sizes") && i + 1 < argc) {
-      sizes.clear();
-      std::stringstream ss(argv[++i]);
-      for (std::string tok; std::getline(ss, tok, ',');) sizes.push_back(std::stoi(tok));
-    } else {
-      std::fprintf(stderr, "usage: ddaslope_bench [--steps S] [--sizes 10,100,...] [--contact-treatment edge|vertex] [--blocks rigid|deformable] [--compare-search] [--refactorise-only]\n");
+    else if (!std::strcmp(argv[i], "--sizes") && i + 1 < argc)
+      sizes = list(argv[++i]);
+    else if (!std::strcmp(argv[i], "--anchor-rows") && i + 1 < argc)
+      anchorRows = list(argv[++i]);
+    else if (!std::strcmp(argv[i], "--sudden"))
+      sudden = true;
+    else if (!std::strcmp(argv[i], "--threads") && i + 1 < argc)
+      threads = std::atoi(argv[++i]);
+    else {
+      std::fprintf(stderr, "usage: ddaslope_bench [--steps S] [--sizes 10,100,...] [--anchor-rows 22,31,... [--sudden]] [--threads T] [--contact-treatment edge|vertex] [--blocks rigid|deformable] [--compare-search] [--refactorise-only]\n");
       return 2;
     }
   }
   std::printf("blocks,contacts,unknowns,equilibrium_ms,step_ms,broad_phase_ms,contacts_ms,assembly_ms,"
               "factorisation_ms,solve_ms,state_checks_ms,update_ms,iterations_per_step,factorisations_per_step,"
-              "cg_iterations_per_step,cuts,resident_mb,peak_resident_mb\n");
+              "cg_iterations_per_step,cuts,resident_mb,peak_resident_mb,simulated_s,wall_s\n");
   std::vector<std::pair<int, double>> perStep;
-  for (int n : sizes) {
+  // The anchor wall by rows, or the bench's own wall by bricks.
+  const std::vector<int>& runs = anchorRows.empty() ? sizes : anchorRows;
+  for (int size : runs) {
     const bool peakReset = resetPeakResident();
-    model::Scene scene = model::makeBrickWall(n);
+    model::Scene scene = anchorRows.empty() ? model::makeBrickWall(size) : model::makeAnchorWall(size, sudden);
+    const int n = static_cast<int>(scene.blocks.size()) - 1;
     scene.settings.contactTreatment = treatment;
     scene.settings.rigidBlocks = rigid;
     solver::Simulation sim(scene);
     sim.setFactorFollowing(!refactoriseOnly);
+    sim.setThreads(threads);
     if (std::getenv("DDASLOPE_BENCH_VERBOSE")) sim.setLog([](const std::string& l) { std::fprintf(stderr, "%s\n", l.c_str()); });
     if (allPairs) compareContactSearch(scene, sim.searchDistance());
     auto t0 = std::chrono::steady_clock::now();
@@ -130,19 +152,22 @@ int main(int argc, char** argv) {
                  n, eq, e.contacts + e.broadPhase, e.assembly, e.factorisation, e.solve, e.stateChecks, before.factorisations,
                  before.factorUpdates, before.cgIterations, before.equilibriumSteps);
     t0 = std::chrono::steady_clock::now();
-    for (int k = 0; k < steps; ++k) sim.advance();
+    // Simulated time, not a step count: steps whose Δt was cut take several (sudden loading).
+    const double simulated = steps * scene.settings.timeStep;
+    int accepted = 0;
+    for (; sim.time() < simulated * (1 - 1e-9); ++accepted) sim.advance();
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     const solver::RunStatistics& a = sim.statistics();
-    const auto d = [&](double solver::PhaseTimes::*f) { return ms(a.times.*f - before.times.*f, steps); };
-    std::printf("%d,%zu,%d,%.1f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.2f,%.2f,%.2f,%d,%.1f,%.1f\n", n,
-                sim.contacts().contacts().size(), (rigid ? 3 : 6) * n, 1e3 * eq, ms(wall, steps),
+    const auto d = [&](double solver::PhaseTimes::*f) { return ms(a.times.*f - before.times.*f, accepted); };
+    std::printf("%d,%zu,%d,%.1f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.2f,%.2f,%.2f,%d,%.1f,%.1f,%.4f,%.3f\n", n,
+                sim.contacts().contacts().size(), (rigid ? 3 : 6) * n, 1e3 * eq, ms(wall, accepted),
                 d(&solver::PhaseTimes::broadPhase), d(&solver::PhaseTimes::contacts),
                 d(&solver::PhaseTimes::assembly), d(&solver::PhaseTimes::factorisation),
                 d(&solver::PhaseTimes::solve), d(&solver::PhaseTimes::stateChecks),
-                d(&solver::PhaseTimes::update), double(a.iterations - before.iterations) / steps,
-                double(a.factorisations - before.factorisations) / steps,
-                double(a.cgIterations - before.cgIterations) / steps,
-                a.cuts - before.cuts, statusMb("VmRSS"), peakReset ? statusMb("VmHWM") : NAN);
+                d(&solver::PhaseTimes::update), double(a.iterations - before.iterations) / accepted,
+                double(a.factorisations - before.factorisations) / accepted,
+                double(a.cgIterations - before.cgIterations) / accepted,
+                a.cuts - before.cuts, statusMb("VmRSS"), peakReset ? statusMb("VmHWM") : NAN, sim.time(), wall);
     std::fflush(stdout);
     // The final state in two numbers, to see that two settings give the same run.
     double sum = 0, fastest = 0;
@@ -151,7 +176,7 @@ int main(int argc, char** argv) {
       fastest = std::max(fastest, b.velocity.head<2>().norm());
     }
     std::fprintf(stderr, "%d blocks: state checksum %.12g, fastest block %.6g m/s\n", n, sum, fastest);
-    perStep.emplace_back(n, wall / steps);
+    perStep.emplace_back(n, wall / accepted);
   }
   // Growth of the step cost: exponent k in t ∝ N^k between consecutive sizes (on stderr, so
   // stdout stays plain CSV).

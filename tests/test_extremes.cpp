@@ -96,6 +96,32 @@ TEST(Extremes, TwoThousandBlockWallStandsStill) {
 // (3600 unknowns, above the 3000 from which the factor follows) brought to equilibrium, where
 // stage 2 slips and sticks many contacts, ends in the same state to 1e-9 m with fewer
 // factorisations.
+// A run does not depend on its thread count (issue #16): the contact search, linearisation and
+// judgement split their items into chunks in index order (core/parallel.hpp), so one and two
+// threads must give the same state bit for bit. The side-by-side wall started with gravity
+// switched on at once (203 bricks, ~1100 contacts: above the parallel threshold of 512 items)
+// changes many contact states per step.
+TEST(Extremes, ThreadsLeaveTheRunUnchanged) {
+  std::vector<std::vector<double>> finals;
+  for (int threads : {1, 2}) {
+    solver::Simulation sim(model::makeAnchorWall(14, true));
+    sim.setThreads(threads);
+    sim.bringToEquilibrium();
+    for (int k = 0; k < 8; ++k) sim.advance();
+    std::vector<double> state;
+    for (const auto& b : sim.scene().blocks) {
+      for (const Vec2& v : b.vertices) state.insert(state.end(), {v.x(), v.y()});
+      for (int i = 0; i < 6; ++i) state.push_back(b.velocity[i]);
+    }
+    for (const auto& c : sim.contacts().contacts()) state.insert(state.end(), {double(c.state), c.normalForce});
+    finals.push_back(state);
+  }
+  ASSERT_EQ(finals[0].size(), finals[1].size());
+  size_t differing = 0;
+  for (size_t i = 0; i < finals[0].size(); ++i) differing += finals[0][i] != finals[1][i];
+  EXPECT_EQ(differing, 0u) << "values that differ between one and two threads";
+}
+
 TEST(Extremes, FollowingTheFactorLeavesTheRunUnchanged) {
   std::vector<std::vector<Vec2>> finals;
   std::vector<long> factorisations;

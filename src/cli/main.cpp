@@ -8,6 +8,7 @@
 #include <fstream>
 #include <cstdio>
 #include <iostream>
+#include <thread>
 
 #include <CLI/CLI.hpp>
 
@@ -135,7 +136,7 @@ int compareContactsCommand(bool deformable, const std::string& csvPath) {
 }
 
 int runCommand(const std::string& casePath, const std::string& outDir, const Overrides& o, bool quiet,
-               bool verbose, const std::vector<double>& snapshots) {
+               bool verbose, const std::vector<double>& snapshots, int threads) {
   ddaslope::model::Scene scene = loadCase(casePath, o);
   applyOverrides(scene, o, casePath);
   ddaslope::io::RunOptions opt;
@@ -144,6 +145,7 @@ int runCommand(const std::string& casePath, const std::string& outDir, const Ove
   opt.progress = !quiet && !verbose && isatty(STDERR_FILENO);
   opt.verbose = verbose;
   opt.snapshotTimes = snapshots;
+  opt.threads = threads;
   const ddaslope::io::RunOutcome r = ddaslope::io::runScene(scene, opt);
   if (!r.completed) {
     std::cerr << "ddaslope: " << casePath << (r.budgetStop ? ": budget exceeded: " : ": non-convergence: ") << r.failure << "\n"
@@ -533,6 +535,11 @@ int main(int argc, char** argv) {
   run->add_option("--snapshots", snapshots, "times (s) of PNG pictures snapshot_NN.png in --out, e.g. 0,0.5,1")
       ->delimiter(',')
       ->check(finiteIn(0, ddaslope::model::limits::kMaxDuration, "times in [0, 1e6] s"));
+  // One run: its contact search and judgement share the cores (the result does not change).
+  int runThreads = static_cast<int>(std::clamp(std::thread::hardware_concurrency(), 1u, 256u));
+  run->add_option("--threads", runThreads, "threads of the run's contact search and judgement (same result for any)")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 256));
 
   CLI::App* check = app.add_subcommand("check", "validate a case file without running it");
   check->add_option("case", casePath, "case file (JSON)")->required();
@@ -594,7 +601,7 @@ int main(int argc, char** argv) {
     return app.exit(e) == 0 ? kExitOk : kExitBadInput;
   }
   try {
-    if (run->parsed()) return runCommand(casePath, outDir, overrides, quiet, verbose, snapshots);
+    if (run->parsed()) return runCommand(casePath, outDir, overrides, quiet, verbose, snapshots, runThreads);
     if (check->parsed()) return checkCommand(casePath, overrides);
     if (compare->parsed()) return compareContactsCommand(deformable, csvPath);
     if (critical->parsed()) return criticalCommand(casePath, overrides, crit);

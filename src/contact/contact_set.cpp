@@ -19,19 +19,22 @@ void ContactSet::update(std::vector<ContactCandidate> candidates, const std::vec
             [&](size_t a, size_t b) { return candidates[a].key < candidates[b].key; });
   std::vector<Contact> next;
   next.reserve(candidates.size());
+  // Both lists are sorted by key: last step's contacts are matched by one forward walk.
+  auto previous = contacts_.begin();
   for (size_t idx : order) {
     const ContactCandidate& cand = candidates[idx];
     if (!next.empty() && next.back().key() == cand.key) continue;  // found from both sides
+    while (previous != contacts_.end() && previous->key() < cand.key) ++previous;
+    if (previous != contacts_.end() && previous->key() == cand.key) {
+      next.push_back(*previous);
+      next.back().geometry = cand;
+      continue;
+    }
     Contact c;
     c.geometry = cand;
     c.joint = jointOfCandidate[idx];
     c.bonded = bondedIfNew[idx];
-    const auto same = std::lower_bound(contacts_.begin(), contacts_.end(), cand.key, keyLess);
-    if (same != contacts_.end() && same->key() == cand.key) {
-      const ContactCandidate g = c.geometry;
-      c = *same;
-      c.geometry = g;
-    } else {
+    {
       // The vertex may have slid onto another edge of the same block: carry its state over.
       const ContactKey prefix{cand.key.vertexBlock, cand.key.vertex, cand.key.edgeBlock, -1};
       for (auto it = std::lower_bound(contacts_.begin(), contacts_.end(), prefix, keyLess);

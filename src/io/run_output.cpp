@@ -213,6 +213,7 @@ RunOutcome runScene(const model::Scene& scene, const RunOptions& opt) {
   std::optional<HistoryWriter> history;
   if (opt.outputDir) history.emplace(*opt.outputDir, o.trace.monitorIds);
   solver::Simulation sim(scene);
+  sim.setThreads(opt.threads);
   const PictureFrame frame = frameScene(scene);
   std::vector<double> snapshots = opt.snapshotTimes;
   std::sort(snapshots.begin(), snapshots.end());

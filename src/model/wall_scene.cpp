@@ -46,4 +46,43 @@ Scene makeBrickWall(int n) {
   return s;
 }
 
+Scene makeAnchorWall(int rows, bool sudden) {
+  Scene s;
+  s.description = "side-by-side brick wall";
+  s.materials.push_back({"rock", 2500, 1e10, 0.25});
+  s.joints.push_back(model::JointProperties::coulomb("joint", 30 * M_PI / 180, 0));
+  const int columns = rows;
+  const double bw = 1, bh = 0.5;
+  const auto add = [&](std::string id, bool fixed, std::vector<Vec2> v) {
+    Block b;
+    b.id = std::move(id);
+    b.fixed = fixed;
+    b.vertices = std::move(v);
+    b.moments = geometry::computeMoments(b.vertices);
+    s.blocks.push_back(b);
+  };
+  add("base", true, {{-1, -1}, {columns + 1.0, -1}, {columns + 1.0, 0}, {-1, 0}});
+  for (int r = 0; r < rows; ++r) {
+    const double y0 = r * bh, y1 = y0 + bh;
+    std::vector<double> xs;
+    if (r % 2 == 0) {
+      for (int i = 0; i <= columns; ++i) xs.push_back(i * bw);
+    } else {
+      xs.push_back(0);
+      for (int i = 0; i < columns; ++i) xs.push_back((i + 0.5) * bw);
+      xs.push_back(columns * bw);
+    }
+    for (size_t i = 0; i + 1 < xs.size(); ++i) {
+      std::string id = std::to_string(s.blocks.size());
+      id.insert(id.begin(), 'b');
+      add(id, false, {{xs[i], y0}, {xs[i + 1], y0}, {xs[i + 1], y1}, {xs[i], y1}});
+    }
+  }
+  s.settings.timeStep = 1e-3;
+  s.settings.duration = 1e9;
+  s.settings.penalty = 1e11;
+  s.settings.initialEquilibrium = !sudden;
+  return s;
+}
+
 }  // namespace ddaslope::model

@@ -64,6 +64,8 @@ struct RunOptions {
   std::vector<double> snapshotTimes;
   /// Start the equilibrium's second stage from this state (see solver::HeldEquilibrium).
   const solver::HeldEquilibrium* sharedEquilibrium = nullptr;
+  /// Threads of this one run (solver::Simulation::setThreads); the result does not depend on it.
+  int threads = 1;
 };
 
 /// Runs to the scene's duration. Non-convergence is returned, not thrown; the partial history is

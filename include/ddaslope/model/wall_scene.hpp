@@ -10,4 +10,11 @@ namespace ddaslope::model {
 /// overhangs (a stable wall). Δt = 1 ms, no monitors.
 Scene makeBrickWall(int n);
 
+/// The side-by-side wall timed against Shi's DDA (ntdda) in ../shared/ntdda (make_wall.py and
+/// wall_case.py there): `rows` rows of 1 m × 0.5 m bricks, `rows` per even row, odd rows offset
+/// by half a brick (rows 22, 31, 45, 71 give 495, 976, 2047, 5076 bricks), ρ 2500, E 10 GPa,
+/// ν 0.25, joints φ 30° without cohesion, penalty 1e11 N/m fixed, Δt 1 ms. `sudden`: no initial
+/// equilibrium, full gravity at step 1 (ntdda's start).
+Scene makeAnchorWall(int rows, bool sudden);
+
 }  // namespace ddaslope::model

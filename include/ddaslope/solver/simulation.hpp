@@ -4,6 +4,7 @@
 // The DDA forward model. One step reads top-down (STYLE.md):
 // broad phase → contacts → (assemble → factorise → solve → judge states)* → accept or cut Δt
 // → update geometry → commit contacts.
+#include <algorithm>
 #include <functional>
 #include <memory>
 #include <string>
@@ -115,6 +116,10 @@ class Simulation {
   /// Off: every contact state change of a large system refactorises, as before the factor
   /// followed them by update/downdate (for comparisons: the bench, the tests).
   void setFactorFollowing(bool on) { factorFollowing_ = on; }
+  /// Threads this run's contact search, linearisation and contact judgement may use (1 by
+  /// default: a search runs its forward runs side by side instead). The result does not depend
+  /// on it (core/parallel.hpp).
+  void setThreads(int threads) { threads_ = std::max(1, threads); }
 
  private:
   /// Settling: dynamic steps before t = 0 (velocity carried, loads at t = 0).
@@ -187,9 +192,11 @@ class Simulation {
   std::vector<assembly::ContactKinematics> kinematics_;
   std::vector<int> partner_;  ///< other half of the same edge-to-edge contact, or −1
   assembly::BlockSparseMatrix matrix_;
+  std::vector<std::pair<int, int>> lastCouplings_;  ///< block pairs of the contacts matrix_'s pattern was made for
   LinearSolver linearSolver_;
   FactorSprings factorSprings_;  ///< the contact springs the factor holds (large systems only)
   bool factorFollowing_ = true;
+  int threads_ = 1;
   StepSizeController stepSize_;
   std::vector<Eigen::Matrix3d> elasticity_;
   RunStatistics stats_;

@@ -1,0 +1,41 @@
+#pragma once
+// Work of one forward run shared among threads without changing its result: the items are split
+// into contiguous chunks in index order and every item writes only its own output, so the
+// outcome is the same as the serial loop's bit for bit, whatever the thread count.
+#include <algorithm>
+#include <thread>
+#include <vector>
+
+namespace ddaslope {
+
+/// Below this many items a loop runs on the calling thread: starting a thread costs tens of
+/// microseconds, more than the loops of a small scene take.
+inline constexpr int kParallelMinItems = 512;
+
+/// Calls body(begin, end, chunk) for `chunks` contiguous chunks of [0, n), chunk k on its own
+/// thread (chunk 0 on the caller's). chunks = min(threads, …); 1 when n < kParallelMinItems.
+template <class Body>
+int parallelChunks(int n, int threads, Body&& body) {
+  const int chunks = n < kParallelMinItems ? 1 : std::clamp(threads, 1, n);
+  if (chunks == 1) {
+    body(0, n, 0);
+    return 1;
+  }
+  std::vector<std::thread> workers;
+  workers.reserve(chunks - 1);
+  const auto bounds = [&](int k) { return static_cast<int>(static_cast<long long>(n) * k / chunks); };
+  for (int k = 1; k < chunks; ++k) workers.emplace_back([&, k] { body(bounds(k), bounds(k + 1), k); });
+  body(0, bounds(1), 0);
+  for (std::thread& t : workers) t.join();
+  return chunks;
+}
+
+/// body(i) for every i in [0, n), shared as parallelChunks() does.
+template <class Body>
+void parallelFor(int n, int threads, Body&& body) {
+  parallelChunks(n, threads, [&](int begin, int end, int) {
+    for (int i = begin; i < end; ++i) body(i);
+  });
+}
+
+}  // namespace ddaslope
