@@ -151,7 +151,10 @@ class Simulation {
   bool confirmedAtRest(const Attempt& last, double restAcceleration);
   /// Largest vertex displacement of an attempt's solution over the active blocks (m).
   double largestVertexDisplacement(const Attempt& a) const;
-  Attempt tryStep(double dt, Regime regime, bool freezeCycling);
+  /// `freezeCycling`: a contact that keeps changing state within the step keeps its state
+  /// whatever its law says; `holdSmallViolations`: only while that breaks its law by a small
+  /// fraction of the largest contact force (tryStep).
+  Attempt tryStep(double dt, Regime regime, bool freezeCycling, bool holdSmallViolations = false);
   /// Block terms of a step; `loads` receives the water and point-load part of f (its work).
   void assembleBlockTerms(double dt, Regime regime, std::vector<Mat6>& k, std::vector<Vec6>& f,
                           std::vector<Vec6>& loads) const;
