@@ -39,7 +39,7 @@ struct RunStatistics {
   int cuts = 0;
   long iterations = 0;
   int cycles = 0;                  ///< attempts ended early: the open-close states cycled
-  int frozenSteps = 0;             ///< steps accepted with cycling contacts frozen (after 2 cuts)
+  int frozenSteps = 0;             ///< steps accepted with cycling contacts held (frozen)
   int equilibriumSteps = 0;
   double equilibriumResidual = 0;  ///< last equilibrium step's implied acceleration 2|D|/Δt², in g
   bool equilibriumConverged = true;  ///< stage 1 (contacts held) reached rest
