@@ -40,7 +40,7 @@ struct RunStatistics {
   int cuts = 0;
   long iterations = 0;
   int cycles = 0;                  ///< attempts ended early: the open-close states cycled
-  int frozenSteps = 0;             ///< steps accepted with cycling contacts frozen (after 2 cuts)
+  int frozenSteps = 0;             ///< steps accepted with cycling contacts held (frozen)
   int equilibriumSteps = 0;
   double equilibriumResidual = 0;  ///< last equilibrium step's implied acceleration 2|D|/Δt², in g
   bool equilibriumConverged = true;  ///< stage 1 (contacts held) reached rest
@@ -156,7 +156,10 @@ class Simulation {
   bool confirmedAtRest(const Attempt& last, double restAcceleration);
   /// Largest vertex displacement of an attempt's solution over the active blocks (m).
   double largestVertexDisplacement(const Attempt& a) const;
-  Attempt tryStep(double dt, Regime regime, bool freezeCycling);
+  /// `freezeCycling`: a contact that keeps changing state within the step keeps its state
+  /// whatever its law says; `holdSmallViolations`: only while that breaks its law by a small
+  /// fraction of the largest contact force (tryStep).
+  Attempt tryStep(double dt, Regime regime, bool freezeCycling, bool holdSmallViolations = false);
   /// Block terms of a step; `loads` receives the water and point-load part of f (its work).
   void assembleBlockTerms(double dt, Regime regime, std::vector<Mat6>& k, std::vector<Vec6>& f,
                           std::vector<Vec6>& loads) const;
