@@ -78,6 +78,29 @@ void BlockSparseMatrix::addCoupling(int r, int c, const Mat6& krc) {
   }
 }
 
+void BlockSparseMatrix::addDiagonalOuter(int b, double k, const Vec6& u) {
+  const int off = dof_ * static_cast<int>(columnRows_[b].size());
+  for (int col = 0; col < dof_; ++col) {
+    double* v = &values_[colPtr_[dof_ * b + col] + off];
+    for (int row = 0; row <= col; ++row) v[row] += (k * u[row]) * u[col];
+  }
+}
+
+void BlockSparseMatrix::addCouplingOuter(int r, int c, double k, const Vec6& u, const Vec6& w) {
+  // Stored as the block of the lower-numbered block's rows: for r > c that is the transpose,
+  // whose entry (row, col) is (k·u_col)·w_row.
+  const bool transposed = r > c;
+  const int s = dof_ * (transposed ? slot(c, r) : slot(r, c));
+  const int column = transposed ? r : c;
+  for (int col = 0; col < dof_; ++col) {
+    double* v = &values_[colPtr_[dof_ * column + col] + s];
+    if (transposed)
+      for (int row = 0; row < dof_; ++row) v[row] += (k * u[col]) * w[row];
+    else
+      for (int row = 0; row < dof_; ++row) v[row] += (k * u[row]) * w[col];
+  }
+}
+
 Eigen::VectorXd BlockSparseMatrix::multiply(const Eigen::VectorXd& x) const {
   Eigen::VectorXd y = Eigen::VectorXd::Zero(size());
   for (int col = 0; col < size(); ++col) {

@@ -7,21 +7,38 @@ namespace ddaslope::contact {
 static bool keyLess(const Contact& c, const ContactKey& k) { return c.key() < k; }
 
 bool ContactSet::contains(const ContactKey& key) const {
-  const auto it = std::lower_bound(contacts_.begin(), contacts_.end(), key, keyLess);
-  return it != contacts_.end() && it->key() == key;
+  // Search only the contacts of the key's vertex block: a few, not all of them.
+  const size_t b = static_cast<size_t>(key.vertexBlock);
+  if (key.vertexBlock < 0 || b + 1 >= firstOfBlock_.size()) return false;
+  const auto end = contacts_.begin() + firstOfBlock_[b + 1];
+  const auto it = std::lower_bound(contacts_.begin() + firstOfBlock_[b], end, key, keyLess);
+  return it != end && it->key() == key;
+}
+
+void ContactSet::indexBlocks() {
+  const int blocks = contacts_.empty() ? 0 : contacts_.back().key().vertexBlock + 1;
+  firstOfBlock_.assign(static_cast<size_t>(blocks) + 1, 0);
+  for (const Contact& c : contacts_) ++firstOfBlock_[static_cast<size_t>(c.key().vertexBlock) + 1];
+  for (size_t b = 1; b < firstOfBlock_.size(); ++b) firstOfBlock_[b] += firstOfBlock_[b - 1];
 }
 
 void ContactSet::update(std::vector<ContactCandidate> candidates, const std::vector<int>& jointOfCandidate,
                         const std::vector<char>& bondedIfNew) {
-  std::vector<size_t> order(candidates.size());
-  for (size_t i = 0; i < order.size(); ++i) order[i] = i;
-  std::sort(order.begin(), order.end(),
-            [&](size_t a, size_t b) { return candidates[a].key < candidates[b].key; });
+  // Keys sorted with their candidate's index next to them, not reached through it. Candidates
+  // of equal key (one contact found from both blocks) are equal, so the order among them
+  // does not matter.
+  struct Entry {
+    ContactKey key;
+    size_t idx;
+  };
+  std::vector<Entry> order(candidates.size());
+  for (size_t i = 0; i < order.size(); ++i) order[i] = {candidates[i].key, i};
+  std::sort(order.begin(), order.end(), [](const Entry& a, const Entry& b) { return a.key < b.key; });
   std::vector<Contact> next;
   next.reserve(candidates.size());
   // Both lists are sorted by key: last step's contacts are matched by one forward walk.
   auto previous = contacts_.begin();
-  for (size_t idx : order) {
+  for (const auto& [key, idx] : order) {
     const ContactCandidate& cand = candidates[idx];
     if (!next.empty() && next.back().key() == cand.key) continue;  // found from both sides
     while (previous != contacts_.end() && previous->key() < cand.key) ++previous;
@@ -55,6 +72,7 @@ void ContactSet::update(std::vector<ContactCandidate> candidates, const std::vec
     next.push_back(c);
   }
   contacts_ = std::move(next);
+  indexBlocks();
 }
 
 }  // namespace ddaslope::contact

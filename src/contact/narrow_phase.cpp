@@ -1,6 +1,7 @@
 #include "ddaslope/contact/narrow_phase.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "ddaslope/geometry/polygon.hpp"
@@ -16,7 +17,10 @@ struct Poly {
   int block;
   const std::vector<Vec2>& p;
   int n() const { return static_cast<int>(p.size()); }
-  const Vec2& at(int k) const { return p[(k % n() + n()) % n()]; }
+  /// Vertex k, for k from −1 to n (every caller steps at most one past either end): a wrap
+  /// without the two divisions of a general modulo, which the hot loops below paid per access.
+  int wrap(int k) const { return k < 0 ? k + n() : k >= n() ? k - n() : k; }
+  const Vec2& at(int k) const { return p[static_cast<size_t>(wrap(k))]; }
   bool convex(int k) const { return cross(at(k) - at(k - 1), at(k + 1) - at(k)) > 0; }
 };
 
@@ -32,7 +36,7 @@ double clearance(const Poly& V, int v, const Poly& E, int e) {
   return std::min(u1, u2);
 }
 
-ContactCandidate makeCandidate(const Poly& V, int v, const Poly& E, int e, double parallelTol) {
+ContactCandidate makeCandidate(const Poly& V, int v, const Poly& E, int e, double sinParallelTol) {
   ContactCandidate c;
   c.key = {V.block, v, E.block, e};
   const Vec2 a = E.at(e), b = E.at(e + 1), p = V.at(v);
@@ -44,12 +48,12 @@ ContactCandidate makeCandidate(const Poly& V, int v, const Poly& E, int e, doubl
   for (int k : {v - 1, v}) {
     const Vec2 q0 = V.at(k), q1 = V.at(k + 1);
     const Vec2 dq = (q1 - q0).normalized();
-    if (dq.dot(d) >= 0 || std::abs(cross(dq, d)) > std::sin(parallelTol)) continue;
+    if (dq.dot(d) >= 0 || std::abs(cross(dq, d)) > sinParallelTol) continue;
     const double s0 = (q0 - a).dot(d), s1 = (q1 - a).dot(d);
     const double overlap = std::min(std::max(s0, s1), len) - std::max(std::min(s0, s1), 0.0);
     if (overlap > 1e-9 * len && overlap > c.overlap) {
       c.overlap = overlap;
-      c.pairedEdge = (k % V.n() + V.n()) % V.n();
+      c.pairedEdge = V.wrap(k);
     }
   }
   return c;
@@ -76,7 +80,7 @@ Region contactRegion(const std::vector<Vec2>& pa, const std::vector<Vec2>& pb, d
 
 void vertexOnEdges(const Poly& V, const Poly& E, const Region& region, const NarrowPhaseSettings& s,
                    std::vector<ContactCandidate>& out) {
-  const double minClearance = -std::sin(s.parallelTolerance);
+  const double minClearance = -s.sinParallelTolerance;
   for (int v = 0; v < V.n(); ++v) {
     const Vec2& p = V.at(v);
     if (!region.contains(p) || !V.convex(v)) continue;  // a reflex vertex cannot touch an edge from outside
@@ -88,7 +92,7 @@ void vertexOnEdges(const Poly& V, const Poly& E, const Region& region, const Nar
       // Near an end of the edge: the vertex-to-vertex rule decides.
       if ((p - a).norm() < s.searchDistance || (p - b).norm() < s.searchDistance) continue;
       if (clearance(V, v, E, e) < minClearance) continue;
-      ContactCandidate c = makeCandidate(V, v, E, e, s.parallelTolerance);
+      ContactCandidate c = makeCandidate(V, v, E, e, s.sinParallelTolerance);
       // Deeper than a step can carry a vertex (0.4 of the search distance): behind the edge, not
       // this edge's contact.
       if (c.gap < -0.5 * s.searchDistance) continue;
@@ -105,73 +109,86 @@ struct Option {
   double clearance;
 };
 
+/// At most four entrances (two per corner): a fixed array, not a vector allocated per vertex.
+struct Options {
+  std::array<Option, 4> item;
+  int count = 0;
+  void add(const Option& o, double minClearance) {
+    if (!(o.clearance < minClearance)) item[static_cast<size_t>(count++)] = o;
+  }
+  const Option* begin() const { return item.data(); }
+  const Option* end() const { return item.data() + count; }
+};
+
+/// The vertex of B nearest to point p (the first of equals).
+int nearestVertex(const Vec2& p, const Poly& B) {
+  int nearest = 0;
+  double best = (p - B.at(0)).squaredNorm();
+  for (int q = 1; q < B.n(); ++q) {
+    const double d = (p - B.at(q)).squaredNorm();
+    if (d < best) nearest = q, best = d;
+  }
+  return nearest;
+}
+
 void vertexToVertex(const Poly& A, const Poly& B, const Region& region, const NarrowPhaseSettings& s,
-                    const std::function<bool(const ContactKey&)>& known,
-                    std::vector<ContactCandidate>& out) {
-  const double minClearance = -std::sin(s.parallelTolerance);
+                    const std::function<bool(const ContactKey&)>& known, std::vector<ContactCandidate>& out) {
+  const double minClearance = -s.sinParallelTolerance;
+  const auto candidate = [&](const Option& o) {
+    return makeCandidate(*o.vertexPoly, o.v, *o.edgePoly, o.e, s.sinParallelTolerance);
+  };
   for (int p = 0; p < A.n(); ++p) {
     if (!region.contains(A.at(p))) continue;
     // Only the nearest vertex of B can be the corner P touches: with blocks not much larger than
     // the search distance, farther corners are within reach too and would give false contacts.
-    int nearest = -1;
-    for (int q = 0; q < B.n(); ++q)
-      if (nearest < 0 || (A.at(p) - B.at(q)).squaredNorm() < (A.at(p) - B.at(nearest)).squaredNorm()) nearest = q;
-    for (int q = nearest; q == nearest; ++q) {
-      if ((A.at(p) - B.at(q)).norm() >= s.searchDistance) continue;
-      const bool pConvex = A.convex(p), qConvex = B.convex(q);
-      if (!pConvex && !qConvex) continue;
-      std::vector<Option> options;
-      if (pConvex)
-        for (int e : {q - 1, q}) {
-          const int ee = (e + B.n()) % B.n();
-          options.push_back({&A, p, &B, ee, clearance(A, p, B, ee)});
-        }
-      if (qConvex)
-        for (int e : {p - 1, p}) {
-          const int ee = (e + A.n()) % A.n();
-          options.push_back({&B, q, &A, ee, clearance(B, q, A, ee)});
-        }
-      std::erase_if(options, [&](const Option& o) { return o.clearance < minClearance; });
-      if (options.empty()) continue;
-      auto emit = [&](const Option& o) {
-        const ContactCandidate c = makeCandidate(*o.vertexPoly, o.v, *o.edgePoly, o.e, s.parallelTolerance);
-        if (c.gap >= -0.5 * s.searchDistance) out.push_back(c);
-      };
-      if (!qConvex || !pConvex) {
-        // A convex corner in a reflex corner touches both of its edges.
-        for (const Option& o : options) emit(o);
-        continue;
-      }
-      // Two convex corners: one contact, on the entrance edge that best separates them.
-      // Near-ties keep last step's contact so that its state and history persist.
-      const Option* best = &options.front();
-      for (const Option& o : options)
-        if (o.clearance > best->clearance) best = &o;
+    const int q = nearestVertex(A.at(p), B);
+    if ((A.at(p) - B.at(q)).norm() >= s.searchDistance) continue;
+    const bool pConvex = A.convex(p), qConvex = B.convex(q);
+    if (!pConvex && !qConvex) continue;
+    Options options;
+    if (pConvex)
+      for (int e : {q - 1, q}) options.add({&A, p, &B, B.wrap(e), clearance(A, p, B, B.wrap(e))}, minClearance);
+    if (qConvex)
+      for (int e : {p - 1, p}) options.add({&B, q, &A, A.wrap(e), clearance(B, q, A, A.wrap(e))}, minClearance);
+    if (options.count == 0) continue;
+    if (!qConvex || !pConvex) {
+      // A convex corner in a reflex corner touches both of its edges.
       for (const Option& o : options) {
-        const ContactKey k{o.vertexPoly->block, o.v, o.edgePoly->block, o.e};
-        if (o.clearance >= best->clearance - 1e-3 && known(k)) {
-          best = &o;
-          break;
-        }
+        const ContactCandidate c = candidate(o);
+        if (c.gap >= -0.5 * s.searchDistance) out.push_back(c);
       }
-      // A contact the corners start, or switch to, takes the entrance the corner has penetrated
-      // least (Shi: of the two entrances, the shortest distance), unless the one chosen above is
-      // as open up to a tie. Another entrance may measure the vertex against the extension of an
-      // edge it has already passed: a penetration the blocks do not have, whose spring would
-      // start with energy no work has paid for (corners passing each other in the Vajont
-      // run-out: 0.47 m, 4.4e10 J/m in one step). A contact kept from the last step goes on
-      // with the spring it has.
-      ContactCandidate chosen = makeCandidate(*best->vertexPoly, best->v, *best->edgePoly, best->e, s.parallelTolerance);
-      if (!known(chosen.key)) {
-        ContactCandidate open = chosen;
-        for (const Option& o : options) {
-          const ContactCandidate c = makeCandidate(*o.vertexPoly, o.v, *o.edgePoly, o.e, s.parallelTolerance);
-          if (c.gap > open.gap) open = c;
-        }
-        if (open.gap > chosen.gap + kGapTieFraction * s.searchDistance) chosen = open;
-      }
-      if (chosen.gap >= -0.5 * s.searchDistance) out.push_back(chosen);
+      continue;
     }
+    // Two convex corners: one contact, on the entrance edge that best separates them.
+    // Near-ties keep last step's contact so that its state and history persist.
+    const Option* best = options.begin();
+    for (const Option& o : options)
+      if (o.clearance > best->clearance) best = &o;
+    for (const Option& o : options) {
+      const ContactKey k{o.vertexPoly->block, o.v, o.edgePoly->block, o.e};
+      if (o.clearance >= best->clearance - 1e-3 && known(k)) {
+        best = &o;
+        break;
+      }
+    }
+    // A contact the corners start, or switch to, takes the entrance the corner has penetrated
+    // least (Shi: of the two entrances, the shortest distance), unless the one chosen above is
+    // as open up to a tie. Another entrance may measure the vertex against the extension of an
+    // edge it has already passed: a penetration the blocks do not have, whose spring would
+    // start with energy no work has paid for (corners passing each other in the Vajont
+    // run-out: 0.47 m, 4.4e10 J/m in one step). A contact kept from the last step goes on
+    // with the spring it has.
+    ContactCandidate chosen = candidate(*best);
+    if (!known(chosen.key)) {
+      ContactCandidate open = chosen;
+      for (const Option& o : options) {
+        // The chosen entrance's candidate is the one just made (makeCandidate is pure).
+        const ContactCandidate c = &o == best ? chosen : candidate(o);
+        if (c.gap > open.gap) open = c;
+      }
+      if (open.gap > chosen.gap + kGapTieFraction * s.searchDistance) chosen = open;
+    }
+    if (chosen.gap >= -0.5 * s.searchDistance) out.push_back(chosen);
   }
 }
 

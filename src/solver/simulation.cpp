@@ -296,9 +296,11 @@ Simulation::Attempt Simulation::tryStep(double dt, Regime regime, bool freezeCyc
   };
   const auto addSpring = [&](const Contact& c, double k, const Vec12& v) {
     const auto [i, j] = ends(c);
-    if (i >= 0) matrix_.addDiagonal(i, k * v.head<6>() * v.head<6>().transpose());
-    if (j >= 0) matrix_.addDiagonal(j, k * v.tail<6>() * v.tail<6>().transpose());
-    if (i >= 0 && j >= 0) matrix_.addCoupling(i, j, k * v.head<6>() * v.tail<6>().transpose());
+    // k·v·vᵀ, only the entries the matrix stores.
+    const Vec6 vi = v.head<6>(), vj = v.tail<6>();
+    if (i >= 0) matrix_.addDiagonalOuter(i, k, vi);
+    if (j >= 0) matrix_.addDiagonalOuter(j, k, vj);
+    if (i >= 0 && j >= 0) matrix_.addCouplingOuter(i, j, k, vi, vj);
   };
   Eigen::VectorXd rhs(6 * nActive_);
   const auto addForce = [&](const Contact& c, double s, const Vec12& v) {

@@ -23,6 +23,12 @@ class BlockSparseMatrix {
   void addDiagonal(int b, const Mat6& k);
   /// Adds K_rc, the block coupling row block r to column block c (r ≠ c).
   void addCoupling(int r, int c, const Mat6& krc);
+  /// Adds (k·u)·uᵀ to diagonal block b and (k·u)·wᵀ to the coupling of r to c: a spring's
+  /// terms, each stored entry computed as the full outer product would (k·u_i first, then
+  /// times the other factor), but only the entries stored (the upper triangle, and for dof < 6
+  /// the leading dof×dof).
+  void addDiagonalOuter(int b, double k, const Vec6& u);
+  void addCouplingOuter(int r, int c, double k, const Vec6& u, const Vec6& w);
   Eigen::VectorXd multiply(const Eigen::VectorXd& x) const;
 
   int size() const { return dof_ * nBlocks_; }

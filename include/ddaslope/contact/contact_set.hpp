@@ -15,11 +15,15 @@ class ContactSet {
   void update(std::vector<ContactCandidate> candidates, const std::vector<int>& jointOfCandidate,
               const std::vector<char>& bondedIfNew);
   bool contains(const ContactKey& key) const;
+  /// Callers may change contacts' state, never their keys (the lookup index relies on them).
   std::vector<Contact>& contacts() { return contacts_; }
   const std::vector<Contact>& contacts() const { return contacts_; }
 
  private:
+  void indexBlocks();
+
   std::vector<Contact> contacts_;  ///< sorted by key
+  std::vector<int> firstOfBlock_;  ///< contacts_[firstOfBlock_[b], firstOfBlock_[b + 1]): vertex block b
 };
 
 }  // namespace ddaslope::contact

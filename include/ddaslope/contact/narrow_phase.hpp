@@ -1,5 +1,6 @@
 #pragma once
 // Narrow phase: vertex-to-edge and vertex-to-vertex contacts between two polygons (pure).
+#include <cmath>
 #include <functional>
 #include <vector>
 
@@ -9,8 +10,12 @@
 namespace ddaslope::contact {
 
 struct NarrowPhaseSettings {
-  double searchDistance = 0;       ///< vertices farther than this from an edge are ignored (m)
-  double parallelTolerance = 0;    ///< radians: edges this close to antiparallel form an edge-to-edge contact
+  NarrowPhaseSettings(double searchDistance, double parallelTolerance)
+      : searchDistance(searchDistance), sinParallelTolerance(std::sin(parallelTolerance)) {}
+  double searchDistance = 0;        ///< vertices farther than this from an edge are ignored (m)
+  /// sin of the angle (radians) within which edges count as antiparallel and form an
+  /// edge-to-edge contact; taken once here, not per vertex and edge tested.
+  double sinParallelTolerance = 0;
 };
 
 /// Contacts between blocks a and b (both polygons counter-clockwise). A vertex near a vertex
