@@ -6,6 +6,19 @@
 
 namespace ddaslope::model {
 
+namespace {
+
+void addBlock(Scene& s, std::string id, bool fixed, std::vector<Vec2> vertices) {
+  Block b;
+  b.id = std::move(id);
+  b.fixed = fixed;
+  b.vertices = std::move(vertices);
+  b.moments = geometry::computeMoments(b.vertices);
+  s.blocks.push_back(std::move(b));
+}
+
+}  // namespace
+
 Scene makeBrickWall(int n) {
   Scene s;
   s.description = "brick wall";
@@ -13,14 +26,7 @@ Scene makeBrickWall(int n) {
   s.joints.push_back(model::JointProperties::coulomb("joint", 35 * M_PI / 180, 0));
   const int perRow = std::max(2, static_cast<int>(std::lround(std::sqrt(2.0 * n))));
   const double bw = 2, bh = 1, width = perRow * bw;
-  const auto add = [&](std::string id, bool fixed, std::vector<Vec2> v) {
-    Block b;
-    b.id = std::move(id);
-    b.fixed = fixed;
-    b.vertices = std::move(v);
-    b.moments = geometry::computeMoments(b.vertices);
-    s.blocks.push_back(b);
-  };
+  const auto add = [&](std::string id, bool fixed, std::vector<Vec2> v) { addBlock(s, std::move(id), fixed, std::move(v)); };
   add("base", true, {{-2, -2}, {width + 2, -2}, {width + 2, 0}, {-2, 0}});
   int made = 0;
   for (int r = 0; made < n; ++r) {
@@ -53,14 +59,7 @@ Scene makeAnchorWall(int rows, bool sudden) {
   s.joints.push_back(model::JointProperties::coulomb("joint", 30 * M_PI / 180, 0));
   const int columns = rows;
   const double bw = 1, bh = 0.5;
-  const auto add = [&](std::string id, bool fixed, std::vector<Vec2> v) {
-    Block b;
-    b.id = std::move(id);
-    b.fixed = fixed;
-    b.vertices = std::move(v);
-    b.moments = geometry::computeMoments(b.vertices);
-    s.blocks.push_back(b);
-  };
+  const auto add = [&](std::string id, bool fixed, std::vector<Vec2> v) { addBlock(s, std::move(id), fixed, std::move(v)); };
   add("base", true, {{-1, -1}, {columns + 1.0, -1}, {columns + 1.0, 0}, {-1, 0}});
   for (int r = 0; r < rows; ++r) {
     const double y0 = r * bh, y1 = y0 + bh;
