@@ -129,8 +129,9 @@ def make_case():
         "upper blocks. Spencer's method on the same slices: "
         f"{spencer.critical_cohesion(spencer.case_slices(case), tan_phi)[0] / 1e3:.1f} kPa "
         f"(scripts/spencer.py cases/chair_slide.json --friction {SLIDING_PHI:g}). With softening joints (the "
-        "default) DDA keeps the buttress, and more: critical c 18.6 kPa, the joint through the kink locking the "
-        "block model there (docs/calibration.md); with brittle bonds (weakening_distance 0, "
+        "default) DDA keeps the buttress, and more: critical c 18.6 kPa, because the block above the kink leans "
+        "on its corner there, which slices cannot (the least c for which any contact forces hold these blocks is "
+        "15.0 kPa: scripts/block_equilibrium.py; docs/calibration.md); with brittle bonds (weakening_distance 0, "
         "original DDA) each upper block loses its bond as it slips and the answer is set by a single block, "
         "260 kPa (calibration/chair_slide). Multi-wedge limit equilibrium: "
         f"scripts/chair_slide.py le --friction {SLIDING_PHI:g}. Regenerate: scripts/chair_slide.py case")

@@ -6,6 +6,8 @@
 
 #include "ddaslope/core/errors.hpp"
 #include "ddaslope/geometry/cutting.hpp"
+#include "ddaslope/io/case_reader.hpp"
+#include "ddaslope/model/kinks.hpp"
 #include "ddaslope/model/section.hpp"
 
 using namespace ddaslope;
@@ -88,4 +90,23 @@ TEST(Cutting, HalfPlaneClipOfASquare) {
   // A U-shaped polygon crossed by a horizontal line through both arms: 4 crossings.
   const std::vector<Vec2> u{{0, 0}, {3, 0}, {3, 3}, {2, 3}, {2, 1}, {1, 1}, {1, 3}, {0, 3}};
   EXPECT_EQ(geometry::lineCrossings(u, {0, 2}, {1, 0}), 4);
+}
+
+// Concave kinks under the blocks (model/kinks.hpp): the chair slide's sliding surface turns from
+// 30° to 8° at the kink and from 8° to the level valley floor at the toe, so by geometry it bends
+// up by 22° at (500, 49.19) and by 8° at (850, 0); a block on a plane (the B1 ramp) has none, and
+// the 90° steps of the stepped toppling base are steps, not kinks.
+TEST(Kinks, ConcaveBendsOfTheSlidingSurfaceUnderTheBlocks) {
+  const std::string dir = std::string(DDASLOPE_SOURCE_DIR) + "/cases/";
+  const auto chair = model::concaveKinksUnderBlocks(io::readCase(dir + "chair_slide.json"));
+  ASSERT_EQ(chair.size(), 2u);
+  const auto& kink = chair[0].point.x() < chair[1].point.x() ? chair[0] : chair[1];
+  const auto& toe = chair[0].point.x() < chair[1].point.x() ? chair[1] : chair[0];
+  EXPECT_NEAR(kink.bendDeg, 22, 1e-9);
+  EXPECT_NEAR(kink.point.x(), 500, 1e-9);
+  EXPECT_NEAR(kink.point.y(), 350 * std::tan(degToRad(8)), 1e-9);
+  EXPECT_NEAR(toe.bendDeg, 8, 1e-9);
+  EXPECT_NEAR(toe.point.x(), 850, 1e-9);
+  EXPECT_TRUE(model::concaveKinksUnderBlocks(io::readCase(dir + "cohesive_block_42kpa.json")).empty());
+  EXPECT_TRUE(model::concaveKinksUnderBlocks(io::readCase(dir + "stepped_toppling.json")).empty());
 }

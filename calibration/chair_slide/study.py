@@ -8,12 +8,15 @@ spacing, always through the kink; narrower columns, h/b > 1/tan 30°, topple) it
 phi = 18 deg from
 - limit equilibrium on the same vertical slices: Spencer, Morgenstern-Price (half-sine) and the
   multi-wedge bounds (interfaces without friction, and at the joints' 40 deg), scripts/spencer.py;
+- limit equilibrium of the same blocks (scripts/block_equilibrium.py): the least cohesion for which
+  any set of contact forces holds every block, corners included; no DDA run of these blocks can
+  stand below it (the static theorem);
 - one block of the 30 deg segment standing alone (closed form);
 - ddaslope `critical` with the default (softening, automatic distance) joint, with brittle bonds
   (weakening_distance 0, original DDA) and with set distances;
 and, for the 50 m blocks, the default joint under other settings.
 
-Run from the repository root after building:
+Run from the repository root after building (Debian's python3, which has python3-scipy):
     python3 calibration/chair_slide/study.py [--bin build/ddaslope] [--quick]
 It takes about 2.5 minutes (--quick: the 50 m blocks only; --spacing 25 adds toppling columns).
 """
@@ -23,6 +26,7 @@ sys.dont_write_bytecode = True
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 sys.path.insert(0, os.path.join(ROOT, "scripts"))
 import spencer  # noqa: E402
+import block_equilibrium  # noqa: E402  (needs scipy: Debian python3-scipy)
 from chair_slide import critical_cohesion as multi_wedge, single_block_cohesion  # noqa: E402
 from vajont_limit_equilibrium import section_slices  # noqa: E402
 
@@ -55,11 +59,18 @@ def limit_equilibrium(case):
     }, len(slices)
 
 
+def block_bound(binary, case_path):
+    """Least cohesion (Pa) for which the case's own blocks can stand (scripts/block_equilibrium.py)."""
+    model = block_equilibrium.BlockModel(block_equilibrium.load_blocks(case_path, binary))
+    return block_equilibrium.critical_cohesion(model, "sliding_surface", PHI)
+
+
 def kink_layouts(binary, base, tmp, kpa):
     """50 m blocks with the joint set shifted up the slope, so that a block spans the kink."""
     print("\nWhere the joints meet the kink (50 m blocks; offset: the nearest joint lies this far up the slope "
           "from the kink, 0 = through it), critical c in kPa\n")
-    print("| offset | Spencer | wedges δ = 40° | ddaslope default |\n|---|---|---|---|")
+    print("| offset | Spencer | wedges δ = 40° | same blocks (static bound) | ddaslope default | above the bound |\n"
+          "|---|---|---|---|---|---|")
     for offset in KINK_OFFSETS:
         case = copy.deepcopy(base)
         origin = case["section"]["joint_sets"][0]["origin"]
@@ -69,7 +80,9 @@ def kink_layouts(binary, base, tmp, kpa):
         json.dump(case, open(path, "w"))
         le, _ = limit_equilibrium(case)
         c, _ = ddaslope_critical(binary, path, [])
-        print(f"| {offset:g} m | {kpa(le['spencer'])} | {kpa(le['wedges δ=40°'])} | {kpa(c)} |", flush=True)
+        bound = block_bound(binary, path)
+        print(f"| {offset:g} m | {kpa(le['spencer'])} | {kpa(le['wedges δ=40°'])} | {kpa(bound)} | {kpa(c)} | "
+              f"{100 * (c - bound) / bound:+.0f} % |", flush=True)
 
 
 def planar_slide(binary, tmp, kpa):
@@ -86,7 +99,9 @@ def planar_slide(binary, tmp, kpa):
             ("start not settled (analysis.settle_dynamically false, before issue #14's fix)", unsettled_path, []),
             ("brittle (δw = 0)", path, ["--brittle-joints"])]
     rows += [(f"default, {label}", path, extra) for label, extra in SETTINGS]
-    print(f"\nPlanar multi-block slide (cases/planar_multiblock_slide.json): exact limit equilibrium {kpa(exact)} kPa\n")
+    print(f"\nPlanar multi-block slide (cases/planar_multiblock_slide.json): exact limit equilibrium {kpa(exact)} kPa "
+          f"(all blocks sliding on the plane); the same blocks' static bound {kpa(block_bound(binary, path))} kPa "
+          "(the crown block's corner may carry load)\n")
     print("| ddaslope | critical c (kPa) | error |\n|---|---|---|")
     for label, p, extra in rows:
         c, _ = ddaslope_critical(binary, p, extra)
@@ -104,9 +119,9 @@ def main():
     kpa = lambda v: f"{v / 1e3:.1f}"
     with tempfile.TemporaryDirectory() as tmp:
         print(f"Critical cohesion (kPa) of the chair slide's sliding surface at φ = {PHI:g}°\n")
-        print("| blocks | Spencer | M–P | wedges δ = 0 / 40° | one block alone | ddaslope default | brittle (δw = 0) | "
-              + " | ".join(f"δw = {d:g} m" for d in DISTANCES[2:]) + " |")
-        print("|---" * (7 + len(DISTANCES) - 2) + "|")
+        print("| blocks | Spencer | M–P | wedges δ = 0 / 40° | same blocks (static bound) | one block alone | "
+              "ddaslope default | brittle (δw = 0) | " + " | ".join(f"δw = {d:g} m" for d in DISTANCES[2:]) + " |")
+        print("|---" * (8 + len(DISTANCES) - 2) + "|")
         for spacing in ([50] if a.quick else (a.spacing or [40, 50, 100])):
             case = copy.deepcopy(base)
             case["section"]["joint_sets"][0]["spacing"] = spacing
@@ -119,7 +134,8 @@ def main():
                 extra = [] if d is None else ["--set", f"joints.sliding_surface.weakening_distance={d}"]
                 dda.append(ddaslope_critical(a.bin, path, extra)[0])
             print(f"| {n} × {spacing:g} m | {kpa(le['spencer'])} | {kpa(le['morgenstern-price'])} | "
-                  f"{kpa(le['wedges δ=0'])} / {kpa(le['wedges δ=40°'])} | {kpa(le['single block'])} | "
+                  f"{kpa(le['wedges δ=0'])} / {kpa(le['wedges δ=40°'])} | {kpa(block_bound(a.bin, path))} | "
+                  f"{kpa(le['single block'])} | "
                   + " | ".join(kpa(v) for v in dda) + " |", flush=True)
         if not a.quick:
             kink_layouts(a.bin, base, tmp, kpa)

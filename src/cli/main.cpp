@@ -19,6 +19,7 @@
 #include "ddaslope/calibration/trial_report.hpp"
 #include "ddaslope/io/line_plot.hpp"
 #include "ddaslope/io/scene_picture.hpp"
+#include "ddaslope/model/kinks.hpp"
 #include "ddaslope/model/presets.hpp"
 #include "ddaslope/model/settings_override.hpp"
 #include "ddaslope/core/errors.hpp"
@@ -196,6 +197,17 @@ std::string settingsLine(const ddaslope::model::Scene& scene) {
   return buf;
 }
 
+/// A note per concave kink of the sliding surface with a block on it: there the block model leans on
+/// a corner that limit-equilibrium slices cannot, so their critical strengths differ.
+void printKinkNotes(const ddaslope::model::Scene& scene) {
+  for (const auto& k : ddaslope::model::concaveKinksUnderBlocks(scene))
+    std::printf("  note: the surface of %s bends up by %.1f° at (%g, %g) under the blocks: they may lean on a "
+                "corner there, which limit-equilibrium slices cannot; where they do, the critical strength lies below "
+                "the slices' and moves with the block layout (docs/calibration.md, \"The chair-shaped slide\"; "
+                "scripts/block_equilibrium.py gives these blocks' own bound)\n",
+                scene.blocks[k.fixedBlock].id.c_str(), k.bendDeg, k.point.x(), k.point.y());
+}
+
 int checkCommand(const std::string& casePath, const Overrides& o) {
   ddaslope::model::Scene scene = loadCase(casePath, o);
   applyOverrides(scene, o, casePath);
@@ -211,6 +223,7 @@ int checkCommand(const std::string& casePath, const Overrides& o) {
   std::printf("  step limit %g m per step (g2·w0 = %g m%s), contact search distance %g m\n", sim.stepLimit(), g2w0,
               sim.stepLimit() < g2w0 ? ", held to a tenth of the thinnest block" : "", sim.searchDistance());
   std::printf("  %s\n", settingsLine(scene).c_str());
+  printKinkNotes(scene);
   return kExitOk;
 }
 
@@ -509,6 +522,7 @@ int cutCommand(const std::string& casePath, const std::string& outDir) {
   std::printf("%s: %zu blocks (%d free, %zu fixed), %zu contacts at t = 0\n  wrote %s and %s\n", casePath.c_str(),
               scene.blocks.size(), slide, scene.blocks.size() - slide, sim.contacts().contacts().size(), blocks.c_str(),
               picture.c_str());
+  printKinkNotes(scene);
   return kExitOk;
 }
 

@@ -1,0 +1,23 @@
+#pragma once
+// Concave kinks of a fixed block's surface under free blocks: where a block model and limit
+// equilibrium of slices part ways (docs/calibration.md, "The chair-shaped slide").
+#include <vector>
+
+#include "ddaslope/core/types.hpp"
+#include "ddaslope/model/scene.hpp"
+
+namespace ddaslope::model {
+
+struct ConcaveKink {
+  int fixedBlock = 0;
+  Vec2 point;             ///< the fixed block's vertex
+  double bendDeg = 0;     ///< how far the surface turns up there (interior angle − 180°)
+};
+
+/// Bends of 0.5° to 60° of a fixed block's surface (a sliding surface's kink, not a step of a
+/// staircase) at which a free block has a vertex: a rigid or uniform-strain block there cannot
+/// slide on along both sides without lifting, and can lean on the kink with a corner force that
+/// slices cannot carry.
+std::vector<ConcaveKink> concaveKinksUnderBlocks(const Scene& scene);
+
+}  // namespace ddaslope::model

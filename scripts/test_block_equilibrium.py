@@ -1,0 +1,64 @@
+#!/usr/bin/env python3
+"""Checks scripts/block_equilibrium.py (limit equilibrium of the blocks themselves) against closed
+forms and an independent limit-equilibrium code (run by ctest; needs scipy, Debian python3-scipy)."""
+import json, math, os, sys, unittest
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(HERE)
+sys.dont_write_bytecode = True  # no __pycache__ in the source tree
+sys.path.insert(0, HERE)
+import block_equilibrium as be  # noqa: E402
+import chair_slide  # noqa: E402
+from vajont_limit_equilibrium import section_slices  # noqa: E402
+
+DDASLOPE = os.environ.get("DDASLOPE_CLI", os.path.join(ROOT, "build", "ddaslope"))
+
+
+def model(case_name):
+    return be.BlockModel(be.load_blocks(os.path.join(ROOT, "cases", case_name), DDASLOPE))
+
+
+class BlockEquilibrium(unittest.TestCase):
+    def test_block_on_an_incline_closed_form(self):
+        # Closed form (benchmark B1, reference/benchmarks.md; Hoek & Bray's planar failure):
+        # c_cr = W (sin a - cos a tan phi) / L for the A2 block on a 40 deg ramp at phi = 20 deg.
+        m = model("cohesive_block_42kpa.json")
+        block = next(b for b in m.blocks if not b.get("fixed"))
+        area, _ = be.area_centroid([tuple(v) for v in block["vertices"]])
+        v = block["vertices"]
+        base = math.dist(v[0], v[1])
+        a, phi = math.radians(40), math.radians(20)
+        want = 2000 * 10 * area * (math.sin(a) - math.cos(a) * math.tan(phi)) / base
+        self.assertAlmostEqual(want / 1e3, 36.397, places=3)  # B1's quoted value
+        self.assertLess(abs(be.critical_cohesion(m, "interface", 20) - want), 1e-9 * want)
+
+    def test_block_on_an_incline_friction(self):
+        # Closed form (A5): a block on a 30 deg plane without cohesion holds from phi = 30 deg;
+        # the bisection narrows to 1e-3 deg.
+        m = model("sliding_block_30deg.json")
+        self.assertAlmostEqual(be.critical_friction(m, "interface", 0.0), 30, delta=1e-3)
+
+    def test_chair_without_its_corner_contacts_is_the_multi_wedge_method(self):
+        # Independent code: with only edge-to-edge interfaces (no block corner carrying a point
+        # force) the blocks of the chair slide are the vertical slices of the multi-wedge method
+        # with the joints' 40 deg on the interfaces (scripts/chair_slide.py, Sarma-type force
+        # equilibrium); the least cohesion must be the same, to round-off.
+        case = json.load(open(os.path.join(ROOT, "cases", "chair_slide.json")))
+        wedges = chair_slide.critical_cohesion(section_slices(case), math.tan(math.radians(18)),
+                                               math.tan(math.radians(40)))
+        m = model("chair_slide.json")
+        m.contacts = [c for c in m.contacts if c[4] > 0]
+        self.assertLess(abs(be.critical_cohesion(m, "sliding_surface", 18) - wedges), 1e-9 * wedges)
+
+    def test_chair_corner_at_the_kink_is_a_point_contact(self):
+        # Geometry: the block above the kink touches the 8 deg segment only at its corner, and the
+        # blocks' contacts are the 69 that ddaslope finds at t = 0 (`ddaslope check`): 66 interface
+        # ends and 3 corners (the kink's two and the toe's).
+        m = model("chair_slide.json")
+        self.assertEqual(len(m.contacts), 69)
+        corners = sorted((m.blocks[c[0]]["id"], round(c[2][0], 3)) for c in m.contacts if c[4] == 0)
+        self.assertEqual(corners, [("slide_10", 500.0), ("slide_11", 500.0), ("slide_17", 850.0)])
+
+
+if __name__ == "__main__":
+    unittest.main()
