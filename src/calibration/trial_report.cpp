@@ -6,7 +6,8 @@ namespace ddaslope::calibration {
 namespace {
 
 bool failedOnLittleMotion(const TrialResult& r) {
-  return !r.stable && r.converged && r.maxDisplacement < kSmallFailureMotion * r.failureDisplacement;
+  return !r.stable && r.converged && r.rule != VerdictRule::MovedWhileSettling &&
+         r.maxDisplacement < kSmallFailureMotion * r.failureDisplacement;
 }
 
 }  // namespace
@@ -17,6 +18,7 @@ void appendTrials(io::JsonRecord& j, const std::vector<TrialRecord>& trials, con
     io::JsonRecord item;
     item.set(valueKey, t.value).set("stable", r.stable).set("rule", name(r.rule));
     item.set("max_displacement_m", r.maxDisplacement).set("failure_displacement_m", r.failureDisplacement);
+    item.set("settling_displacement_m", r.settlingDisplacement);
     item.set("last_window_motion_m", r.lastWindowMotion).set("previous_window_motion_m", r.previousWindowMotion);
     item.set("noise_floor_m", r.noiseFloor).set("final_speed_m_s", r.finalSpeed);
     item.set("time_s", r.timeReached).set("steps", r.steps).set("extended", r.extended).set("marginal", r.marginal);

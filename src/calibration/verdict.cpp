@@ -93,6 +93,8 @@ const char* describe(VerdictRule rule) {
     case VerdictRule::SlowingDown: return "slowing down: net motion over the last window under 90 % of the window before";
     case VerdictRule::PassedDisplacement: return "a monitor passed the failure displacement";
     case VerdictRule::StillMoving: return "still moving and not slowing down at the end of the run";
+    case VerdictRule::MovedWhileSettling:
+      return "a monitor passed the failure displacement while the scene came to rest before t = 0";
     case VerdictRule::NotConverged: return "the run did not converge";
   }
   return "";
@@ -104,6 +106,7 @@ const char* name(VerdictRule rule) {
     case VerdictRule::SlowingDown: return "slowing_down";
     case VerdictRule::PassedDisplacement: return "failure_displacement";
     case VerdictRule::StillMoving: return "still_moving";
+    case VerdictRule::MovedWhileSettling: return "moved_while_settling";
     case VerdictRule::NotConverged: return "not_converged";
   }
   return "";
@@ -158,7 +161,11 @@ TrialResult judgeStability(const model::Scene& scene, const VerdictSettings& set
   };
   try {
     sim.bringToEquilibrium(shared);
-    for (const model::Monitor& m : sim.scene().monitors) start.push_back(m.point.current);
+    for (size_t k = 0; k < monitors; ++k) {
+      start.push_back(sim.scene().monitors[k].point.current);
+      r.settlingDisplacement = std::max(r.settlingDisplacement, (start[k] - scene.monitors[k].point.current).norm());
+    }
+    if (r.settlingDisplacement > threshold) return finish(VerdictRule::MovedWhileSettling);
     path.record(sim);
     for (;;) {
       while (!sim.finished()) {

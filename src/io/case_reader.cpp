@@ -216,7 +216,7 @@ void readSection(const Reader& r, const json& doc, model::Scene& s, const std::m
   const std::string p = "section";
   const json& j = doc.at(p);
   r.onlyKeys(j, p, {"ground", "sliding_surface", "base_depth", "material", "base_material", "sliding_joint", "joints",
-                    "joint_sets"});
+                    "joint_sets", "kink_block_width"});
   const auto polyline = [&](const char* key) {
     const json& a = r.required(j, p, key);
     if (!a.is_array()) r.fail(p + "." + key, "expected an array of points [x, y]");
@@ -228,6 +228,7 @@ void readSection(const Reader& r, const json& doc, model::Scene& s, const std::m
   spec.ground = polyline("ground");
   spec.slidingSurface = polyline("sliding_surface");
   spec.baseDepth = r.number(r.required(j, p, "base_depth"), p + ".base_depth");
+  if (j.contains("kink_block_width")) spec.kinkBlockWidth = r.number(j.at("kink_block_width"), p + ".kink_block_width");
   if (j.contains("joints")) {
     const json& js = j.at("joints");
     if (!js.is_array()) r.fail(p + ".joints", "expected an array of joints [[x1, y1], [x2, y2]]");

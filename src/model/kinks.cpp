@@ -7,7 +7,20 @@ namespace ddaslope::model {
 namespace {
 constexpr double kLeastBendDeg = 0.5;  // below this a polyline's vertex is a survey point, not a kink
 constexpr double kMostBendDeg = 60;    // beyond it a step (stairs of a toppling base) with its own physics
+
+/// Signed turn (degrees) from direction `in` to direction `out`, left (counter-clockwise) > 0.
+double turnDeg(const Vec2& in, const Vec2& out) { return radToDeg(std::atan2(cross(in, out), in.dot(out))); }
+
+bool isKink(double bendDeg) { return bendDeg >= kLeastBendDeg && bendDeg <= kMostBendDeg; }
 }  // namespace
+
+std::vector<Vec2> concaveKinks(const std::vector<Vec2>& s) {
+  std::vector<Vec2> kinks;
+  // Going down the slope (x increasing) a turn to the left flattens the surface: a valley.
+  for (size_t i = 1; i + 1 < s.size(); ++i)
+    if (isKink(turnDeg(s[i] - s[i - 1], s[i + 1] - s[i]))) kinks.push_back(s[i]);
+  return kinks;
+}
 
 std::vector<ConcaveKink> concaveKinksUnderBlocks(const Scene& scene) {
   std::vector<ConcaveKink> kinks;
@@ -18,11 +31,9 @@ std::vector<ConcaveKink> concaveKinksUnderBlocks(const Scene& scene) {
     const std::vector<Vec2>& v = fixed.vertices;
     const size_t n = v.size();
     for (size_t i = 0; i < n; ++i) {
-      const Vec2 in = v[i] - v[(i + n - 1) % n], out = v[(i + 1) % n] - v[i];
-      // Counter-clockwise polygon: a right turn (negative cross product) is a reflex vertex.
-      const double turnDeg = radToDeg(std::atan2(cross(in, out), in.dot(out)));
-      const double bend = -turnDeg;
-      if (bend < kLeastBendDeg || bend > kMostBendDeg) continue;
+      // Counter-clockwise polygon: a right turn is a reflex vertex.
+      const double bend = -turnDeg(v[i] - v[(i + n - 1) % n], v[(i + 1) % n] - v[i]);
+      if (!isKink(bend)) continue;
       bool touched = false;
       for (const Block& b : scene.blocks) {
         if (b.fixed) continue;

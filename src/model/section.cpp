@@ -7,6 +7,7 @@
 #include "ddaslope/core/errors.hpp"
 #include "ddaslope/geometry/cutting.hpp"
 #include "ddaslope/model/input_limits.hpp"
+#include "ddaslope/model/kinks.hpp"
 
 namespace ddaslope::model {
 namespace {
@@ -176,6 +177,12 @@ SectionBlocks cutSection(const SectionSpec& s) {
     const long first = static_cast<long>(std::ceil(lo / js.spacing)), last = static_cast<long>(std::floor(hi / js.spacing));
     for (long k = first; k <= last; ++k) cutAll(pieces, js.origin + (k * js.spacing) * n, d, path, minArea);
   }
+  // A thin block up the slope of each concave kink: a block whose corner sits on a kink leans on
+  // it with a force its width sets, which slices do not have (docs/calibration.md).
+  if (s.kinkBlockWidth < 0) fail("kink_block_width", "expected a width >= 0 m");
+  if (s.kinkBlockWidth > 0)
+    for (const Vec2& k : concaveKinks(s.slidingSurface))
+      cutAll(pieces, Vec2(k.x() - s.kinkBlockWidth, k.y()), Vec2(0, 1), "kink_block_width", minArea);
   std::sort(pieces.begin(), pieces.end(), [](const auto& p, const auto& q) {
     return geometry::computeMoments(p).centroid.x() < geometry::computeMoments(q).centroid.x();
   });

@@ -20,4 +20,8 @@ struct ConcaveKink {
 /// slices cannot carry.
 std::vector<ConcaveKink> concaveKinksUnderBlocks(const Scene& scene);
 
+/// Interior vertices of a sliding surface (crown to toe, x increasing) where it turns up (flatter
+/// down the slope) by the same 0.5° to 60°.
+std::vector<Vec2> concaveKinks(const std::vector<Vec2>& slidingSurface);
+
 }  // namespace ddaslope::model

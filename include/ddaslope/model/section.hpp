@@ -21,6 +21,9 @@ struct SectionSpec {
   double baseDepth = 0;              ///< base bottom this far below the lowest point (m)
   std::vector<std::pair<Vec2, Vec2>> joints;  ///< each extended to a line through the mass
   std::vector<JointSet> jointSets;
+  /// Width (m) of the block cut just up the slope of each concave kink of the sliding surface by a
+  /// vertical joint; 0: no such joint (docs/case-format.md, "Section").
+  double kinkBlockWidth = 0;
 };
 
 struct SectionBlocks {
