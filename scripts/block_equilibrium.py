@@ -24,6 +24,7 @@ computes with them.
 
 Run: python3 scripts/block_equilibrium.py CASE --joint sliding_surface --friction 18 [--json]
           [--without-corners [BLOCK ...]]   (no corner forces: of those blocks, or of any)
+          [--kink-block-width M]            (a section case cut with another kink block width)
      python3 scripts/block_equilibrium.py CASE --joint sliding_surface --cohesion 50e3 --solve friction
      (CASE with a "section": the script calls build/ddaslope cut; --ddaslope PATH to point elsewhere)
 Needs scipy (Debian python3-scipy, installed by scripts/install-deps).
@@ -41,13 +42,19 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 WATER_UNIT_WEIGHT = 9810.0
 
 
-def load_blocks(case_path, ddaslope):
-    """The case as a block case (dict): section cases are cut by ddaslope first."""
+def load_blocks(case_path, ddaslope, kink_block_width=None):
+    """The case as a block case (dict): section cases are cut by ddaslope first, with another
+    section.kink_block_width if given."""
     with open(case_path) as f:
         case = json.load(f)
     if "blocks" in case:
         return case
     with tempfile.TemporaryDirectory() as tmp:
+        if kink_block_width is not None:
+            case["section"]["kink_block_width"] = kink_block_width
+            case_path = os.path.join(tmp, "case.json")
+            with open(case_path, "w") as f:
+                json.dump(case, f)
         subprocess.run([ddaslope, "cut", case_path, "--out", tmp], check=True, stdout=subprocess.DEVNULL)
         with open(os.path.join(tmp, "blocks.json")) as f:
             return json.load(f)
@@ -278,9 +285,11 @@ def main():
     ap.add_argument("--ddaslope", default=os.path.join(ROOT, "build", "ddaslope"))
     ap.add_argument("--without-corners", nargs="*", metavar="BLOCK",
                     help="leave out the vertex-to-edge contacts (of the named blocks, or all): what slices assume")
+    ap.add_argument("--kink-block-width", type=float, metavar="M",
+                    help="cut the section with this section.kink_block_width instead of the case's (0: none)")
     ap.add_argument("--json", action="store_true")
     args = ap.parse_args()
-    model = BlockModel(load_blocks(args.case, args.ddaslope))
+    model = BlockModel(load_blocks(args.case, args.ddaslope, args.kink_block_width))
     if args.joint not in model.joints:
         sys.exit(f"block_equilibrium: {args.case}: no joint named '{args.joint}'")
     if args.without_corners is not None:

@@ -40,6 +40,7 @@ TOE_FACE_START = 790.0                # x where the ground leaves the lower segm
 PLATEAU, VALLEY = 100.0, 200.0        # m of flat ground behind the crown and beyond the toe
 LEVEL = 40.0                          # m, reservoir level (valley floor 0; the kink is at 49 m)
 SPACING = 50.0                        # m, vertical joints, one through the kink
+KINK_BLOCK = 3.0                      # m, width of the thin block just above the kink (docs/case-format.md)
 DENSITY, YOUNG, POISSON = 2500.0, 10e9, 0.25
 SLIDING_PHI, SLIDING_C = 18.0, 100e3  # sliding surface (c: limit equilibrium has the slope hold)
 INTERNAL_PHI = 40.0
@@ -93,6 +94,7 @@ def make_case():
             "material": "rock",
             "sliding_joint": "sliding_surface",
             "joint_sets": [{"angle": 90, "spacing": SPACING, "origin": [xk, yk]}],
+            "kink_block_width": KINK_BLOCK,
         },
         "monitors": [
             {"id": "crest", "point": inside(75.0, 0.5)},     # second block below the crown
@@ -128,10 +130,11 @@ def make_case():
         f"{UPPER_DIP:g} deg segment alone needs {c_single / 1e3:.1f} kPa: the flatter toe buttresses the "
         "upper blocks. Spencer's method on the same slices: "
         f"{spencer.critical_cohesion(spencer.case_slices(case), tan_phi)[0] / 1e3:.1f} kPa "
-        f"(scripts/spencer.py cases/chair_slide.json --friction {SLIDING_PHI:g}). With softening joints (the "
-        "default) DDA keeps the buttress, and more: critical c 18.6 kPa, because the block above the kink leans "
-        "on its corner there, which slices cannot (the least c for which any contact forces hold these blocks is "
-        "15.0 kPa: scripts/block_equilibrium.py; docs/calibration.md); with brittle bonds (weakening_distance 0, "
+        f"(scripts/spencer.py cases/chair_slide.json --friction {SLIDING_PHI:g}). A {KINK_BLOCK:g} m kink block "
+        "(section.kink_block_width) sits just above the kink: without it the 50 m block there leans on its corner "
+        "at the kink, which slices cannot, and DDA's critical c falls to 18.6 kPa (docs/calibration.md). With it "
+        "and softening joints (the default), DDA's critical c is 46.4 kPa, above the least c for which any contact "
+        "forces hold these blocks (44.1 kPa, scripts/block_equilibrium.py); with brittle bonds (weakening_distance 0, "
         "original DDA) each upper block loses its bond as it slips and the answer is set by a single block, "
         "260 kPa (calibration/chair_slide). Multi-wedge limit equilibrium: "
         f"scripts/chair_slide.py le --friction {SLIDING_PHI:g}. Regenerate: scripts/chair_slide.py case")

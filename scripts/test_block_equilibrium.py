@@ -51,13 +51,13 @@ class BlockEquilibrium(unittest.TestCase):
         self.assertLess(abs(be.critical_cohesion(m, "sliding_surface", 18) - wedges), 1e-9 * wedges)
 
     def test_chair_corner_at_the_kink_is_a_point_contact(self):
-        # Geometry: the block above the kink touches the 8 deg segment only at its corner, and the
-        # blocks' contacts are the 69 that ddaslope finds at t = 0 (`ddaslope check`): 66 interface
-        # ends and 3 corners (the kink's two and the toe's).
+        # Geometry: the (kink) block above the kink touches the 8 deg segment only at its corner, and
+        # the blocks' contacts are the 73 that ddaslope finds at t = 0 (`ddaslope check`): 70
+        # interface ends and 3 corners (the kink's two and the toe's).
         m = model("chair_slide.json")
-        self.assertEqual(len(m.contacts), 69)
+        self.assertEqual(len(m.contacts), 73)
         corners = sorted((m.blocks[c[0]]["id"], round(c[2][0], 3)) for c in m.contacts if c[4] == 0)
-        self.assertEqual(corners, [("slide_10", 500.0), ("slide_11", 500.0), ("slide_17", 850.0)])
+        self.assertEqual(corners, [("slide_11", 500.0), ("slide_12", 500.0), ("slide_18", 850.0)])
 
 
 if __name__ == "__main__":

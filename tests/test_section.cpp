@@ -92,6 +92,22 @@ TEST(Cutting, HalfPlaneClipOfASquare) {
   EXPECT_EQ(geometry::lineCrossings(u, {0, 2}, {1, 0}), 4);
 }
 
+// Kink blocks: the basin's sliding surface flattens at (20, 5) and turns up into the toe at
+// (80, 5), both concave, so a 2 m kink block is cut at x = 18 and x = 78. Areas by integration of
+// ground minus sliding surface: x ∈ [10, 18]: ∫ 1.5 t dt over [0, 8] = 48 m²; x ∈ [78, 90]:
+// 2 · 15 + ∫ (15 − 1.5 t) dt over [0, 10] = 105 m²; the middle the rest of 1050: 897 m².
+TEST(Section, KinkBlocksAreCutUpTheSlopeOfConcaveKinks) {
+  model::SectionSpec s = basin();
+  s.kinkBlockWidth = 2;
+  const model::SectionBlocks b = model::cutSection(s);
+  ASSERT_EQ(b.slide.size(), 3u);
+  EXPECT_NEAR(b.slide[0].moments.area, 48, 1e-9);
+  EXPECT_NEAR(b.slide[1].moments.area, 897, 1e-9);
+  EXPECT_NEAR(b.slide[2].moments.area, 105, 1e-9);
+  s.kinkBlockWidth = -1;
+  EXPECT_THROW(model::cutSection(s), InputError);
+}
+
 // Concave kinks under the blocks (model/kinks.hpp): the chair slide's sliding surface turns from
 // 30° to 8° at the kink and from 8° to the level valley floor at the toe, so by geometry it bends
 // up by 22° at (500, 49.19) and by 8° at (850, 0); a block on a plane (the B1 ramp) has none, and
@@ -107,6 +123,10 @@ TEST(Kinks, ConcaveBendsOfTheSlidingSurfaceUnderTheBlocks) {
   EXPECT_NEAR(kink.point.y(), 350 * std::tan(degToRad(8)), 1e-9);
   EXPECT_NEAR(toe.bendDeg, 8, 1e-9);
   EXPECT_NEAR(toe.point.x(), 850, 1e-9);
+  // The case's kink block (section.kink_block_width 3 m) has its corner on the kink; at the toe
+  // the 50 m block's corner sits on the valley floor's kink.
+  EXPECT_NEAR(kink.upslopeReach, 3, 1e-9);
+  EXPECT_NEAR(toe.upslopeReach, 50, 1e-9);
   EXPECT_TRUE(model::concaveKinksUnderBlocks(io::readCase(dir + "cohesive_block_42kpa.json")).empty());
   EXPECT_TRUE(model::concaveKinksUnderBlocks(io::readCase(dir + "stepped_toppling.json")).empty());
 }

@@ -3,9 +3,10 @@
 size and the settings, beside limit equilibrium on the same slices (issue #14).
 
 The slide is cases/chair_slide.json (scripts/chair_slide.py): a 30 deg bedding segment buttressed
-by an 8 deg toe, vertical joints every 50 m. For block sizes 40, 50 and 100 m (the joint set's
-spacing, always through the kink; narrower columns, h/b > 1/tan 30°, topple) it prints the critical cohesion of the sliding surface at
-phi = 18 deg from
+by an 8 deg toe, vertical joints every 50 m, a 1.5 m kink block just above the kink. For block
+sizes 40, 50 and 100 m (the joint set's spacing, always through the kink; narrower columns,
+h/b > 1/tan 30°, topple) it prints the critical cohesion of the sliding surface at phi = 18 deg
+from
 - limit equilibrium on the same vertical slices: Spencer, Morgenstern-Price (half-sine) and the
   multi-wedge bounds (interfaces without friction, and at the joints' 40 deg), scripts/spencer.py;
 - limit equilibrium of the same blocks (scripts/block_equilibrium.py): the least cohesion for which
@@ -14,11 +15,12 @@ phi = 18 deg from
 - one block of the 30 deg segment standing alone (closed form);
 - ddaslope `critical` with the default (softening, automatic distance) joint, with brittle bonds
   (weakening_distance 0, original DDA) and with set distances;
-and, for the 50 m blocks, the default joint under other settings.
+and, for the 50 m blocks, the kink block's width, where the joints meet the kink, and the
+shipped case under other settings.
 
 Run from the repository root after building (Debian's python3, which has python3-scipy):
     python3 calibration/chair_slide/study.py [--bin build/ddaslope] [--quick]
-It takes about 2.5 minutes (--quick: the 50 m blocks only; --spacing 25 adds toppling columns).
+It takes about 3 minutes (--quick: the 50 m blocks only; --spacing 25 adds toppling columns).
 """
 import argparse, copy, json, math, os, re, subprocess, sys, tempfile
 
@@ -33,6 +35,7 @@ from vajont_limit_equilibrium import section_slices  # noqa: E402
 PHI = 18.0
 DISTANCES = [None, 0.0, 0.01, 0.03, 0.3, 1.0]  # None: the automatic default
 KINK_OFFSETS = [0.0, 10.0, 25.0, 40.0]  # m up the slope from the kink to the nearest joint
+KINK_WIDTHS = [0.0, 0.75, 1.5, 3.0, 6.25]  # m, kink block (0: none)
 SETTINGS = [("vertex treatment", ["--contact-treatment", "vertex"]), ("accurate preset", ["--preset", "accurate"]),
             ("Δt 1 ms", ["--time-step", "0.001"]), ("1 thread", ["--threads", "1"]),
             ("fast preset", ["--preset", "fast"]), ("rigid blocks", ["--blocks", "rigid"])]
@@ -65,24 +68,52 @@ def block_bound(binary, case_path):
     return block_equilibrium.critical_cohesion(model, "sliding_surface", PHI)
 
 
+def variant(base, tmp, name, spacing=None, offset=0.0, kink=None):
+    """The chair case with another joint spacing, the joint set shifted `offset` m up the slope, or
+    another kink block width; written to tmp. Returns (case, path)."""
+    case = copy.deepcopy(base)
+    section = case["section"]
+    if spacing is not None:
+        section["joint_sets"][0]["spacing"] = spacing
+    origin = section["joint_sets"][0]["origin"]
+    section["joint_sets"][0]["origin"] = [origin[0] - offset, origin[1]]
+    if kink is not None:
+        section["kink_block_width"] = kink
+    case.pop("expected", None)
+    path = os.path.join(tmp, f"chair_{name}.json")
+    json.dump(case, open(path, "w"))
+    return case, path
+
+
+def kink_blocks(binary, base, tmp, kpa):
+    """50 m blocks with kink blocks of several widths (0: a 50 m block's corner on the kink)."""
+    le, _ = limit_equilibrium(base)
+    ref = le["wedges δ=40°"]
+    print(f"\nThe kink block (50 m blocks; the slices' limit equilibrium with the joints' 40°: {kpa(ref)} kPa), "
+          "critical c in kPa\n")
+    print("| kink block width | same blocks (static bound) | ddaslope default | against the slices (δ = 40°) |\n"
+          "|---|---|---|---|")
+    for width in KINK_WIDTHS:
+        _, path = variant(base, tmp, f"kink_{width}", kink=width)
+        c, _ = ddaslope_critical(binary, path, [])
+        label = "none (a 50 m block's corner on the kink)" if width == 0 else f"{width:g} m"
+        print(f"| {label} | {kpa(block_bound(binary, path))} | {kpa(c)} | {100 * (c - ref) / ref:+.1f} % |", flush=True)
+
+
 def kink_layouts(binary, base, tmp, kpa):
     """50 m blocks with the joint set shifted up the slope, so that a block spans the kink."""
     print("\nWhere the joints meet the kink (50 m blocks; offset: the nearest joint lies this far up the slope "
           "from the kink, 0 = through it), critical c in kPa\n")
-    print("| offset | Spencer | wedges δ = 40° | same blocks (static bound) | ddaslope default | above the bound |\n"
+    print("| offset | Spencer | wedges δ = 40° | kink block | same blocks (static bound) | ddaslope default |\n"
           "|---|---|---|---|---|---|")
     for offset in KINK_OFFSETS:
-        case = copy.deepcopy(base)
-        origin = case["section"]["joint_sets"][0]["origin"]
-        case["section"]["joint_sets"][0]["origin"] = [origin[0] - offset, origin[1]]
-        case.pop("expected", None)
-        path = os.path.join(tmp, f"chair_offset_{offset}.json")
-        json.dump(case, open(path, "w"))
-        le, _ = limit_equilibrium(case)
-        c, _ = ddaslope_critical(binary, path, [])
-        bound = block_bound(binary, path)
-        print(f"| {offset:g} m | {kpa(le['spencer'])} | {kpa(le['wedges δ=40°'])} | {kpa(bound)} | {kpa(c)} | "
-              f"{100 * (c - bound) / bound:+.0f} % |", flush=True)
+        for kink in (0.0, base["section"]["kink_block_width"]):
+            case, path = variant(base, tmp, f"offset_{offset}_{kink}", offset=offset, kink=kink)
+            le, _ = limit_equilibrium(case)
+            c, _ = ddaslope_critical(binary, path, [])
+            print(f"| {offset:g} m | {kpa(le['spencer'])} | {kpa(le['wedges δ=40°'])} | "
+                  f"{'none' if kink == 0 else f'{kink:g} m'} | {kpa(block_bound(binary, path))} | {kpa(c)} |",
+                  flush=True)
 
 
 def planar_slide(binary, tmp, kpa):
@@ -123,11 +154,7 @@ def main():
               "ddaslope default | brittle (δw = 0) | " + " | ".join(f"δw = {d:g} m" for d in DISTANCES[2:]) + " |")
         print("|---" * (8 + len(DISTANCES) - 2) + "|")
         for spacing in ([50] if a.quick else (a.spacing or [40, 50, 100])):
-            case = copy.deepcopy(base)
-            case["section"]["joint_sets"][0]["spacing"] = spacing
-            case.pop("expected", None)
-            path = os.path.join(tmp, f"chair_{spacing}.json")
-            json.dump(case, open(path, "w"))
+            case, path = variant(base, tmp, f"spacing_{spacing}", spacing=spacing)
             le, n = limit_equilibrium(case)
             dda = []
             for d in DISTANCES:
@@ -138,14 +165,17 @@ def main():
                   f"{kpa(le['single block'])} | "
                   + " | ".join(kpa(v) for v in dda) + " |", flush=True)
         if not a.quick:
+            kink_blocks(a.bin, base, tmp, kpa)
             kink_layouts(a.bin, base, tmp, kpa)
             planar_slide(a.bin, tmp, kpa)
         path = os.path.join(ROOT, "cases", "chair_slide.json")
-        print("\nThe default joint on the 50 m blocks under other settings (ddaslope critical, kPa)\n")
-        print("| setting | critical c | forward runs |\n|---|---|---|")
-        for label, extra in SETTINGS:
+        ref = limit_equilibrium(base)[0]["wedges δ=40°"]
+        print(f"\nThe shipped case (50 m blocks, {base['section']['kink_block_width']:g} m kink block) under other "
+              f"settings (ddaslope critical, kPa; same blocks' static bound {kpa(block_bound(a.bin, path))})\n")
+        print("| setting | critical c | against the slices (δ = 40°) | forward runs |\n|---|---|---|---|")
+        for label, extra in [("default", [])] + SETTINGS + [("brittle (δw = 0)", ["--brittle-joints"])]:
             c, runs = ddaslope_critical(a.bin, path, extra)
-            print(f"| {label} | {kpa(c)} | {runs} |", flush=True)
+            print(f"| {label} | {kpa(c)} | {100 * (c - ref) / ref:+.1f} % | {runs} |", flush=True)
 
 
 if __name__ == "__main__":

@@ -201,11 +201,12 @@ std::string settingsLine(const ddaslope::model::Scene& scene) {
 /// a corner that limit-equilibrium slices cannot, so their critical strengths differ.
 void printKinkNotes(const ddaslope::model::Scene& scene) {
   for (const auto& k : ddaslope::model::concaveKinksUnderBlocks(scene))
-    std::printf("  note: the surface of %s bends up by %.1f° at (%g, %g) under the blocks: they may lean on a "
-                "corner there, which limit-equilibrium slices cannot; where they do, the critical strength lies below "
-                "the slices' and moves with the block layout (docs/calibration.md, \"The chair-shaped slide\"; "
-                "scripts/block_equilibrium.py gives these blocks' own bound)\n",
-                scene.blocks[k.fixedBlock].id.c_str(), k.bendDeg, k.point.x(), k.point.y());
+    std::printf("  note: the surface of %s bends up by %.1f° at (%g, %g), and a block reaching %.3g m up the slope "
+                "has a corner there. It may lean on that corner, which limit-equilibrium slices cannot, with a force "
+                "its width sets. On a kink inside the sliding surface, a thin block there (section.kink_block_width) "
+                "removes it (docs/calibration.md, "
+                "\"The chair-shaped slide\"; scripts/block_equilibrium.py gives these blocks' own bound)\n",
+                scene.blocks[k.fixedBlock].id.c_str(), k.bendDeg, k.point.x(), k.point.y(), k.upslopeReach);
 }
 
 int checkCommand(const std::string& casePath, const Overrides& o) {

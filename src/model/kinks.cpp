@@ -1,5 +1,6 @@
 #include "ddaslope/model/kinks.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace ddaslope::model {
@@ -35,11 +36,19 @@ std::vector<ConcaveKink> concaveKinksUnderBlocks(const Scene& scene) {
       const double bend = -turnDeg(v[i] - v[(i + n - 1) % n], v[(i + 1) % n] - v[i]);
       if (!isKink(bend)) continue;
       bool touched = false;
+      double reach = 0;
       for (const Block& b : scene.blocks) {
         if (b.fixed) continue;
-        for (const Vec2& p : b.vertices) touched = touched || (p - v[i]).norm() <= tolerance;
+        bool here = false;
+        double leftmost = v[i].x();
+        for (const Vec2& p : b.vertices) {
+          here = here || (p - v[i]).norm() <= tolerance;
+          leftmost = std::min(leftmost, p.x());
+        }
+        if (here) reach = std::max(reach, v[i].x() - leftmost);
+        touched = touched || here;
       }
-      if (touched) kinks.push_back({static_cast<int>(f), v[i], bend});
+      if (touched) kinks.push_back({static_cast<int>(f), v[i], bend, reach});
     }
   }
   return kinks;
