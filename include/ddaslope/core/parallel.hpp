@@ -3,17 +3,20 @@
 // into contiguous chunks in index order and every item writes only its own output, so the
 // outcome is the same as the serial loop's bit for bit, whatever the thread count.
 #include <algorithm>
-#include <thread>
+#include <functional>
 #include <vector>
+
+#include "ddaslope/core/thread_pool.hpp"
 
 namespace ddaslope {
 
-/// Below this many items a loop runs on the calling thread: starting a thread costs tens of
-/// microseconds, more than the loops of a small scene take.
+/// Below this many items a loop runs on the calling thread: waking a worker costs microseconds,
+/// more than the loops of a small scene take.
 inline constexpr int kParallelMinItems = 512;
 
-/// Calls body(begin, end, chunk) for `chunks` contiguous chunks of [0, n), chunk k on its own
-/// thread (chunk 0 on the caller's). chunks = min(threads, …); 1 when n < kParallelMinItems.
+/// Calls body(begin, end, chunk) for `chunks` contiguous chunks of [0, n), chunk 0 on the caller's
+/// thread and the others on the process's thread pool. chunks = min(threads, …); 1 when
+/// n < kParallelMinItems.
 template <class Body>
 int parallelChunks(int n, int threads, Body&& body) {
   const int chunks = n < kParallelMinItems ? 1 : std::clamp(threads, 1, n);
@@ -21,12 +24,11 @@ int parallelChunks(int n, int threads, Body&& body) {
     body(0, n, 0);
     return 1;
   }
-  std::vector<std::thread> workers;
-  workers.reserve(chunks - 1);
   const auto bounds = [&](int k) { return static_cast<int>(static_cast<long long>(n) * k / chunks); };
-  for (int k = 1; k < chunks; ++k) workers.emplace_back([&, k] { body(bounds(k), bounds(k + 1), k); });
-  body(0, bounds(1), 0);
-  for (std::thread& t : workers) t.join();
+  std::vector<std::function<void()>> tasks;
+  tasks.reserve(static_cast<size_t>(chunks));
+  for (int k = 0; k < chunks; ++k) tasks.emplace_back([&, k] { body(bounds(k), bounds(k + 1), k); });
+  ThreadPool::instance(chunks - 1).runAll(tasks);
   return chunks;
 }
 
