@@ -106,7 +106,7 @@ void Simulation::detectContacts(bool initial) {
     boxes.push_back(geometry::boundingBox(b.vertices));
     fixed.push_back(b.fixed);
   }
-  const auto pairs = contact::findCandidatePairs(boxes, fixed, searchDistance_);
+  const auto pairs = contact::findCandidatePairs(boxes, fixed, searchDistance_, sweepOrder_);
   stats_.times.broadPhase += sw.lap();
 
   const contact::NarrowPhaseSettings nps{searchDistance_,
@@ -165,16 +165,29 @@ void Simulation::pairEdgeHalves() {
   partner_.assign(cs.size(), -1);
   // Halves sorted by their pair of edges (then by index): each edge pair's contacts are
   // neighbours, and exactly two of them make one edge-to-edge contact.
-  std::vector<std::pair<std::array<int, 4>, int>> halves;
-  halves.reserve(cs.size());
+  // Counted into place by the lower block of the pair, then each block's few halves sorted.
+  using Half = std::pair<std::array<int, 4>, int>;
+  std::vector<Half> keyed;
+  keyed.reserve(cs.size());
+  int blocks = 0;
   for (size_t q = 0; q < cs.size(); ++q) {
     const Contact& c = cs[q];
     if (c.geometry.pairedEdge < 0) continue;
     std::array<int, 2> a{c.key().vertexBlock, c.geometry.pairedEdge}, b{c.key().edgeBlock, c.key().edge};
     if (b < a) std::swap(a, b);
-    halves.push_back({{a[0], a[1], b[0], b[1]}, static_cast<int>(q)});
+    keyed.push_back({{a[0], a[1], b[0], b[1]}, static_cast<int>(q)});
+    blocks = std::max(blocks, a[0] + 1);
   }
-  std::sort(halves.begin(), halves.end());
+  std::vector<size_t> start(static_cast<size_t>(blocks) + 1, 0);
+  for (const Half& h : keyed) ++start[static_cast<size_t>(h.first[0]) + 1];
+  for (size_t b = 1; b < start.size(); ++b) start[b] += start[b - 1];
+  std::vector<Half> halves(keyed.size());
+  {
+    std::vector<size_t> next(start.begin(), start.end() - 1);
+    for (const Half& h : keyed) halves[next[static_cast<size_t>(h.first[0])]++] = h;
+  }
+  for (size_t b = 0; b + 1 < start.size(); ++b)
+    std::sort(halves.begin() + static_cast<long>(start[b]), halves.begin() + static_cast<long>(start[b + 1]));
   for (size_t k = 0; k < halves.size();) {
     size_t end = k + 1;
     while (end < halves.size() && halves[end].first == halves[k].first) ++end;

@@ -194,6 +194,7 @@ class Simulation {
   contact::ContactSet contacts_;
   std::vector<assembly::ContactKinematics> kinematics_;
   std::vector<int> partner_;  ///< other half of the same edge-to-edge contact, or −1
+  std::vector<int> sweepOrder_;  ///< the broad phase's order of the blocks, kept between steps
   assembly::BlockSparseMatrix matrix_;
   std::vector<std::pair<int, int>> lastCouplings_;  ///< block pairs of the contacts matrix_'s pattern was made for
   LinearSolver linearSolver_;
