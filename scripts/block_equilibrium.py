@@ -14,6 +14,12 @@ moment equilibrium under its weight and the water, with Mohr-Coulomb at every co
   - water: hydrostatic pressure on every edge below the water line, as ddaslope applies it
     (docs/case-format.md), whose resultant on a block is the buoyancy of its submerged part.
 
+Limits: each end of an interface obeys Mohr-Coulomb on its own (c L/2, sigma_t L/2), where DDA's
+default edge rule judges the pair as a whole, so with a tensile strength above c/tan(phi) the two
+can differ; a vertex in another block's concave corner may push on both of its edges; the forces
+printed are those of one optimal set, not unique. The bound is that of the blocks as drawn: blocks
+that rearrange (a thin block squeezed out) are other blocks.
+
 Why: these are DDA's own blocks, contacts and contact laws. A block model at rest IS such a
 force set, so no DDA run of these blocks can stand below this cohesion (the static theorem; with
 non-associated friction it is the lower end for the real mechanism). Slice methods (Spencer,
@@ -99,8 +105,8 @@ def contacts_between(pa, pb, tol):
         ea = np.subtract(p1, p0); la = np.linalg.norm(ea); ta = ea / la
         for (q0, q1) in edges(pb):
             eb = np.subtract(q1, q0); lb = np.linalg.norm(eb)
-            if abs(np.cross(ta, eb / lb)) > 1e-9 or np.dot(ta, eb) > 0:
-                continue  # not antiparallel
+            if abs(np.cross(ta, eb / lb)) > 1e-6 or np.dot(ta, eb) > 0:
+                continue  # not antiparallel (to 1e-6 rad: cut blocks' edges are exact)
             na = np.array([-ta[1], ta[0]])  # inward normal of a (counter-clockwise polygons)
             if abs(np.dot(np.subtract(q0, p0), na)) > tol:
                 continue  # not on one line
@@ -145,6 +151,9 @@ class BlockModel:
     def __init__(self, case):
         self.case = case
         self.blocks = case["blocks"]
+        for b in self.blocks:  # counter-clockwise, as ddaslope stores them
+            if area_centroid([tuple(v) for v in b["vertices"]])[0] < 0:
+                b["vertices"] = list(reversed(b["vertices"]))
         names = [b.get("id", str(i)) for i, b in enumerate(self.blocks)]
         self.index = {n: i for i, n in enumerate(names)}
         joints = case["joints"]
@@ -155,8 +164,9 @@ class BlockModel:
             a, b = (self.index[n] for n in jp["blocks"])
             self.pair_joint[(min(a, b), max(a, b))] = jp["joint"]
         self.default_joint = default
-        size = max(max(abs(c) for v in b["vertices"] for c in v) for b in self.blocks)
-        tol = 1e-7 * size
+        xs = [v[0] for b in self.blocks for v in b["vertices"]]
+        ys = [v[1] for b in self.blocks for v in b["vertices"]]
+        tol = 1e-7 * max(max(xs) - min(xs), max(ys) - min(ys))  # of the model's size, not its coordinates
         self.contacts = []  # (block on which N n + S t acts, other block, point, n, length, joint)
         polys = [[tuple(v) for v in b["vertices"]] for b in self.blocks]
         for i in range(len(polys)):
@@ -306,6 +316,9 @@ def main():
         if args.cohesion is None:
             sys.exit("block_equilibrium: --cohesion is needed to solve for friction")
         value, unit = critical_friction(model, args.joint, args.cohesion), "deg"
+    if math.isinf(value):
+        sys.exit(f"block_equilibrium: {args.case}: no contact forces hold these blocks at any {args.solve} "
+                 "(a block resting on a corner alone, with its corners left out?)")
     corners = [{"block": b, "point": list(p), "force_N_per_m": f} for b, p, f in model.corner_forces]
     if args.json:
         print(json.dumps({"solve": args.solve, "value": value, "unit": unit,
@@ -318,7 +331,7 @@ def main():
         for c in sorted(corners, key=lambda c: -c["force_N_per_m"]):
             if c["force_N_per_m"] > 0:
                 print(f"  corner of {c['block']} at ({c['point'][0]:.6g}, {c['point'][1]:.6g}) carries "
-                      f"{c['force_N_per_m'] / 1e6:.3g} MN/m in that force set")
+                      f"{c['force_N_per_m'] / 1e6:.3g} MN/m in one such force set")
 
 
 if __name__ == "__main__":

@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "ddaslope/calibration/strength_search.hpp"
+#include "ddaslope/calibration/verdict.hpp"
 #include "ddaslope/io/case_reader.hpp"
 #include "ddaslope/model/settings_override.hpp"
 #include "ddaslope/solver/simulation.hpp"
@@ -118,4 +119,25 @@ TEST(StrengthReduction, SteppedToppingSlopeDoesNotDependOnSettings) {
   const auto [lo, hi] = std::minmax_element(factors.begin(), factors.end());
   const double mid = 0.5 * (*lo + *hi);
   EXPECT_LE(*hi - mid, 0.015 * mid) << "F from " << *lo << " to " << *hi;
+}
+
+// Rule 0 (issue #14) counts the motion of stages 2 and 3 of the equilibrium, once contacts may
+// slip, not stage 1's elastic settlement with every contact held. Limit equilibrium has no
+// stiffness: the chair slide stands at c = 400 kPa (the slices with the joints' friction need
+// 48.5 kPa, scripts/chair_slide.py le) whatever E, so a rock of E = 20 MPa, which settles
+// elastically by about a metre (more than the 0.575 m failure displacement), must be stable.
+TEST(Verdict, ElasticSettlementIsNotFailure) {
+  model::Scene scene = io::readCase(std::string(DDASLOPE_SOURCE_DIR) + "/cases/chair_slide.json",
+                                    {{"materials.rock.young_modulus", 2e7}, {"joints.sliding_surface.cohesion", 4e5}});
+  const std::vector<model::Monitor> drawn = scene.monitors;
+  const calibration::TrialResult r = calibration::judgeStability(scene);
+  EXPECT_TRUE(r.stable) << r.reason;
+  EXPECT_LT(r.settlingDisplacement, r.failureDisplacement);
+  // The elastic settlement itself, from the drawn positions, is larger than the failure displacement.
+  solver::Simulation sim(scene);
+  sim.bringToEquilibrium();
+  double settled = 0;
+  for (size_t k = 0; k < drawn.size(); ++k)
+    settled = std::max(settled, (sim.monitorsAfterHeldEquilibrium()[k] - drawn[k].point.current).norm());
+  EXPECT_GT(settled, r.failureDisplacement);
 }

@@ -161,9 +161,13 @@ TrialResult judgeStability(const model::Scene& scene, const VerdictSettings& set
   };
   try {
     sim.bringToEquilibrium(shared);
+    // Rule 0 counts the motion once contacts may slip (stages 2 and 3), not the elastic settlement
+    // with every contact held (stage 1), which a soft rock makes large on a slope that stands.
+    const std::vector<Vec2>& held = sim.monitorsAfterHeldEquilibrium();
     for (size_t k = 0; k < monitors; ++k) {
       start.push_back(sim.scene().monitors[k].point.current);
-      r.settlingDisplacement = std::max(r.settlingDisplacement, (start[k] - scene.monitors[k].point.current).norm());
+      const Vec2 from = k < held.size() ? held[k] : scene.monitors[k].point.current;
+      r.settlingDisplacement = std::max(r.settlingDisplacement, (start[k] - from).norm());
     }
     if (r.settlingDisplacement > threshold) return finish(VerdictRule::MovedWhileSettling);
     path.record(sim);

@@ -200,13 +200,25 @@ std::string settingsLine(const ddaslope::model::Scene& scene) {
 /// A note per concave kink of the sliding surface with a block on it: there the block model leans on
 /// a corner that limit-equilibrium slices cannot, so their critical strengths differ.
 void printKinkNotes(const ddaslope::model::Scene& scene) {
-  for (const auto& k : ddaslope::model::concaveKinksUnderBlocks(scene))
-    std::printf("  note: the surface of %s bends up by %.1f° at (%g, %g), and a block reaching %.3g m up the slope "
-                "has a corner there. It may lean on that corner, which limit-equilibrium slices cannot, with a force "
-                "its width sets. On a kink inside the sliding surface, a thin block there (section.kink_block_width) "
-                "removes it (docs/calibration.md, "
-                "\"The chair-shaped slide\"; scripts/block_equilibrium.py gives these blocks' own bound)\n",
+  const double failure = scene.settings.failureDisplacement > 0 ? scene.settings.failureDisplacement
+                                                                 : 1e-3 * scene.modelHalfSize();
+  for (const auto& k : ddaslope::model::concaveKinksUnderBlocks(scene)) {
+    std::printf("  note: the surface of %s bends up by %.1f° at (%g, %g), where a block reaching %.3g m up the slope "
+                "has a corner. ",
                 scene.blocks[k.fixedBlock].id.c_str(), k.bendDeg, k.point.x(), k.point.y(), k.upslopeReach);
+    if (k.upslopeReach <= failure)
+      std::printf("That is no more than the verdict's failure displacement (%.3g m): a slide can squeeze the block out "
+                  "and rest on the next corner without being called failing. Make it wider (docs/case-format.md, "
+                  "\"Kink blocks\")\n", failure);
+    else if (k.upslopeReach < 0.1 * k.reachingBlockHeight)
+      std::printf("A block that thin (a kink block) leans on it little (docs/calibration.md, \"The chair-shaped "
+                  "slide\")\n");
+    else
+      std::printf("The block may lean on that corner, which limit-equilibrium slices cannot, with a force its width "
+                  "sets. On a kink inside the sliding surface a thin block there (section.kink_block_width) takes "
+                  "most of that away (docs/calibration.md, \"The chair-shaped slide\"; scripts/block_equilibrium.py "
+                  "gives these blocks' own bound)\n");
+  }
 }
 
 int checkCommand(const std::string& casePath, const Overrides& o) {

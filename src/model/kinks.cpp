@@ -35,20 +35,24 @@ std::vector<ConcaveKink> concaveKinksUnderBlocks(const Scene& scene) {
       // Counter-clockwise polygon: a right turn is a reflex vertex.
       const double bend = -turnDeg(v[i] - v[(i + n - 1) % n], v[(i + 1) % n] - v[i]);
       if (!isKink(bend)) continue;
+      // Up the slope: towards the side whose edge rises more steeply from the kink.
+      const Vec2 toPrev = (v[(i + n - 1) % n] - v[i]).normalized(), toNext = (v[(i + 1) % n] - v[i]).normalized();
+      const double up = (toPrev.y() > toNext.y() ? toPrev : toNext).x() < 0 ? -1.0 : 1.0;
       bool touched = false;
-      double reach = 0;
+      double reach = 0, height = 0;
       for (const Block& b : scene.blocks) {
         if (b.fixed) continue;
         bool here = false;
-        double leftmost = v[i].x();
+        double farthest = 0, lo = INFINITY, hi = -INFINITY;
         for (const Vec2& p : b.vertices) {
           here = here || (p - v[i]).norm() <= tolerance;
-          leftmost = std::min(leftmost, p.x());
+          farthest = std::max(farthest, up * (p.x() - v[i].x()));
+          lo = std::min(lo, p.y()), hi = std::max(hi, p.y());
         }
-        if (here) reach = std::max(reach, v[i].x() - leftmost);
+        if (here && farthest > reach) reach = farthest, height = hi - lo;
         touched = touched || here;
       }
-      if (touched) kinks.push_back({static_cast<int>(f), v[i], bend, reach});
+      if (touched) kinks.push_back({static_cast<int>(f), v[i], bend, reach, height});
     }
   }
   return kinks;

@@ -821,6 +821,8 @@ void Simulation::bringToEquilibrium(const HeldEquilibrium* shared) {
     shared = &own;
   }
   stats_.equilibriumConverged = shared->converged;
+  heldMonitors_.clear();
+  for (const model::Monitor& m : shared->monitors) heldMonitors_.push_back(m.point.current);
   markActiveBlocks(shared->held);
   if (nActive_ > 0) {
     detectContacts(false);

@@ -8,10 +8,11 @@
 namespace ddaslope::calibration {
 
 /// A run is failing when
-/// (0) a monitor moved more than `failureDisplacement` from where the case put it while the scene
-///     came to rest before t = 0 (the equilibrium): a slope that gives way there and locks again
-///     metres further on has failed, even if it then stands (issue #14: a thin block squeezed out
-///     of a kink while settling);
+/// (0) a monitor moved more than `failureDisplacement` while the scene came to rest before t = 0,
+///     once its contacts could slip (stages 2 and 3 of the equilibrium; stage 1's elastic
+///     settlement with every contact held does not count): a slope that gives way there and locks
+///     again metres further on has failed, even if it then stands (issue #14: a thin block
+///     squeezed out of a kink while settling);
 /// (a) a monitor moves more than `failureDisplacement` from where it is at t = 0, after the
 ///     equilibrium; the run stops there: its verdict is certain; or
 /// (b) at the end of the run a monitor is still moving: over the last quarter of the run its net
@@ -52,7 +53,7 @@ struct TrialResult {
   bool stable = true;
   VerdictRule rule = VerdictRule::AtRest;
   double maxDisplacement = 0;      ///< largest monitor displacement after t = 0 (m)
-  double settlingDisplacement = 0; ///< largest monitor displacement during the equilibrium (m)
+  double settlingDisplacement = 0; ///< largest monitor displacement in stages 2–3 of the equilibrium (m)
   double failureDisplacement = 0;  ///< the threshold of rule (a) in force (m)
   double finalSpeed = 0;           ///< largest monitor speed at the end of the run (m/s)
   double lastWindowMotion = 0;     ///< net displacement over the last window, deciding monitor (m)

@@ -12,9 +12,10 @@ struct ConcaveKink {
   int fixedBlock = 0;
   Vec2 point;             ///< the fixed block's vertex
   double bendDeg = 0;     ///< how far the surface turns up there (interior angle − 180°)
-  /// How far up the slope (−x) the widest free block with a vertex there reaches (m): the lever of
-  /// the corner force it can lean on.
+  /// How far up the slope (horizontally, towards the steeper side) the widest free block with a
+  /// vertex there reaches (m): the lever of the corner force it can lean on.
   double upslopeReach = 0;
+  double reachingBlockHeight = 0;  ///< that block's vertical extent (m)
 };
 
 /// Bends of 0.5° to 60° of a fixed block's surface (a sliding surface's kink, not a step of a

@@ -107,6 +107,9 @@ class Simulation {
   double stepLimit() const { return stepLimit_; }
   const RunStatistics& statistics() const { return stats_; }
   const contact::ContactSet& contacts() const { return contacts_; }
+  /// Monitor positions at the end of stage 1 of the equilibrium (every contact held: the elastic
+  /// settlement under the loads), before any contact could slip; the case's positions until then.
+  const std::vector<Vec2>& monitorsAfterHeldEquilibrium() const { return heldMonitors_; }
   /// The scene's mechanical energy now; load work counts from t = 0 (after the equilibrium).
   EnergyBudget energy() const;
   /// Velocity of monitor m's point (m/s).
@@ -195,6 +198,7 @@ class Simulation {
   std::vector<assembly::ContactKinematics> kinematics_;
   std::vector<int> partner_;  ///< other half of the same edge-to-edge contact, or −1
   std::vector<int> sweepOrder_;  ///< the broad phase's order of the blocks, kept between steps
+  std::vector<Vec2> heldMonitors_;  ///< see monitorsAfterHeldEquilibrium()
   assembly::BlockSparseMatrix matrix_;
   std::vector<std::pair<int, int>> lastCouplings_;  ///< block pairs of the contacts matrix_'s pattern was made for
   LinearSolver linearSolver_;
