@@ -108,6 +108,20 @@ TEST(Section, KinkBlocksAreCutUpTheSlopeOfConcaveKinks) {
   EXPECT_THROW(model::cutSection(s), InputError);
 }
 
+// A joint within half the width of a kink cut (x = 17.5 m, 0.5 m from the cut at 18 m) already
+// makes the kink block: no second cut beside it, so no 0.5 m sliver. Areas: x ∈ [10, 17.5]:
+// ∫ 1.5 t dt over [0, 7.5] = 42.1875 m²; the toe side's cut at 78 m stays: 105 m²; the rest of 1050.
+TEST(Section, KinkCutBesideAJointIsSkipped) {
+  model::SectionSpec s = basin();
+  s.kinkBlockWidth = 2;
+  s.joints = {{{17.5, 0}, {17.5, 30}}};
+  const model::SectionBlocks b = model::cutSection(s);
+  ASSERT_EQ(b.slide.size(), 3u);
+  EXPECT_NEAR(b.slide[0].moments.area, 42.1875, 1e-9);
+  EXPECT_NEAR(b.slide[1].moments.area, 1050 - 42.1875 - 105, 1e-9);
+  EXPECT_NEAR(b.slide[2].moments.area, 105, 1e-9);
+}
+
 // Concave kinks under the blocks (model/kinks.hpp): the chair slide's sliding surface turns from
 // 30° to 8° at the kink and from 8° to the level valley floor at the toe, so by geometry it bends
 // up by 22° at (500, 49.19) and by 8° at (850, 0); a block on a plane (the B1 ramp) has none, and

@@ -76,6 +76,24 @@ void cutAll(std::vector<std::vector<Vec2>>& pieces, const Vec2& p, const Vec2& d
   pieces = std::move(next);
 }
 
+
+/// Distance from p to the nearest joint line of the section (explicit joints and joint sets).
+double distanceToNearestJoint(const SectionSpec& s, const Vec2& p) {
+  double nearest = INFINITY;
+  for (const auto& [a, b] : s.joints) {
+    const Vec2 d = (b - a).normalized();
+    nearest = std::min(nearest, std::abs(cross(d, p - a)));
+  }
+  for (const JointSet& js : s.jointSets) {
+    if (!(js.spacing > 0)) continue;
+    const double ang = degToRad(js.angleDeg);
+    const Vec2 n(-std::sin(ang), std::cos(ang));
+    const double o = n.dot(p - js.origin);
+    nearest = std::min(nearest, std::abs(o - js.spacing * std::round(o / js.spacing)));
+  }
+  return nearest;
+}
+
 }  // namespace
 
 SectionBlocks cutSection(const SectionSpec& s) {
@@ -181,8 +199,13 @@ SectionBlocks cutSection(const SectionSpec& s) {
   // it with a force its width sets, which slices do not have (docs/calibration.md).
   if (s.kinkBlockWidth < 0) fail("kink_block_width", "expected a width >= 0 m");
   if (s.kinkBlockWidth > 0)
-    for (const Vec2& k : concaveKinks(s.slidingSurface))
-      cutAll(pieces, Vec2(k.x() - s.kinkBlockWidth, k.y()), Vec2(0, 1), "kink_block_width", minArea);
+    for (const Vec2& k : concaveKinks(s.slidingSurface)) {
+      const Vec2 at(k.x() - s.kinkBlockWidth, groundAt(s.slidingSurface, k.x() - s.kinkBlockWidth));
+      // A joint already within half the width of the cut makes a block about that wide there; a
+      // second cut beside it would leave a sliver (and hold every step to a tenth of it).
+      if (distanceToNearestJoint(s, at) < 0.5 * s.kinkBlockWidth) continue;
+      cutAll(pieces, Vec2(at.x(), k.y()), Vec2(0, 1), "kink_block_width", minArea);
+    }
   std::sort(pieces.begin(), pieces.end(), [](const auto& p, const auto& q) {
     return geometry::computeMoments(p).centroid.x() < geometry::computeMoments(q).centroid.x();
   });
