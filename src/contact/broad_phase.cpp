@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <numeric>
 
+#include "ddaslope/core/block_order.hpp"
+
 namespace ddaslope::contact {
 
 std::vector<BlockPair> findCandidatePairs(const std::vector<geometry::Aabb>& boxes,
@@ -41,17 +43,9 @@ std::vector<BlockPair> findCandidatePairs(const std::vector<geometry::Aabb>& box
       found.push_back({std::min(i, j), std::max(i, j)});
     }
   }
-  // (a, b) order: counted into place by a, then each block's few partners sorted by b, instead
-  // of a sort of the whole list.
-  std::vector<int> start(static_cast<size_t>(n) + 1, 0);
-  for (const BlockPair& p : found) ++start[static_cast<size_t>(p.a) + 1];
-  for (size_t a = 1; a < start.size(); ++a) start[a] += start[a - 1];
-  std::vector<BlockPair> pairs(found.size());
-  std::vector<int> next(start.begin(), start.end() - 1);
-  for (const BlockPair& p : found) pairs[static_cast<size_t>(next[static_cast<size_t>(p.a)]++)] = p;
-  for (int a = 0; a < n; ++a)
-    std::sort(pairs.begin() + start[static_cast<size_t>(a)], pairs.begin() + start[static_cast<size_t>(a) + 1],
-              [](const BlockPair& p, const BlockPair& q) { return p.b < q.b; });
+  // (a, b) order, counted into place by a.
+  const std::vector<BlockPair> pairs = sortedByBlock(found, n, [](const BlockPair& p) { return p.a; },
+                                                     [](const BlockPair& p, const BlockPair& q) { return p.b < q.b; });
   return pairs;
 }
 

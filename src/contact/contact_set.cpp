@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "ddaslope/core/block_order.hpp"
+
 namespace ddaslope::contact {
 
 static bool keyLess(const Contact& c, const ContactKey& k) { return c.key() < k; }
@@ -31,22 +33,12 @@ void ContactSet::update(std::vector<ContactCandidate> candidates, const std::vec
     ContactKey key;
     size_t idx;
   };
-  // Counted into place by vertex block, then each block's few keys sorted: the key order without
-  // a sort of the whole list.
   int blocks = 0;
   for (const ContactCandidate& c : candidates) blocks = std::max(blocks, c.key.vertexBlock + 1);
-  std::vector<size_t> start(static_cast<size_t>(blocks) + 1, 0);
-  for (const ContactCandidate& c : candidates) ++start[static_cast<size_t>(c.key.vertexBlock) + 1];
-  for (size_t b = 1; b < start.size(); ++b) start[b] += start[b - 1];
   std::vector<Entry> order(candidates.size());
-  {
-    std::vector<size_t> next(start.begin(), start.end() - 1);
-    for (size_t i = 0; i < candidates.size(); ++i)
-      order[next[static_cast<size_t>(candidates[i].key.vertexBlock)]++] = {candidates[i].key, i};
-  }
-  for (size_t b = 0; b + 1 < start.size(); ++b)
-    std::sort(order.begin() + static_cast<long>(start[b]), order.begin() + static_cast<long>(start[b + 1]),
-              [](const Entry& x, const Entry& y) { return x.key < y.key; });
+  for (size_t i = 0; i < order.size(); ++i) order[i] = {candidates[i].key, i};
+  order = sortedByBlock(order, blocks, [](const Entry& e) { return e.key.vertexBlock; },
+                        [](const Entry& x, const Entry& y) { return x.key < y.key; });
   std::vector<Contact> next;
   next.reserve(candidates.size());
   // Both lists are sorted by key: last step's contacts are matched by one forward walk.

@@ -13,6 +13,7 @@
 #include "ddaslope/contact/broad_phase.hpp"
 #include "ddaslope/contact/contact_law.hpp"
 #include "ddaslope/contact/narrow_phase.hpp"
+#include "ddaslope/core/block_order.hpp"
 #include "ddaslope/core/errors.hpp"
 #include "ddaslope/core/parallel.hpp"
 #include "ddaslope/solver/state_cycle.hpp"
@@ -165,7 +166,7 @@ void Simulation::pairEdgeHalves() {
   partner_.assign(cs.size(), -1);
   // Halves sorted by their pair of edges (then by index): each edge pair's contacts are
   // neighbours, and exactly two of them make one edge-to-edge contact.
-  // Counted into place by the lower block of the pair, then each block's few halves sorted.
+  // Ordered by the lower block of the pair, then within it (core/block_order.hpp).
   using Half = std::pair<std::array<int, 4>, int>;
   std::vector<Half> keyed;
   keyed.reserve(cs.size());
@@ -178,16 +179,8 @@ void Simulation::pairEdgeHalves() {
     keyed.push_back({{a[0], a[1], b[0], b[1]}, static_cast<int>(q)});
     blocks = std::max(blocks, a[0] + 1);
   }
-  std::vector<size_t> start(static_cast<size_t>(blocks) + 1, 0);
-  for (const Half& h : keyed) ++start[static_cast<size_t>(h.first[0]) + 1];
-  for (size_t b = 1; b < start.size(); ++b) start[b] += start[b - 1];
-  std::vector<Half> halves(keyed.size());
-  {
-    std::vector<size_t> next(start.begin(), start.end() - 1);
-    for (const Half& h : keyed) halves[next[static_cast<size_t>(h.first[0])]++] = h;
-  }
-  for (size_t b = 0; b + 1 < start.size(); ++b)
-    std::sort(halves.begin() + static_cast<long>(start[b]), halves.begin() + static_cast<long>(start[b + 1]));
+  const std::vector<Half> halves =
+      sortedByBlock(keyed, blocks, [](const Half& h) { return h.first[0]; }, std::less<Half>());
   for (size_t k = 0; k < halves.size();) {
     size_t end = k + 1;
     while (end < halves.size() && halves[end].first == halves[k].first) ++end;
