@@ -1,5 +1,7 @@
 #include "ddaslope/solver/linear_solver.hpp"
 
+#include <algorithm>
+
 namespace ddaslope::solver {
 
 bool LinearSolver::refactorise(const assembly::BlockSparseMatrix& k) {
@@ -7,12 +9,13 @@ bool LinearSolver::refactorise(const assembly::BlockSparseMatrix& k) {
   haveFactor_ = cholesky_.factorise(k);
   factorCurrent_ = haveFactor_;
   patternVersion_ = k.patternVersion();
+  staleFlops_ = 0;
   return haveFactor_;
 }
 
 bool LinearSolver::conjugateGradients(const assembly::BlockSparseMatrix& k, const Eigen::VectorXd& b,
-                                      Eigen::VectorXd& x) {
-  const double target = settings_.tolerance * b.norm();
+                                      Eigen::VectorXd& x, double residualFloor) {
+  const double target = std::max(settings_.tolerance * b.norm(), residualFloor);
   cholesky_.solve(b, x);
   Eigen::VectorXd r = b - k.multiply(x);
   if (r.norm() <= target) return true;
@@ -22,6 +25,8 @@ bool LinearSolver::conjugateGradients(const assembly::BlockSparseMatrix& k, cons
   double rz = r.dot(z);
   for (int it = 0; it < settings_.maxIterations; ++it) {
     ++stats_.cgIterations;
+    // An iteration: a product with K (2 flops per entry of both triangles) and a solve.
+    staleFlops_ += 4.0 * static_cast<double>(k.nonZeros()) + cholesky_.solveFlops();
     q = k.multiply(p);
     const double pq = p.dot(q);
     if (!(pq > 0)) return false;  // K no longer positive definite along p: refactorise
@@ -37,7 +42,8 @@ bool LinearSolver::conjugateGradients(const assembly::BlockSparseMatrix& k, cons
   return false;
 }
 
-bool LinearSolver::solve(const assembly::BlockSparseMatrix& k, const Eigen::VectorXd& b, Eigen::VectorXd& x) {
+bool LinearSolver::solve(const assembly::BlockSparseMatrix& k, const Eigen::VectorXd& b, Eigen::VectorXd& x,
+                         double residualFloor) {
   ++stats_.solves;
   if (b.squaredNorm() == 0) {
     x = Eigen::VectorXd::Zero(b.size());
@@ -48,7 +54,8 @@ bool LinearSolver::solve(const assembly::BlockSparseMatrix& k, const Eigen::Vect
       cholesky_.solve(b, x);
       return true;
     }
-    if (conjugateGradients(k, b, x)) return true;
+    const bool worthRefactorising = amortise_ && staleFlops_ > cholesky_.factorisationFlops();
+    if (!worthRefactorising && conjugateGradients(k, b, x, residualFloor)) return true;
   }
   if (!refactorise(k)) return false;
   cholesky_.solve(b, x);

@@ -28,10 +28,18 @@ struct LinearSolverStats {
 class LinearSolver {
  public:
   explicit LinearSolver(LinearSolverSettings s = {}) : settings_(s) {}
+  /// When on, a stale factor is redone once the conjugate-gradient iterations it has cost since
+  /// it was made add up to the flops of a factorisation (rent or buy: never more than twice the
+  /// better of the two). Counted in flops, not seconds, so that a run does not depend on the
+  /// machine's speed. Off: the factor is redone only when CG fails.
+  void amortiseRefactorisation(bool on) { amortise_ = on; }
   /// K changed since the last call (values; the pattern is tracked by its version).
   void matrixChanged() { factorCurrent_ = false; }
-  /// Returns false if K is not positive definite.
-  bool solve(const assembly::BlockSparseMatrix& k, const Eigen::VectorXd& b, Eigen::VectorXd& x);
+  /// Returns false if K is not positive definite. CG stops at a residual of tolerance·‖b‖ or
+  /// `residualFloor`, whichever is larger: b is known only to the round-off of the terms summed
+  /// into it, and iterating below that refines noise.
+  bool solve(const assembly::BlockSparseMatrix& k, const Eigen::VectorXd& b, Eigen::VectorXd& x,
+             double residualFloor = 0);
   /// K changed by these rank-one terms since the factor was made (or last modified): the factor
   /// follows them by update/downdate, and CG then converges as if it were fresh. Returns false
   /// (and drops the factor, so the next solve refactorises) if the result lost positive
@@ -45,13 +53,16 @@ class LinearSolver {
  private:
   bool refactorise(const assembly::BlockSparseMatrix& k);
   /// Preconditioned CG from the factor's solution; false if it did not reach the tolerance.
-  bool conjugateGradients(const assembly::BlockSparseMatrix& k, const Eigen::VectorXd& b, Eigen::VectorXd& x);
+  bool conjugateGradients(const assembly::BlockSparseMatrix& k, const Eigen::VectorXd& b, Eigen::VectorXd& x,
+                          double residualFloor);
 
   LinearSolverSettings settings_;
   SparseCholesky cholesky_;
   bool haveFactor_ = false;
   bool factorCurrent_ = false;
   long patternVersion_ = -1;
+  bool amortise_ = false;
+  double staleFlops_ = 0;  ///< CG work done with the current factor since it was made
   LinearSolverStats stats_;
 };
 

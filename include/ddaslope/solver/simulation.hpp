@@ -163,13 +163,15 @@ class Simulation {
   /// whatever its law says; `holdSmallViolations`: only while that breaks its law by a small
   /// fraction of the largest contact force (tryStep).
   Attempt tryStep(double dt, Regime regime, bool freezeCycling, bool holdSmallViolations = false);
-  /// Block terms of a step; `loads` receives the water and point-load part of f (its work).
+  /// Block terms of a step; `loads` receives the water and point-load part of f (its work),
+  /// `magnitude` the sum of the absolute values of the terms that make up f (its round-off scale).
   void assembleBlockTerms(double dt, Regime regime, std::vector<Mat6>& k, std::vector<Vec6>& f,
-                          std::vector<Vec6>& loads) const;
+                          std::vector<Vec6>& loads, std::vector<Vec6>& magnitude) const;
   /// Accepts an attempt; `weakens`: its slip softens the joints (analysis steps only).
   void commit(const Attempt& a, double dt, bool weakens);
   /// Solves matrix_ d = rhs (6 per active block); rigid blocks solve for their 3 unknowns.
-  bool solveSystem(const Eigen::VectorXd& rhs, Eigen::VectorXd& d);
+  /// residualFloor: the residual below which the right-hand side is round-off (0: none).
+  bool solveSystem(const Eigen::VectorXd& rhs, Eigen::VectorXd& d, double residualFloor);
   contact::ContactStrength strengthOf(const contact::Contact& c) const;
   /// Shear a sliding contact resists with: N tanφ, plus c·L while a softening bond lasts.
   double slidingResistance(const contact::Contact& c) const;

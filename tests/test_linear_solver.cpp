@@ -1,0 +1,107 @@
+// The linear solver's stopping and refactorising rules (solver/linear_solver.hpp), on a chain of
+// coupled 6×6 blocks whose factor is made stale by a change of K, as a step's geometry does.
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+
+#include "ddaslope/assembly/block_sparse_matrix.hpp"
+#include "ddaslope/solver/linear_solver.hpp"
+#include "ddaslope/solver/sparse_cholesky.hpp"
+
+using namespace ddaslope;
+
+namespace {
+constexpr int kBlocks = 60;
+
+/// A chain of blocks, each coupled to the next: SPD by diagonal dominance. `drift` scales the
+/// diagonal blocks, standing for the change of K the factor has not seen.
+void chain(assembly::BlockSparseMatrix& k, double drift) {
+  std::vector<std::pair<int, int>> couplings;
+  for (int b = 0; b + 1 < kBlocks; ++b) couplings.emplace_back(b, b + 1);
+  if (k.patternVersion() == 0) k.setPattern(kBlocks, assembly::BlockSparseMatrix::normalise(couplings));
+  k.setZero();
+  for (int b = 0; b < kBlocks; ++b) {
+    Mat6 d = Mat6::Identity() * 40.0;
+    for (int e = 0; e < 6; ++e) d(e, (e + 1) % 6) = d((e + 1) % 6, e) = 3.0 + 0.1 * b;
+    k.addDiagonal(b, (1.0 + drift * (b % 7)) * d);
+  }
+  for (int b = 0; b + 1 < kBlocks; ++b) k.addCoupling(b, b + 1, Mat6::Constant(-1.5));
+}
+
+Eigen::VectorXd load() { return Eigen::VectorXd::LinSpaced(6 * kBlocks, -3, 5); }
+}  // namespace
+
+// The stopping rule: CG ends once ‖b − Kx‖ ≤ max(tolerance·‖b‖, floor). A floor above the
+// residual of the stale factor's own solve accepts that solve (no CG iteration); without a floor
+// CG iterates down to tolerance·‖b‖.
+TEST(LinearSolver, StopsAtTheResidualFloor) {
+  assembly::BlockSparseMatrix k;
+  chain(k, 0.0);
+  solver::LinearSolver solver;
+  const Eigen::VectorXd b = load();
+  Eigen::VectorXd x;
+  ASSERT_TRUE(solver.solve(k, b, x));  // factorises K0
+  chain(k, 1e-3);
+  solver.matrixChanged();
+  // The residual of one solve with K0's factor, found independently.
+  assembly::BlockSparseMatrix k0;
+  chain(k0, 0.0);
+  solver::SparseCholesky stale;
+  ASSERT_TRUE(stale.factorise(k0));
+  Eigen::VectorXd first;
+  stale.solve(b, first);
+  const double r0 = (b - k.multiply(first)).norm();
+  ASSERT_GT(r0, 1e-12 * b.norm()) << "the drift must leave work for CG";
+
+  const long before = solver.stats().cgIterations;
+  ASSERT_TRUE(solver.solve(k, b, x, 2 * r0));
+  EXPECT_EQ(solver.stats().cgIterations, before);
+  EXPECT_LE((b - k.multiply(x)).norm(), 2 * r0);
+
+  ASSERT_TRUE(solver.solve(k, b, x));
+  EXPECT_GT(solver.stats().cgIterations, before);
+  EXPECT_LE((b - k.multiply(x)).norm(), 1e-12 * b.norm());
+  EXPECT_EQ(solver.stats().factorisations, 1);  // CG converged: no new factor
+}
+
+// Rent or buy: with amortisation on, a stale factor is redone at the first solve after the CG
+// iterations it cost add up to one factorisation's flops (never later than that plus one solve's
+// iterations), and the fresh factor then solves K without iterating. Off, it is never redone.
+TEST(LinearSolver, RefactorisesOnceStaleIterationsCostAFactorisation) {
+  assembly::BlockSparseMatrix k;
+  chain(k, 0.0);
+  solver::SparseCholesky reference;
+  ASSERT_TRUE(reference.factorise(k));
+  const double perIteration = 4.0 * k.nonZeros() + reference.solveFlops();
+  const double factorisation = reference.factorisationFlops();
+  ASSERT_GT(factorisation, 0);
+  ASSERT_GT(perIteration, 0);
+
+  for (const bool amortise : {true, false}) {
+    chain(k, 0.0);
+    solver::LinearSolver solver;
+    solver.amortiseRefactorisation(amortise);
+    const Eigen::VectorXd b = load();
+    Eigen::VectorXd x;
+    ASSERT_TRUE(solver.solve(k, b, x));
+    chain(k, 1e-3);
+    solver.matrixChanged();
+    long iterationsWhenRedone = -1;
+    for (int s = 0; s < 200 && iterationsWhenRedone < 0; ++s) {
+      const long iterations = solver.stats().cgIterations;
+      ASSERT_TRUE(solver.solve(k, b, x));
+      if (solver.stats().factorisations == 2) iterationsWhenRedone = iterations;
+      EXPECT_LE((b - k.multiply(x)).norm(), 1e-12 * b.norm());
+    }
+    if (!amortise) {
+      EXPECT_EQ(iterationsWhenRedone, -1) << "without amortisation CG keeps the stale factor";
+      continue;
+    }
+    ASSERT_GE(iterationsWhenRedone, 0) << "never refactorised";
+    EXPECT_GT(iterationsWhenRedone * perIteration, factorisation);
+    EXPECT_LE(iterationsWhenRedone * perIteration, factorisation + 8 * perIteration);
+    const long after = solver.stats().cgIterations;
+    ASSERT_TRUE(solver.solve(k, b, x));
+    EXPECT_EQ(solver.stats().cgIterations, after) << "a fresh factor of K solves it directly";
+  }
+}
