@@ -57,3 +57,33 @@ TEST(FactorSprings, ReportsSpringsSwitchedOnAndOff) {
   EXPECT_EQ(added[0].count, 3);
   EXPECT_DOUBLE_EQ(added[0].values[0], 3.0);
 }
+
+namespace {
+contact::Contact contactAt(int vertex, contact::ContactState state) {
+  contact::Contact c;
+  c.geometry.key = {0, vertex, 1, 0};
+  c.state = state;
+  return c;
+}
+}  // namespace
+
+// holdsSame is changes() finding nothing, without building the springs: a closed contact holds
+// its normal spring, a locked one its shear spring too (by definition, as Simulation builds them).
+TEST(FactorSprings, HoldsSameExactlyWhenNothingSwitches) {
+  using contact::ContactState;
+  solver::FactorSprings f;
+  f.reset({spring(1, 4, 1, 1), spring(2, 4, 0, 2)});
+  const contact::Contact open3 = contactAt(3, ContactState::Open);
+  EXPECT_TRUE(f.holdsSame({contactAt(1, ContactState::Locked), contactAt(2, ContactState::Sliding), open3}));
+  EXPECT_FALSE(f.holdsSame({contactAt(1, ContactState::Sliding), contactAt(2, ContactState::Sliding)}));
+  EXPECT_FALSE(f.holdsSame({contactAt(1, ContactState::Locked), contactAt(2, ContactState::Locked)}));
+  EXPECT_FALSE(f.holdsSame({contactAt(1, ContactState::Locked)}));  // contact 2 opened
+  EXPECT_FALSE(f.holdsSame({contactAt(1, ContactState::Locked), contactAt(2, ContactState::Sliding),
+                            contactAt(3, ContactState::Sliding)}));  // contact 3 closed
+  // Each verdict agrees with what changes() reports.
+  std::vector<solver::SparseCholesky::Column> added, removed;
+  f.changes({spring(1, 4, 1, 1), spring(2, 4, 0, 2)}, 6, added, removed);
+  EXPECT_TRUE(added.empty() && removed.empty());
+  f.changes({spring(1, 4, 0, 1), spring(2, 4, 0, 2)}, 6, added, removed);
+  EXPECT_EQ(removed.size(), 1u);
+}

@@ -64,44 +64,31 @@ TEST(LinearSolver, StopsAtTheResidualFloor) {
   EXPECT_EQ(solver.stats().factorisations, 1);  // CG converged: no new factor
 }
 
-// Rent or buy: with amortisation on, a stale factor is redone at the first solve after the CG
-// iterations it cost add up to one factorisation's flops (never later than that plus one solve's
-// iterations), and the fresh factor then solves K without iterating. Off, it is never redone.
-TEST(LinearSolver, RefactorisesOnceStaleIterationsCostAFactorisation) {
-  assembly::BlockSparseMatrix k;
-  chain(k, 0.0);
-  solver::SparseCholesky reference;
-  ASSERT_TRUE(reference.factorise(k));
-  const double perIteration = 4.0 * k.nonZeros() + reference.solveFlops();
-  const double factorisation = reference.factorisationFlops();
-  ASSERT_GT(factorisation, 0);
-  ASSERT_GT(perIteration, 0);
-
-  for (const bool amortise : {true, false}) {
+// The iteration budget: a stale factor whose CG needs more iterations than the budget is redone
+// (large systems use 4 of the default 8: Simulation::tryStep), and the fresh factor then solves K
+// without iterating.
+TEST(LinearSolver, RedoesAFactorThatNeedsMoreThanItsBudget) {
+  for (const int budget : {8, 4}) {
+    assembly::BlockSparseMatrix k;
     chain(k, 0.0);
     solver::LinearSolver solver;
-    solver.amortiseRefactorisation(amortise);
+    solver.setMaxIterations(budget);
     const Eigen::VectorXd b = load();
     Eigen::VectorXd x;
     ASSERT_TRUE(solver.solve(k, b, x));
-    chain(k, 1e-3);
+    chain(k, 0.01);
     solver.matrixChanged();
-    long iterationsWhenRedone = -1;
-    for (int s = 0; s < 200 && iterationsWhenRedone < 0; ++s) {
-      const long iterations = solver.stats().cgIterations;
-      ASSERT_TRUE(solver.solve(k, b, x));
-      if (solver.stats().factorisations == 2) iterationsWhenRedone = iterations;
-      EXPECT_LE((b - k.multiply(x)).norm(), 1e-12 * b.norm());
-    }
-    if (!amortise) {
-      EXPECT_EQ(iterationsWhenRedone, -1) << "without amortisation CG keeps the stale factor";
+    ASSERT_TRUE(solver.solve(k, b, x));
+    EXPECT_LE((b - k.multiply(x)).norm(), 1e-12 * b.norm());
+    const long iterations = solver.stats().cgIterations;
+    if (budget == 8) {
+      // The drift takes CG more than 4 iterations but fewer than 8 to absorb.
+      EXPECT_GT(iterations, 4);
+      EXPECT_EQ(solver.stats().factorisations, 1);
       continue;
     }
-    ASSERT_GE(iterationsWhenRedone, 0) << "never refactorised";
-    EXPECT_GT(iterationsWhenRedone * perIteration, factorisation);
-    EXPECT_LE(iterationsWhenRedone * perIteration, factorisation + 8 * perIteration);
-    const long after = solver.stats().cgIterations;
+    EXPECT_EQ(solver.stats().factorisations, 2);
     ASSERT_TRUE(solver.solve(k, b, x));
-    EXPECT_EQ(solver.stats().cgIterations, after) << "a fresh factor of K solves it directly";
+    EXPECT_EQ(solver.stats().cgIterations, iterations) << "a fresh factor of K solves it directly";
   }
 }

@@ -98,6 +98,7 @@ void writeSummary(const fs::path& dir, const model::Scene& scene, const RunOptio
   j["steps_with_frozen_contacts"] = st.frozenSteps;
   j["factorisations"] = st.factorisations;
   j["factor_updates"] = st.factorUpdates;
+  j["factor_columns"] = st.factorColumns;
   j["linear_solves"] = st.linearSolves;
   j["cg_iterations"] = st.cgIterations;
   j["wall_time_s"] = o.wallTime;
@@ -122,7 +123,7 @@ void writeSummary(const fs::path& dir, const model::Scene& scene, const RunOptio
   j["phase_times_s"] = {{"broad_phase", st.times.broadPhase}, {"contacts", st.times.contacts},
                         {"assembly", st.times.assembly},      {"factorisation", st.times.factorisation},
                         {"solve", st.times.solve},            {"state_checks", st.times.stateChecks},
-                        {"update", st.times.update}};
+                        {"factor_update", st.times.factorUpdate}, {"update", st.times.update}};
   ordered_json mons = ordered_json::object();
   if (!o.trace.samples.empty())
     for (size_t m = 0; m < o.trace.monitorIds.size(); ++m) {

@@ -36,6 +36,18 @@ void FactorSprings::reset(std::vector<ContactSprings> inFactor) {
   valid_ = true;
 }
 
+bool FactorSprings::holdsSame(const std::vector<contact::Contact>& contacts) const {
+  size_t r = 0;
+  for (const contact::Contact& c : contacts) {
+    if (!c.closed()) continue;
+    if (r == recorded_.size() || !(recorded_[r].key == c.key()) || !(recorded_[r].normalK > 0) ||
+        (recorded_[r].shearK > 0) != (c.state == contact::ContactState::Locked))
+      return false;
+    ++r;
+  }
+  return r == recorded_.size();
+}
+
 void FactorSprings::changes(std::vector<ContactSprings> now, int dof, std::vector<SparseCholesky::Column>& added,
                             std::vector<SparseCholesky::Column>& removed) {
   added.clear();

@@ -9,7 +9,6 @@ bool LinearSolver::refactorise(const assembly::BlockSparseMatrix& k) {
   haveFactor_ = cholesky_.factorise(k);
   factorCurrent_ = haveFactor_;
   patternVersion_ = k.patternVersion();
-  staleFlops_ = 0;
   return haveFactor_;
 }
 
@@ -25,8 +24,6 @@ bool LinearSolver::conjugateGradients(const assembly::BlockSparseMatrix& k, cons
   double rz = r.dot(z);
   for (int it = 0; it < settings_.maxIterations; ++it) {
     ++stats_.cgIterations;
-    // An iteration: a product with K (2 flops per entry of both triangles) and a solve.
-    staleFlops_ += 4.0 * static_cast<double>(k.nonZeros()) + cholesky_.solveFlops();
     q = k.multiply(p);
     const double pq = p.dot(q);
     if (!(pq > 0)) return false;  // K no longer positive definite along p: refactorise
@@ -54,8 +51,7 @@ bool LinearSolver::solve(const assembly::BlockSparseMatrix& k, const Eigen::Vect
       cholesky_.solve(b, x);
       return true;
     }
-    const bool worthRefactorising = amortise_ && staleFlops_ > cholesky_.factorisationFlops();
-    if (!worthRefactorising && conjugateGradients(k, b, x, residualFloor)) return true;
+    if (conjugateGradients(k, b, x, residualFloor)) return true;
   }
   if (!refactorise(k)) return false;
   cholesky_.solve(b, x);

@@ -41,6 +41,8 @@ constexpr int kFactorFollowingMinUnknowns = 1000;
 /// factorisation, a break-even near 1100; its equilibrium took 28.5 s with a limit of 400, 21.6 s
 /// with 800, 22.8 s with none, and 55.8 s refactorising every change.
 constexpr size_t kMaxFactorModificationRank = 800;
+/// CG iterations with a stale factor before a large system refactorises (see tryStep).
+constexpr int kLargeSystemCgIterations = 4;
 /// Stage 3's budget, in steps per analysis.equilibrium_max_steps (200 by default: 4000 steps).
 constexpr int kSettlingStepsPerEquilibriumStep = 20;
 
@@ -373,7 +375,11 @@ Simulation::Attempt Simulation::tryStep(double dt, Regime regime, bool freezeCyc
   // a residual 1e-12 of the sum, which only conjugate-gradient iterations on round-off reached
   // (one per step from 2000 bricks up). Small systems keep the strict rule and their results.
   const bool residualAtRoundOff = followFactor;
-  linearSolver_.amortiseRefactorisation(followFactor);
+  // With that looser target a factor far from K (an equilibrium's, 7 iterations per step in the
+  // 976-brick rigid wall) would converge within the 8 iterations that used to fail and send it
+  // back to a factorisation, and stay in use. A near-exact factor (one that follows the states)
+  // converges in 0-3: a large system redoes a factor that needs more than 4.
+  linearSolver_.setMaxIterations(followFactor ? kLargeSystemCgIterations : LinearSolverSettings{}.maxIterations);
   Eigen::VectorXd magnitude;
   const auto addMagnitude = [&](const Contact& c, double s, const Vec12& v) {
     const auto [i, j] = ends(c);
@@ -428,12 +434,16 @@ Simulation::Attempt Simulation::tryStep(double dt, Regime regime, bool freezeCyc
         addTerm(c, -c.slideDirection * slidingResistance(c), kin[q].shearStep);
       }
     }
-    if (followFactor && stiffnessChanged && factorSprings_.valid()) {
-      factorSprings_.changes(contactSprings(), matrix_.blockSize(), added, removed);
-      if (added.size() + removed.size() > kMaxFactorModificationRank || !linearSolver_.modifyFactor(matrix_, added, removed))
-        factorSprings_.invalidate();
-    }
     stats_.times.assembly += sw.lap();
+    if (followFactor && stiffnessChanged && factorSprings_.valid() && !factorSprings_.holdsSame(a.contacts)) {
+      factorSprings_.changes(contactSprings(), matrix_.blockSize(), added, removed);
+      const size_t rank = added.size() + removed.size();
+      if (rank > kMaxFactorModificationRank || !linearSolver_.modifyFactor(matrix_, added, removed))
+        factorSprings_.invalidate();
+      else
+        stats_.factorColumns += static_cast<long>(rank);
+      stats_.times.factorUpdate += sw.lap();
+    }
     if (stiffnessChanged) linearSolver_.matrixChanged();
     const long factorisationsBefore = linearSolver_.stats().factorisations;
     // 16 units of round-off of the terms' sizes: what b itself is known to.

@@ -19,8 +19,6 @@ struct SparseCholesky::Impl {
   std::vector<int> inversePerm;  ///< original row → row of the factor
   long patternVersion = -1;
   const void* patternOwner = nullptr;
-  double factorisationFlops = 0;  ///< CHOLMOD's count for this pattern (from the analysis)
-  double factorNonZeros = 0;      ///< entries of L for this pattern
 
   Impl() {
     cholmod_start(&common);
@@ -64,8 +62,6 @@ bool SparseCholesky::factorise(const assembly::BlockSparseMatrix& k) {
     DDASLOPE_ASSERT(impl_->factor != nullptr, "CHOLMOD symbolic analysis failed");
     impl_->patternVersion = k.patternVersion();
     impl_->patternOwner = &k;
-    impl_->factorisationFlops = impl_->common.fl;
-    impl_->factorNonZeros = impl_->common.lnz;
     ++analyses_;
   }
   if (impl_->modified) cholmod_free_factor(&impl_->modified, &impl_->common);
@@ -73,9 +69,6 @@ bool SparseCholesky::factorise(const assembly::BlockSparseMatrix& k) {
   cholmod_factorize(&a, impl_->factor, &impl_->common);
   return impl_->common.status == CHOLMOD_OK && impl_->factor->minor == a.nrow;
 }
-
-double SparseCholesky::factorisationFlops() const { return impl_->factor ? impl_->factorisationFlops : 0.0; }
-double SparseCholesky::solveFlops() const { return impl_->factor ? 4.0 * impl_->factorNonZeros : 0.0; }
 
 void SparseCholesky::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
   cholmod_dense rhs{};

@@ -36,6 +36,10 @@ class FactorSprings {
   /// drift is left to conjugate gradients.
   void changes(std::vector<ContactSprings> now, int dof, std::vector<SparseCholesky::Column>& added,
                std::vector<SparseCholesky::Column>& removed);
+  /// True if `contacts` (in key order) switch on exactly the recorded springs: a closed contact
+  /// its normal spring, a locked one its shear spring too. changes() would then find nothing, so
+  /// a step whose states stand need not build its springs (0.8 ms at 12 000 contacts).
+  bool holdsSame(const std::vector<contact::Contact>& contacts) const;
 
  private:
   std::vector<ContactSprings> recorded_;  ///< sorted by key

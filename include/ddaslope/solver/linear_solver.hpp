@@ -28,11 +28,8 @@ struct LinearSolverStats {
 class LinearSolver {
  public:
   explicit LinearSolver(LinearSolverSettings s = {}) : settings_(s) {}
-  /// When on, a stale factor is redone once the conjugate-gradient iterations it has cost since
-  /// it was made add up to the flops of a factorisation (rent or buy: never more than twice the
-  /// better of the two). Counted in flops, not seconds, so that a run does not depend on the
-  /// machine's speed. Off: the factor is redone only when CG fails.
-  void amortiseRefactorisation(bool on) { amortise_ = on; }
+  /// CG iterations tried with a stale factor before refactorising (settings' maxIterations).
+  void setMaxIterations(int n) { settings_.maxIterations = n; }
   /// K changed since the last call (values; the pattern is tracked by its version).
   void matrixChanged() { factorCurrent_ = false; }
   /// Returns false if K is not positive definite. CG stops at a residual of tolerance·‖b‖ or
@@ -61,8 +58,6 @@ class LinearSolver {
   bool haveFactor_ = false;
   bool factorCurrent_ = false;
   long patternVersion_ = -1;
-  bool amortise_ = false;
-  double staleFlops_ = 0;  ///< CG work done with the current factor since it was made
   LinearSolverStats stats_;
 };
 

@@ -26,6 +26,7 @@ namespace ddaslope::solver {
 struct PhaseTimes {
   double broadPhase = 0, contacts = 0, assembly = 0, factorisation = 0, solve = 0,
          stateChecks = 0, update = 0;
+  double factorUpdate = 0;  ///< the factor following contact state changes (large systems)
 };
 
 struct StepRecord {
@@ -51,6 +52,7 @@ struct RunStatistics {
   int symbolicAnalyses = 0;
   long factorisations = 0;         ///< numeric Cholesky factorisations
   long factorUpdates = 0;          ///< low-rank factor updates that replaced one (large systems)
+  long factorColumns = 0;          ///< rank-one terms (springs switched on or off) they applied
   long linearSolves = 0;           ///< systems solved (one per open-close iteration)
   long cgIterations = 0;           ///< conjugate-gradient iterations on a reused factor
   int maxContacts = 0;

@@ -34,10 +34,6 @@ class SparseCholesky {
   /// Returns false if the result is not positive definite (the factor must then be redone).
   bool modify(const std::vector<Column>& columns, bool add);
   int symbolicAnalyses() const { return analyses_; }
-  /// Floating-point operations of one factorisation and of one solve (forward and back
-  /// substitution) with the current pattern's factor, from CHOLMOD's symbolic analysis; 0 before it.
-  double factorisationFlops() const;
-  double solveFlops() const;
 
  private:
   struct Impl;
