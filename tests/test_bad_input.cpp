@@ -69,6 +69,20 @@ int runCli(const std::string& args, std::string* stderrText) {
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
+/// Runs the CLI and returns what it printed on stdout (stderr into *stderrText).
+std::string captureCli(const std::string& args, std::string* stderrText) {
+  const fs::path out = fs::temp_directory_path() / ("ddaslope_out_" + std::to_string(::getpid()));
+  const fs::path err = fs::temp_directory_path() / ("ddaslope_err_" + std::to_string(::getpid()));
+  const std::string cmd = std::string(DDASLOPE_CLI) + " " + args + " >" + out.string() + " 2>" + err.string();
+  EXPECT_EQ(std::system(cmd.c_str()), 0) << cmd;
+  std::ifstream e(err), o(out);
+  stderrText->assign(std::istreambuf_iterator<char>(e), {});
+  std::string text((std::istreambuf_iterator<char>(o)), {});
+  fs::remove(out);
+  fs::remove(err);
+  return text;
+}
+
 std::string writeTemp(const std::string& name, const std::string& text) {
   const fs::path p = fs::temp_directory_path() / (std::to_string(::getpid()) + "_" + name);
   std::ofstream(p) << text;
@@ -354,6 +368,41 @@ TEST(CaseReader, WaterErrors) {
   expectError(d, "water.phreatic_line[1]", "x increasing");
   d["water"] = {{"level_series", {{"csv", "no_such_levels.csv"}}}};
   expectError(d, "water.level_series.csv", "does not exist");
+}
+
+// Seismic coefficients: numbers in [-2, 2] under known keys (issue #17).
+TEST(CaseReader, SeismicErrors) {
+  json d = minimal();
+  d["seismic"] = {{"k_h", "strong"}};
+  expectError(d, "seismic.k_h", "expected a number");
+  d["seismic"] = {{"k_h", 2.5}};
+  expectError(d, "seismic.k_h", "[-2, 2]");
+  d["seismic"] = {{"k_v", -3}};
+  expectError(d, "seismic.k_v", "[-2, 2]");
+  d["seismic"] = {{"kh", 0.1}};
+  expectError(d, "seismic.kh", "");
+  d["seismic"] = 0.1;
+  expectError(d, "seismic", "object");
+}
+
+// --kh / --set seismic.k_h reach a case that has no seismic object, on any command: the yield
+// coefficient of the A3 block (40.1° on 40°) toward the valley (−x) is tan 0.1° = 0.0017453
+// (benchmarks.md §E's closed form, 0.5 %); a coefficient out of range is bad input (exit 2).
+TEST(Cli, SeismicCoefficientsOnTheCommandLine) {
+  const std::string path = std::string(DDASLOPE_SOURCE_DIR) + "/cases/stable_block_40deg.json";
+  std::string err;
+  const std::string json = captureCli("critical " + path + " --solve seismic-coefficient --direction -x --width 1e-6 --json", &err);
+  const auto r = nlohmann::json::parse(json);
+  EXPECT_NEAR(r["critical"].get<double>(), 0.0017453, 0.005 * 0.0017453) << err;
+  // Past k_y the block slides in a run; below it, it stands (--kh is --set seismic.k_h).
+  const fs::path out = fs::temp_directory_path() / ("ddaslope_kh_" + std::to_string(::getpid()));
+  ASSERT_EQ(runCli("run " + path + " --quiet --duration 0.5 --kh -0.01 --out " + out.string(), &err), 0) << err;
+  const nlohmann::json m = nlohmann::json::parse(std::ifstream(out / "summary.json"))["monitors"]["centre"];
+  EXPECT_GT(std::hypot(m["ux"].get<double>(), m["uy"].get<double>()), 0.01);
+  EXPECT_EQ(runCli("run " + path + " --kh 3 --out " + out.string(), &err), 2);
+  EXPECT_EQ(runCli("run " + path + " --set seismic.k_v=-2.5 --out " + out.string(), &err), 2);
+  EXPECT_NE(err.find("seismic.k_v"), std::string::npos) << err;
+  fs::remove_all(out);
 }
 
 // --set overrides a case number by JSON path; a malformed one is bad input (exit 2).

@@ -120,6 +120,43 @@ CriticalResult criticalFriction(const model::Scene& scene, int joint, double coh
   return r;
 }
 
+CriticalResult criticalSeismicCoefficient(const model::Scene& scene, int direction, double width,
+                                          const SearchSettings& s) {
+  const auto t0 = std::chrono::steady_clock::now();
+  // The load enters each trial's own equilibrium (model/seismic.hpp): none is shared.
+  CountedVerdict stableAt{[&](double k) {
+    model::Scene trial = scene;
+    trial.seismic.kh = direction * k;
+    return judgeStability(trial, s.verdict, nullptr);
+  }};
+  const std::function<bool(double)> f = std::ref(stableAt);
+  constexpr double kFirst = 0.05, kLargest = 2.0;
+  CriticalResult r;
+  if (!stableAt(0)) {
+    r.message = "the slope fails without seismic loading (k_h = 0): it has no yield acceleration";
+  } else {
+    double stable = 0, k = kFirst;
+    while (stableAt(k)) {
+      stable = k;
+      if (k >= kLargest) break;
+      k = std::min(2 * k, kLargest);
+    }
+    if (stable >= kLargest) {
+      r.message = std::string("stable up to k_h = 2 along ") + (direction > 0 ? "+x" : "-x") +
+                  ": does the slope face the other way (--direction)?";
+      r.stableEnd = stable;
+    } else {
+      const BisectionResult b = narrowBracket(f, stable, k, width, s.threads);
+      copyBracket(b, r);
+      r.critical = b.critical;
+    }
+  }
+  r.runs = stableAt.runs;
+  r.trials = stableAt.sortedTrials();
+  r.wallTime = secondsSince(t0);
+  return r;
+}
+
 std::vector<CurvePoint> criticalCurve(const model::Scene& scene, int joint, double phiMinDeg, double phiMaxDeg,
                                       int n, double width, const SearchSettings& s) {
   std::vector<CurvePoint> curve(std::max(2, n));

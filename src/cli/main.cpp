@@ -7,7 +7,9 @@
 #include <filesystem>
 #include <fstream>
 #include <cstdio>
+#include <iomanip>
 #include <iostream>
+#include <sstream>
 
 #include <CLI/CLI.hpp>
 
@@ -69,6 +71,19 @@ void addModelOptions(CLI::App* cmd, Overrides& o) {
   cmd->add_flag("--brittle-joints", o.model.brittleJoints,
                 "every joint's bond lost the moment it slides (original DDA): the first-failure answer");
   cmd->add_option("--set", o.settings, "json.path=value: override a number of the case (repeatable)");
+  // Pseudo-static seismic coefficients: shorthands for --set seismic.k_h=… (docs/seismic.md).
+  const auto coefficient = [&o](const char* key) {
+    return [&o, key](double k) {
+      std::ostringstream v;
+      v << std::setprecision(17) << k;
+      o.settings.push_back(std::string("seismic.") + key + "=" + v.str());
+    };
+  };
+  cmd->add_option_function<double>("--kh", coefficient("k_h"),
+                                   "horizontal seismic coefficient: a force k_h·m·g along +x (negative: -x) from t = 0")
+      ->check(finiteIn(-2, 2, "a coefficient in [-2, 2]"));
+  cmd->add_option_function<double>("--kv", coefficient("k_v"), "vertical seismic coefficient: a force k_v·m·g upward from t = 0")
+      ->check(finiteIn(-2, 2, "a coefficient in [-2, 2]"));
 }
 
 /// "path=value" → an override; a malformed one is bad input.
@@ -251,6 +266,7 @@ int jointIndex(const ddaslope::model::Scene& scene, const std::string& name, con
 struct CriticalOptions {
   std::string joint;
   std::string solve = "cohesion";
+  std::string direction = "+x";  ///< of the seismic coefficient searched for
   double friction = -1;
   double cohesion = -1;
   double width = 0;
@@ -310,9 +326,39 @@ void warnAboutTrials(const std::string& casePath, const std::string& warning) {
   if (!warning.empty()) std::fprintf(stderr, "ddaslope: warning: %s: %s\n", casePath.c_str(), warning.c_str());
 }
 
+/// The yield seismic coefficient k_y (critical --solve seismic-coefficient).
+int seismicCoefficientCommand(const std::string& casePath, const ddaslope::model::Scene& scene,
+                              const CriticalOptions& opt) {
+  ddaslope::calibration::SearchSettings s;
+  s.threads = opt.threads;
+  const int direction = opt.direction == "-x" ? -1 : 1;
+  const auto r = ddaslope::calibration::criticalSeismicCoefficient(scene, direction, opt.width > 0 ? opt.width : 1e-3, s);
+  if (opt.json) {
+    ddaslope::io::JsonRecord j;
+    j.set("case", casePath).set("solve", opt.solve).set("direction", opt.direction).set("k_v", scene.seismic.kv);
+    j.set("found", r.found).set("critical", r.critical).set("unit", "g");
+    j.set("bracket", std::vector<double>{r.failingEnd, r.stableEnd});
+    j.set("forward_runs", r.runs).set("wall_time_s", r.wallTime).set("message", r.message);
+    j.set("settings", settingsLine(scene));
+    ddaslope::calibration::appendTrials(j, r.trials, "k_h");
+    std::printf("%s\n", j.dump().c_str());
+  } else if (r.found) {
+    std::printf("yield seismic coefficient k_y along %s (k_v = %g): %.6g g (failing at %.6g, stable at %.6g)\n",
+                opt.direction.c_str(), scene.seismic.kv, r.critical, r.failingEnd, r.stableEnd);
+    std::printf("%d forward runs, %.2f s wall; %s\n", r.runs, r.wallTime, settingsLine(scene).c_str());
+  } else {
+    std::fprintf(stderr, "ddaslope: %s: no yield seismic coefficient found after %d forward runs: %s\n",
+                 casePath.c_str(), r.runs, r.message.c_str());
+  }
+  warnAboutTrials(casePath, ddaslope::calibration::smallMotionWarning(r.trials, "k_h"));
+  return r.found ? kExitOk : kExitNonConvergence;
+}
+
 int criticalCommand(const std::string& casePath, const Overrides& o, const CriticalOptions& opt) {
   ddaslope::model::Scene scene = loadCase(casePath, o);
   applyOverrides(scene, o, casePath);
+  if (opt.solve == "seismic-coefficient") return seismicCoefficientCommand(casePath, scene, opt);
+  if (opt.joint.empty()) throw ddaslope::InputError("--joint", "", "expected the joint to search (--joint NAME)");
   const int joint = jointIndex(scene, opt.joint, casePath);
   if (!opt.curve.empty()) return curveCommand(casePath, scene, joint, opt);
   ddaslope::calibration::SearchSettings s;
@@ -588,14 +634,20 @@ int main(int argc, char** argv) {
   CriticalOptions crit;
   CLI::App* critical = app.add_subcommand("critical", "critical cohesion (at a friction angle) or friction angle (at a cohesion) of one joint, by bisection");
   critical->add_option("case", casePath, "case file (JSON)")->required();
-  critical->add_option("--joint", crit.joint, "joint to search")->required();
-  critical->add_option("--solve", crit.solve, "cohesion or friction")->check(CLI::IsMember({"cohesion", "friction"}))->capture_default_str();
+  critical->add_option("--joint", crit.joint, "joint to search (cohesion, friction)");
+  critical->add_option("--solve", crit.solve,
+                       "cohesion or friction of the joint, or seismic-coefficient: the yield acceleration k_y (in g)")
+      ->check(CLI::IsMember({"cohesion", "friction", "seismic-coefficient"}))
+      ->capture_default_str();
+  critical->add_option("--direction", crit.direction, "seismic-coefficient: the horizontal direction the load acts in")
+      ->check(CLI::IsMember({"+x", "-x"}))
+      ->capture_default_str();
   critical->add_option("--friction", crit.friction, "friction angle (degrees) while solving for cohesion (default: the case's)")
       ->check(finiteIn(0, 89.9, "a friction angle in [0, 89.9] degrees"));
   critical->add_option("--cohesion", crit.cohesion, "cohesion (Pa) while solving for friction (default: the case's)")
       ->check(finiteIn(0, 1e12, "a cohesion in [0, 1e12] Pa"));
   // Widths below 1e-6 would ask the bisection for more digits than the verdict has.
-  critical->add_option("--width", crit.width, "final bracket width (Pa or degrees; default 10 Pa or 0.01°)")
+  critical->add_option("--width", crit.width, "final bracket width (Pa, degrees or g; default 10 Pa, 0.01° or 0.001 g)")
       ->check(finiteIn(1e-6, 1e12, "a width in [1e-6, 1e12]"));
   critical->add_option("--threads", crit.threads, "forward runs at once")->capture_default_str()->check(CLI::Range(1, 256));
   addModelOptions(critical, overrides);

@@ -486,6 +486,15 @@ void readWater(const Reader& r, const json& doc, model::Scene& s) {
   }
 }
 
+void readSeismic(const Reader& r, const json& doc, model::Scene& s) {
+  if (!doc.contains("seismic")) return;
+  const json& q = doc.at("seismic");
+  r.onlyKeys(q, "seismic", {"k_h", "k_v"});
+  // Two g either way is beyond any recorded peak ground acceleration.
+  s.seismic.kh = r.optionalIn(q, "seismic", "k_h", 0, -2, 2, false, false, "a coefficient in [-2, 2] (a fraction of g)");
+  s.seismic.kv = r.optionalIn(q, "seismic", "k_v", 0, -2, 2, false, false, "a coefficient in [-2, 2] (a fraction of g)");
+}
+
 void readAnalysis(const Reader& r, const json& doc, model::Scene& s) {
   const json& a = r.required(doc, "", "analysis");
   const std::string p = "analysis";
@@ -581,7 +590,7 @@ model::Scene parseCase(const std::string& text, const std::string& file) {
   const Reader r(file);
   const json doc = parseJsonText(text, file);
   r.onlyKeys(doc, "", {"description", "gravity", "materials", "joints", "default_joint", "joint_pairs", "section",
-                       "blocks", "monitors", "point_loads", "fixed_points", "water", "analysis", "expected"});
+                       "blocks", "monitors", "point_loads", "fixed_points", "water", "seismic", "analysis", "expected"});
   model::Scene s;
   if (doc.contains("description")) s.description = r.string(doc.at("description"), "description");
   if (doc.contains("gravity")) {
@@ -601,6 +610,7 @@ model::Scene parseCase(const std::string& text, const std::string& file) {
   readJointPairs(r, doc, s, jointIds);
   readPointsAndLoads(r, doc, s);
   readWater(r, doc, s);
+  readSeismic(r, doc, s);
   readAnalysis(r, doc, s);
   readExpectations(r, doc, s);
   checkWorkload(s, file);
@@ -663,6 +673,10 @@ model::Scene readCase(const std::string& path, const std::vector<CaseOverride>& 
       // it is added to its object, and the reader then checks it like any other key.
       const size_t dot = o.jsonPath.rfind('.');
       json* parent = dot == std::string::npos ? nullptr : locate(doc, o.jsonPath.substr(0, dot));
+      // So may a top-level object the case leaves out altogether (seismic.k_h on a static case).
+      const std::string parentPath = dot == std::string::npos ? "" : o.jsonPath.substr(0, dot);
+      if (!parent && !parentPath.empty() && parentPath.find_first_of(".[") == std::string::npos && doc.is_object())
+        parent = &(doc[parentPath] = json::object());
       const std::string key = dot == std::string::npos ? "" : o.jsonPath.substr(dot + 1);
       if (parent && parent->is_object() && !key.empty() && key.find('[') == std::string::npos) at = &(*parent)[key];
     }

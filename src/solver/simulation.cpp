@@ -246,6 +246,11 @@ void Simulation::assembleBlockTerms(double dt, Regime regime, std::vector<Mat6>&
                              scene_.settings.mode == model::AnalysisMode::Dynamic;
   // Water (and any load history) at the end of the step; equilibrium is found at t = 0.
   const model::WaterTable water = scene_.water.at(regime == Regime::Analysis ? time_ + dt : 0.0);
+  // Seismic body acceleration (model/seismic.hpp): the pseudo-static part always, the ground
+  // motion in the analysis, at the end of the step. A load, so that its work enters the budget.
+  Vec2 inertial = scene_.seismic.pseudoStatic(scene_.gravity.norm());
+  if (regime == Regime::Analysis) inertial -= scene_.seismic.ground.at(time_ + dt);
+  const bool shaking = inertial.x() != 0 || inertial.y() != 0;
   for (size_t b = 0; b < scene_.blocks.size(); ++b) {
     const int i = active_[b];
     if (i < 0) continue;
@@ -265,6 +270,7 @@ void Simulation::assembleBlockTerms(double dt, Regime regime, std::vector<Mat6>&
       magnitude[i] += inertia.cwiseAbs();
     }
     if (water.active()) loads[i] += assembly::waterForce(blk, water);
+    if (shaking) loads[i] += assembly::bodyForce(blk.moments.area, density * inertial);
   }
   for (const model::PointLoad& l : scene_.pointLoads) {
     const int i = active_[l.point.block];

@@ -43,6 +43,13 @@ CriticalResult criticalCohesion(const model::Scene& scene, int joint, double fri
 CriticalResult criticalFriction(const model::Scene& scene, int joint, double cohesion, double width,
                                 const SearchSettings& s = {});
 
+/// The yield (critical) horizontal seismic coefficient k_y of Newmark's method: the smallest k_h
+/// (a fraction of g, acting along `direction`, +1 for +x or −1 for −x, with the case's k_v) at
+/// which the slope fails. Brackets upward from 0 by doubling from 0.05 (to at most 2), then
+/// bisects to `width`. Not found if the slope fails without it or holds at 2.
+CriticalResult criticalSeismicCoefficient(const model::Scene& scene, int direction, double width,
+                                          const SearchSettings& s = {});
+
 struct CurvePoint {
   double frictionDeg = 0;
   CriticalResult cohesion;  ///< critical cohesion at this friction angle

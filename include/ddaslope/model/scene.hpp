@@ -9,6 +9,7 @@
 #include "ddaslope/model/analysis_settings.hpp"
 #include "ddaslope/model/block.hpp"
 #include "ddaslope/model/materials.hpp"
+#include "ddaslope/model/seismic.hpp"
 #include "ddaslope/model/water.hpp"
 
 namespace ddaslope::model {
@@ -63,6 +64,7 @@ struct Scene {
   std::vector<FixedPoint> fixedPoints;
   std::vector<Expectation> expectations;
   WaterTable water;  ///< no water unless its line is set
+  SeismicLoad seismic;  ///< none unless set
   AnalysisSettings settings;
 
   int jointBetween(int a, int b) const;

@@ -165,7 +165,7 @@ class Simulation {
   /// whatever its law says; `holdSmallViolations`: only while that breaks its law by a small
   /// fraction of the largest contact force (tryStep).
   Attempt tryStep(double dt, Regime regime, bool freezeCycling, bool holdSmallViolations = false);
-  /// Block terms of a step; `loads` receives the water and point-load part of f (its work),
+  /// Block terms of a step; `loads` receives the water, point-load and seismic part of f (its work),
   /// `magnitude` the sum of the absolute values of the terms that make up f (its round-off scale).
   void assembleBlockTerms(double dt, Regime regime, std::vector<Mat6>& k, std::vector<Vec6>& f,
                           std::vector<Vec6>& loads, std::vector<Vec6>& magnitude) const;

@@ -1,0 +1,98 @@
+// Seismic loading (model/seismic.hpp, issue #17): pseudo-static coefficients and the yield
+// acceleration against closed forms (benchmarks.md §E, Hoek & Bray's planar failure).
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "ddaslope/calibration/strength_search.hpp"
+#include "ddaslope/solver/simulation.hpp"
+#include "scene_builders.hpp"
+
+using namespace ddaslope;
+using scenes::InclineSpec;
+
+// Benchmark E: a block on α = 20°, φ = 30°, c = 0 under a horizontal coefficient k toward the
+// valley holds while sin α + k cos α ≤ (cos α − k sin α) tan φ, i.e. up to k_y = tan(φ − α) =
+// 0.17633. The search must find it within 0.5 % (issue #17) at Δt 1 and 10 ms, deformable or
+// rigid. The incline rises toward +x, so the valley lies along −x.
+TEST(Seismic, YieldCoefficientOfABlockOnAnIncline) {
+  const double expected = std::tan(10 * M_PI / 180);
+  for (double dt : {1e-3, 1e-2}) {
+    for (bool rigid : {false, true}) {
+      InclineSpec spec;
+      spec.alphaDeg = 20;
+      spec.phiDeg = 30;
+      spec.timeStep = dt;
+      model::Scene scene = scenes::makeIncline(spec);
+      scene.settings.rigidBlocks = rigid;
+      const calibration::CriticalResult r = calibration::criticalSeismicCoefficient(scene, -1, 1e-4);
+      SCOPED_TRACE("dt " + std::to_string(dt) + (rigid ? " rigid" : " deformable"));
+      ASSERT_TRUE(r.found) << r.message;
+      EXPECT_NEAR(r.critical, expected, 0.005 * expected);
+      EXPECT_LT(r.stableEnd, r.failingEnd);
+    }
+  }
+}
+
+// Toward the hill the block slides up the slope once k cos α − sin α > (cos α + k sin α) tan φ,
+// at k = tan(φ + α) = 1.1918 for the same block (0.5 %). With φ = 45° that is tan 65° = 2.14,
+// beyond the 2 g the search tries: not found, and the message says which way to look.
+TEST(Seismic, TowardTheHillTheBlockSlidesUpTheSlope) {
+  InclineSpec spec;
+  spec.alphaDeg = 20;
+  spec.phiDeg = 30;
+  const calibration::CriticalResult up = calibration::criticalSeismicCoefficient(scenes::makeIncline(spec), +1, 1e-3);
+  ASSERT_TRUE(up.found) << up.message;
+  const double expected = std::tan(50 * M_PI / 180);
+  EXPECT_NEAR(up.critical, expected, 0.005 * expected);
+  spec.phiDeg = 45;
+  const calibration::CriticalResult none = calibration::criticalSeismicCoefficient(scenes::makeIncline(spec), +1, 1e-3);
+  EXPECT_FALSE(none.found);
+  EXPECT_NE(none.message.find("--direction"), std::string::npos) << none.message;
+}
+
+// Hoek & Bray's planar failure with a horizontal seismic coefficient α (Rock Slope Engineering,
+// dry): FS = (c A + W (cos ψ − α sin ψ) tan φ) / (W (sin ψ + α cos ψ)). Strength reduction under
+// k_h = 0.1 toward the face (−x) must match it within 2 %, as the static case does (§C).
+TEST(Seismic, PseudoStaticFactorOfSafetyOfPlanarFailure) {
+  const double c = 25e3, phi = 30 * M_PI / 180, k = 0.1;
+  scenes::Planar p = scenes::planar(35, c, 30);
+  p.scene.seismic.kh = -k;
+  const double expected = (c * p.length + p.weight * (std::cos(p.psi) - k * std::sin(p.psi)) * std::tan(phi)) /
+                          (p.weight * (std::sin(p.psi) + k * std::cos(p.psi)));
+  ASSERT_LT(expected, p.factor(c, phi) - 0.1) << "the load must matter";
+  const calibration::FactorOfSafetyResult r = calibration::factorOfSafety(p.scene, {}, 0.005);
+  ASSERT_TRUE(r.found) << r.message;
+  EXPECT_NEAR(r.factor, expected, 0.02 * expected);
+}
+
+// A vertical coefficient scales the weight: on the incline, k_v upward at fixed k_h = 0 changes
+// nothing in the sliding condition (both sides scale with 1 − k_v), so a block 0.5° short of
+// sliding (φ = 20.5° on 20°) still holds under k_v = 0.3 and fails once φ < α.
+TEST(Seismic, VerticalCoefficientScalesTheWeight) {
+  for (const double phi : {20.5, 19.5}) {
+    InclineSpec spec;
+    spec.alphaDeg = 20;
+    spec.phiDeg = phi;
+    model::Scene scene = scenes::makeIncline(spec);
+    scene.seismic.kv = 0.3;
+    EXPECT_EQ(calibration::judgeStability(scene).stable, phi > 20) << "phi " << phi;
+  }
+}
+
+// k_h = k_v = 0 adds no term anywhere: the run is the static one to the last digit (issue #17).
+TEST(Seismic, ZeroCoefficientsLeaveTheRunUnchanged) {
+  InclineSpec spec;
+  spec.phiDeg = 25;  // slides: every step moves
+  model::Scene withZero = scenes::makeIncline(spec);
+  withZero.seismic.kh = 0;
+  withZero.seismic.kv = 0;
+  solver::Simulation a(scenes::makeIncline(spec)), b(withZero);
+  a.bringToEquilibrium();
+  b.bringToEquilibrium();
+  for (int k = 0; k < 50; ++k) a.advance(), b.advance();
+  const model::Block& ba = a.scene().blocks[1];
+  const model::Block& bb = b.scene().blocks[1];
+  for (size_t v = 0; v < ba.vertices.size(); ++v) EXPECT_EQ(ba.vertices[v], bb.vertices[v]);
+  for (int i = 0; i < 6; ++i) EXPECT_EQ(ba.velocity[i], bb.velocity[i]);
+}
