@@ -104,8 +104,8 @@ def main():
         },
         "monitors": [{"id": "crown", "point": [400, 330]}, {"id": "toe", "point": [1100, 40]}],
         "water": {"level": round(a.reservoir - a.datum, 3)},
-        # Verdict for a 1.2 km slide of 26 blocks: stable runs move up to ~0.7 m while the mass
-        # settles and come to rest; failing ones keep accelerating (docs/vajont.md).
+        # Verdict for a 1.2 km slide: before the stage-3 start stable runs moved up to ~0.7 m while
+        # the mass settled, then came to rest; failing ones keep accelerating (docs/vajont.md).
         "analysis": {"duration": 20.0, "time_step": 0.01, "failure_displacement": 5.0},
         "expected": [{"monitor": "toe", "quantity": "displacement", "at_most": 0.1,
                       "source": "phi = 22 deg lies above the back-analysed critical friction (docs/vajont.md): the slope holds"}],
