@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Writes cases/vajont.json from ../shared/data/vajont/case.json (the Vajont 1963 section of Boon,
 Houlsby & Utili's 2-D model, with reconstructed break points). Run: python3 scripts/make_vajont_case.py
-[--datum 630] [--kink 650]. Every number's provenance is in the shared data's README."""
+[--datum 630] [--kink 650] [--kink-block-width 10]. Every number's provenance is in the shared data's README."""
 import argparse, json, math, os
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -15,6 +15,10 @@ def main():
     ap.add_argument("--reservoir", type=float, default=700.42, help="reservoir level, m a.s.l.")
     ap.add_argument("--spacing", type=float, default=50.0,
                     help="vertical joints every this many m (kinematic freedom); 0: only J1 and J2 at the kinks (3 blocks)")
+    ap.add_argument("--kink-block-width", type=float, default=10.0,
+                    help="section.kink_block_width: a vertical joint this many m up the slope of each concave kink of "
+                         "the sliding surface, so that no wide block leans on its corner there (docs/vajont.md, "
+                         "issue #14); wider than the 5 m failure displacement. 0: none")
     ap.add_argument("--keep-valley-steps", action="store_true",
                     help="keep the opposite bank's sub-metre vertical steps (walls to a sliding block)")
     ap.add_argument("--runout", type=float, default=None, metavar="PHI_RES",
@@ -66,7 +70,11 @@ def main():
             "(BOON2D script, quoted planes); ground surface quoted, sliding-surface dips quoted (37.49, 13.5, 0 deg), "
             f"break points reconstructed (upper kink x_b = {a.kink:g} m chosen in 560-700 to match the quoted volume); "
             f"internal joints: vertical, every {a.spacing:g} m through the upper kink, plus J2 at the lower kink "
-            "(reconstructed: rigid blocks need this kinematic freedom to follow the chair-shaped surface, see docs/vajont.md). "
+            "(reconstructed: rigid blocks need this kinematic freedom to follow the chair-shaped surface, see docs/vajont.md)"
+            + (f"; kink blocks: a vertical joint {a.kink_block_width:g} m up the slope of each concave kink of the sliding "
+               "surface (section.kink_block_width, reconstructed: a wide block whose lower corner sits on the kink leans on "
+               "that corner, a buttress slices and a crushing rock mass do not have; wider than the 5 m failure "
+               "displacement, see docs/vajont.md)" if a.kink_block_width > 0 else "") + ". "
             "Valley floor and opposite bank: the upper envelope of Boon's boundary blocks, with its vertical steps "
             "(0.3-4 m, where two blocks meet) replaced by one point at the mean height (reconstructed). "
             "Density 2395.5 kg/m3 quoted "
@@ -90,11 +98,14 @@ def main():
                 [[[x, -1.0], [x, 700.0]] for x in vertical_joints] if moving or a.spacing <= 0 else []),
             "joint_sets": [{"angle": 90, "spacing": a.spacing, "origin": [a.kink, 0.0]}]
                           if not moving and a.spacing > 0 else [],
+            # A thin block up the slope of each concave kink (issue #14): without it the block
+            # there leans on its lower corner, and the back-analysed friction is that corner's.
+            **({"kink_block_width": a.kink_block_width} if a.kink_block_width > 0 else {}),
         },
         "monitors": [{"id": "crown", "point": [400, 330]}, {"id": "toe", "point": [1100, 40]}],
         "water": {"level": round(a.reservoir - a.datum, 3)},
-        # Verdict for a 1.2 km slide of 26 blocks: stable runs move up to ~0.7 m while the mass
-        # settles and come to rest; failing ones keep accelerating (docs/vajont.md).
+        # Verdict for a 1.2 km slide: before the stage-3 start stable runs moved up to ~0.7 m while
+        # the mass settled, then came to rest; failing ones keep accelerating (docs/vajont.md).
         "analysis": {"duration": 20.0, "time_step": 0.01, "failure_displacement": 5.0},
         "expected": [{"monitor": "toe", "quantity": "displacement", "at_most": 0.1,
                       "source": "phi = 22 deg lies above the back-analysed critical friction (docs/vajont.md): the slope holds"}],
@@ -115,7 +126,7 @@ def main():
         # run-out. The distance is assumed: ring-shear tests bring clays to residual over some
         # hundreds of mm, and no Vajont value was retrieved (shared data README).
         case["description"] += (f" TRIGGER-TO-RUN-OUT variant: one sliding-surface law, peak friction {peak:g} deg "
-                                 f"(just below the 18.00 deg critical at the failure level: F < 1, the slope fails) "
+                                 "(just below this layout's critical friction at the failure level, docs/vajont.md: F < 1, the slope fails) "
                                  f"softening to a residual {residual:g} deg (the run-out's back-analysed value) over "
                                  f"a slip of {distance:g} m (assumed), 60 s from the failure level to rest; reservoir "
                                  "held at its level (the wave is not modelled). Observed: 300-400 m horizontal travel, "

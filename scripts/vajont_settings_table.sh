@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The Vajont rows of docs/accuracy.md's rigid-block and preset tables: the critical friction of
-# cases/vajont.json (c = 0) and the run-out at φ_res = 5.89° (calibration/vajont_runout), each with
+# cases/vajont.json (c = 0) and the run-out at φ_res = 6.22° (calibration/vajont_runout's estimate), each with
 # the case's own settings, rigid blocks and the three presets, with wall times.
 # Usage: scripts/vajont_settings_table.sh [BIN]   (about 4 minutes; from the repository root; time
 # it on an otherwise idle machine)
@@ -8,13 +8,14 @@ set -euo pipefail
 bin="${1:-build/ddaslope}"
 tmp="$(mktemp -d)"
 trap 'rm -rf "$tmp"' EXIT
-echo "| settings | critical φ (°), wall (s) | run-out at 5.89°: crown travel (m), peak speed (m/s), wall (s) |"
+phi_res=6.22
+echo "| settings | critical φ (°), wall (s) | run-out at ${phi_res}°: crown travel (m), peak speed (m/s), wall (s) |"
 echo "|---|---|---|"
 for opt in "" "--blocks rigid" "--preset fast" "--preset balanced" "--preset accurate"; do
   # shellcheck disable=SC2086
   crit=$("$bin" critical cases/vajont.json --joint sliding_surface --solve friction --cohesion 0 $opt --json)
   # shellcheck disable=SC2086
-  "$bin" run calibration/vajont_runout/case.json --set joints.sliding_surface.friction_angle=5.89 $opt \
+  "$bin" run calibration/vajont_runout/case.json --set joints.sliding_surface.friction_angle="$phi_res" $opt \
     --out "$tmp/r" --quiet >/dev/null
   label="${opt:-own settings}"
   python3 - "$label" "$crit" "$tmp/r" <<'PY'
