@@ -385,6 +385,53 @@ TEST(CaseReader, SeismicErrors) {
   expectError(d, "seismic", "object");
 }
 
+// Ground-motion records (issue #17): every rejected class names the case's JSON path, the record
+// file and its line; the CLI exits 2.
+TEST(CaseReader, GroundMotionRecordErrors) {
+  const std::string header = "PEER NGA STRONG MOTION DATABASE RECORD\nTEST 1/1/00, STATION, 000\n"
+                             "ACCELERATION TIME SERIES IN UNITS OF G\n";
+  const auto at2 = [&](const std::string& name, const std::string& body) {
+    json d = minimal();
+    d["seismic"] = {{"record", {{"file", writeTemp(name, header + body)}}}};
+    return d;
+  };
+  expectError(at2("nonpts.AT2", "DT= .0100 SEC\n 0.1 0.2\n"), "seismic.record.file", "line 4: expected NPTS and DT");
+  expectError(at2("nan.AT2", "NPTS=    4, DT= .0100 SEC\n 0.1 0.2\n nan 0.1\n"), "seismic.record.file",
+              "line 6: expected a finite acceleration, found \"nan\"");
+  expectError(at2("count.AT2", "NPTS=    5, DT= .0100 SEC\n 0.1 0.2 0.3 0.4\n"), "seismic.record.file",
+              "NPTS = 5 on line 4, but the record holds 4 values");
+  json d = at2("dt.AT2", "NPTS=    2, DT= .0100 SEC\n 0.1 0.2\n");
+  d["seismic"]["record"]["dt"] = 0.005;
+  expectError(d, "seismic.record.file", "line 4: the case expects samples every 0.005 s, the record has 0.01 s");
+  d = minimal();
+  d["seismic"] = {{"record", {{"file", writeTemp("units.AT2", "A\nB\nVELOCITY IN UNITS OF CM/S\nNPTS= 2, DT= .01\n1 2\n")}}}};
+  expectError(d, "seismic.record.file", "line 3: expected the units");
+  const auto csv = [&](const std::string& name, const std::string& text) {
+    json c = minimal();
+    c["seismic"] = {{"record", {{"file", writeTemp(name, text)}, {"units", "g"}}}};
+    return c;
+  };
+  expectError(csv("unsorted.csv", "time,a_h\n0,0.1\n0.02,0.2\n0.01,0.1\n"), "seismic.record.file",
+              "line 4: expected times increasing");
+  expectError(csv("nan.csv", "time,a_h\n0,0.1\n0.01,nan\n"), "seismic.record.file",
+              "line 3: expected a finite horizontal acceleration");
+  expectError(csv("column.csv", "t,a_h\n0,0.1\n"), "seismic.record.file", "line 1: expected a column \"time\"");
+  d = csv("nounits.csv", "time,a_h\n0,0.1\n0.01,0.1\n");
+  d["seismic"]["record"].erase("units");
+  expectError(d, "seismic.record.units", "required for a CSV record");
+  d["seismic"]["record"]["units"] = "gal";
+  expectError(d, "seismic.record.units", "\"g\" or \"m/s2\"");
+  // On the command line: exit 2, with the record named.
+  const std::string bad = writeTemp("cli_count.AT2", header + "NPTS=    5, DT= .0100 SEC\n 0.1 0.2\n");
+  json c = minimal();
+  c["seismic"] = {{"record", {{"file", bad}}}};
+  const std::string path = writeTemp("record_case.json", c.dump());
+  std::string err;
+  EXPECT_EQ(runCli("check " + path, &err), 2);
+  EXPECT_NE(err.find(bad), std::string::npos) << err;
+  EXPECT_NE(err.find("line 5"), std::string::npos) << err;
+}
+
 // --kh / --set seismic.k_h reach a case that has no seismic object, on any command: the yield
 // coefficient of the A3 block (40.1° on 40°) toward the valley (−x) is tan 0.1° = 0.0017453
 // (benchmarks.md §E's closed form, 0.5 %); a coefficient out of range is bad input (exit 2).

@@ -12,6 +12,7 @@
 #include "ddaslope/core/errors.hpp"
 #include "ddaslope/geometry/polygon.hpp"
 #include "ddaslope/io/csv_series.hpp"
+#include "ddaslope/io/ground_motion.hpp"
 #include "ddaslope/io/input_file.hpp"
 #include "ddaslope/model/input_limits.hpp"
 #include "ddaslope/model/presets.hpp"
@@ -489,10 +490,37 @@ void readWater(const Reader& r, const json& doc, model::Scene& s) {
 void readSeismic(const Reader& r, const json& doc, model::Scene& s) {
   if (!doc.contains("seismic")) return;
   const json& q = doc.at("seismic");
-  r.onlyKeys(q, "seismic", {"k_h", "k_v"});
+  r.onlyKeys(q, "seismic", {"k_h", "k_v", "record"});
   // Two g either way is beyond any recorded peak ground acceleration.
   s.seismic.kh = r.optionalIn(q, "seismic", "k_h", 0, -2, 2, false, false, "a coefficient in [-2, 2] (a fraction of g)");
   s.seismic.kv = r.optionalIn(q, "seismic", "k_v", 0, -2, 2, false, false, "a coefficient in [-2, 2] (a fraction of g)");
+  if (!q.contains("record")) return;
+  const json& rec = q.at("record");
+  const std::string p = "seismic.record";
+  r.onlyKeys(rec, p, {"file", "format", "units", "scale", "start", "dt", "time_column", "horizontal_column",
+                      "vertical_column"});
+  io::RecordSpec spec;
+  const std::string file = r.string(r.required(rec, p, "file"), p + ".file");
+  spec.file = (std::filesystem::path(r.file()).parent_path() / file).string();
+  const auto text = [&](const char* key, const std::string& def) {
+    return rec.contains(key) ? r.string(rec.at(key), p + "." + key) : def;
+  };
+  std::string ext = std::filesystem::path(file).extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  spec.format = text("format", ext == ".csv" ? "csv" : "at2");
+  if (spec.format != "at2" && spec.format != "csv") r.fail(p + ".format", "expected \"at2\" or \"csv\", found \"" + spec.format + "\"");
+  spec.units = text("units", "");
+  if (spec.format == "csv" && spec.units.empty())
+    r.fail(p + ".units", "required for a CSV record: \"g\" or \"m/s2\" (a .AT2 record is in g)");
+  if (!spec.units.empty() && spec.units != "g" && spec.units != "m/s2")
+    r.fail(p + ".units", "expected \"g\" or \"m/s2\", found \"" + spec.units + "\"");
+  spec.scale = r.optionalIn(rec, p, "scale", 1, -100, 100, false, false, "a scale factor in [-100, 100]");
+  spec.start = r.optionalIn(rec, p, "start", 0, 0, model::limits::kMaxDuration, false, false, "a start time ≥ 0 s");
+  if (rec.contains("dt")) spec.dt = r.numberIn(rec.at("dt"), p + ".dt", 0, 10, true, false, "a sample interval in (0, 10] s");
+  spec.timeColumn = text("time_column", "time");
+  spec.horizontalColumn = text("horizontal_column", "a_h");
+  spec.verticalColumn = text("vertical_column", "");
+  s.seismic.ground = io::readGroundMotion(spec, r.file(), p + ".file");
 }
 
 void readAnalysis(const Reader& r, const json& doc, model::Scene& s) {

@@ -18,7 +18,8 @@ std::vector<std::string> splitCells(const std::string& line) {
   return cells;
 }
 
-/// The cell as a finite number, or false: the whole cell (spaces aside) must be the number.
+}  // namespace
+
 bool finiteNumber(const std::string& cell, double& value) {
   const char* begin = cell.c_str();
   char* end = nullptr;
@@ -28,8 +29,6 @@ bool finiteNumber(const std::string& cell, double& value) {
   while (*end == ' ' || *end == '\t' || *end == '\r') ++end;
   return *end == '\0';
 }
-
-}  // namespace
 
 Series readCsvColumns(const std::string& csvPath, const std::string& xColumn, const std::string& yColumn,
                       const std::string& referrerFile, const std::string& referrerPath) {
