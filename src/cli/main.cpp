@@ -189,7 +189,8 @@ int runCommand(const std::string& casePath, const std::string& outDir, const Ove
                 "docs/accuracy.md (\"The energy budget\") for its known sources, and compare a run at half and at "
                 "twice the time step to see whether your result depends on it\n",
                 std::max(gain, stepGain) / std::max(scale, 1e-300), stepGain / std::max(scale, 1e-300), stepTime);
-  std::printf("  wrote %s/history.csv, summary.json, history.png and energy.png\n", outDir.c_str());
+  std::printf("  wrote %s/history.csv, summary.json, history.png%s and energy.png\n", outDir.c_str(),
+              scene.seismic.ground.active() ? ", ground_motion.png" : "");
   return kExitOk;
 }
 

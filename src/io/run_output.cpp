@@ -52,22 +52,30 @@ nlohmann::ordered_json jointsEcho(const model::Scene& scene) {
 /// history.csv is written under a temporary name and renamed only when the run completed.
 class HistoryWriter {
  public:
-  HistoryWriter(const fs::path& dir, const std::vector<std::string>& monitors) : dir_(dir) {
+  /// `ground`: the input ground motion, written beside the monitors when it is active.
+  HistoryWriter(const fs::path& dir, const std::vector<std::string>& monitors, const model::GroundMotion& ground)
+      : dir_(dir), ground_(ground) {
     fs::create_directories(dir);
     fs::remove(dir / "history.csv");
     fs::remove(dir / "history.partial.csv");
     fs::remove(dir / "summary.json");
     fs::remove(dir / "history.png");
     fs::remove(dir / "energy.png");
+    fs::remove(dir / "ground_motion.png");
     out_.open(dir / "history.partial.csv");
     if (!out_) throw InputError((dir / "history.csv").string(), "", "cannot write the output file");
     out_ << "time,dt,iterations";
+    if (ground_.active()) out_ << ",ground_ax,ground_ay";
     for (const auto& id : monitors) out_ << ',' << id << "_ux," << id << "_uy," << id << "_vx," << id << "_vy";
     out_ << ",kinetic_energy,potential_energy,elastic_energy,load_work,energy_gain\n";
   }
   void row(const solver::StepRecord& r, const std::vector<MonitorSample>& s, const solver::EnergyBudget& e,
            double initialMechanical) {
     out_ << fmt(r.time) << ',' << fmt(r.dt) << ',' << r.iterations;
+    if (ground_.active()) {
+      const Vec2 a = ground_.at(r.time);
+      out_ << ',' << fmt(a.x()) << ',' << fmt(a.y());
+    }
     for (const auto& m : s) out_ << ',' << fmt(m.ux) << ',' << fmt(m.uy) << ',' << fmt(m.vx) << ',' << fmt(m.vy);
     out_ << ',' << fmt(e.kinetic) << ',' << fmt(e.potential) << ',' << fmt(e.elastic) << ',' << fmt(e.loadWork)
          << ',' << fmt(e.mechanical() - initialMechanical) << '\n';
@@ -79,6 +87,7 @@ class HistoryWriter {
 
  private:
   fs::path dir_;
+  const model::GroundMotion& ground_;
   std::ofstream out_;
 };
 
@@ -108,6 +117,23 @@ void writeSummary(const fs::path& dir, const model::Scene& scene, const RunOptio
                       {"relaxed", st.relaxationConverged},
                       {"settling_steps", st.settlingSteps},
                       {"started_at_rest", st.startedAtRest}};
+  if (scene.seismic.active()) {
+    ordered_json q = {{"k_h", scene.seismic.kh}, {"k_v", scene.seismic.kv}};
+    const model::GroundMotion& g = scene.seismic.ground;
+    if (g.active()) {
+      const auto peak = [](const std::vector<double>& a) {
+        double m = 0;
+        for (double v : a) m = std::max(m, std::abs(v));
+        return m;
+      };
+      q["record"] = {{"samples", g.times.size()},
+                     {"from_s", g.times.front()},
+                     {"to_s", g.times.back()},
+                     {"peak_horizontal_m_s2", peak(g.horizontal)},
+                     {"peak_vertical_m_s2", peak(g.vertical)}};
+    }
+    j["seismic"] = q;
+  }
   j["max_contacts"] = st.maxContacts;
   j["max_penetration_m"] = st.maxPenetration;
   j["step_limit_m"] = o.stepLimit;
@@ -168,8 +194,10 @@ void writeSummary(const fs::path& dir, const model::Scene& scene, const RunOptio
 }
 
 /// history.png: each monitor's displacement and speed against time; energy.png: where the
-/// energy went (kinetic, potential released, stored elastic, and the rest: dissipated).
-void writeHistoryPlots(const fs::path& dir, const std::string& casePath, const Trace& trace) {
+/// energy went (kinetic, potential released, stored elastic, and the rest: dissipated);
+/// ground_motion.png, under a record: the input ground acceleration on the same time axis.
+void writeHistoryPlots(const fs::path& dir, const std::string& casePath, const Trace& trace,
+                       const model::GroundMotion& ground) {
   if (trace.steps.empty()) return;
   // At most ~2000 points per line: a long run has tens of thousands of steps.
   const size_t stride = std::max<size_t>(1, trace.steps.size() / 2000);
@@ -202,6 +230,19 @@ void writeHistoryPlots(const fs::path& dir, const std::string& casePath, const T
   }
   energy.series = {released, kinetic, elastic, dissipated};
   writePng(energy, (dir / "energy.png").string());
+  if (!ground.active()) return;
+  LinePlot input{"Ground acceleration: " + casePath, "time (s)", "ground acceleration (m/s²)", {}};
+  PlotSeries ax{"horizontal (+x)", {}, {}, false}, ay{"vertical (up)", {}, {}, false};
+  for (size_t k = 0; k < trace.steps.size(); k += stride) {
+    const Vec2 a = ground.at(trace.steps[k].time);
+    ax.x.push_back(trace.steps[k].time);
+    ax.y.push_back(a.x());
+    ay.x.push_back(trace.steps[k].time);
+    ay.y.push_back(a.y());
+  }
+  input.series = {ax};
+  if (!ground.vertical.empty()) input.series.push_back(ay);
+  writePng(input, (dir / "ground_motion.png").string());
 }
 
 }  // namespace
@@ -212,7 +253,7 @@ RunOutcome runScene(const model::Scene& scene, const RunOptions& opt) {
   for (const auto& m : scene.monitors) o.trace.monitorIds.push_back(m.id);
   const bool recordEnergy = opt.energy || opt.outputDir.has_value();
   std::optional<HistoryWriter> history;
-  if (opt.outputDir) history.emplace(*opt.outputDir, o.trace.monitorIds);
+  if (opt.outputDir) history.emplace(*opt.outputDir, o.trace.monitorIds, scene.seismic.ground);
   solver::Simulation sim(scene);
   sim.setThreads(opt.threads);
   const PictureFrame frame = frameScene(scene);
@@ -260,7 +301,7 @@ RunOutcome runScene(const model::Scene& scene, const RunOptions& opt) {
   if (o.completed) o.expectations = evaluateExpectations(o.trace, scene.expectations);
   if (history) {
     history->finish(o.completed);
-    if (o.completed) writeHistoryPlots(*opt.outputDir, opt.casePath, o.trace);
+    if (o.completed) writeHistoryPlots(*opt.outputDir, opt.casePath, o.trace, scene.seismic.ground);
     writeSummary(*opt.outputDir, scene, opt, o);
   }
   return o;
