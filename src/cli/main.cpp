@@ -15,6 +15,7 @@
 
 #include "ddaslope/calibration/backanalysis.hpp"
 #include "ddaslope/calibration/contact_comparison.hpp"
+#include "ddaslope/io/ground_motion.hpp"
 #include "ddaslope/io/job_reader.hpp"
 #include "ddaslope/calibration/strength_search.hpp"
 #include "ddaslope/io/json_record.hpp"
@@ -237,6 +238,22 @@ void printKinkNotes(const ddaslope::model::Scene& scene) {
   }
 }
 
+/// The seismic loading in force: the coefficients and the record's span and peaks.
+void printSeismicNote(const ddaslope::model::Scene& scene) {
+  const ddaslope::model::SeismicLoad& q = scene.seismic;
+  if (q.kh != 0 || q.kv != 0)
+    std::printf("  pseudo-static seismic load: k_h = %g (a force along %s), k_v = %g (%s), from the initial equilibrium on\n",
+                q.kh, q.kh < 0 ? "-x" : "+x", q.kv, q.kv < 0 ? "downward" : "upward");
+  if (!q.ground.active()) return;
+  double ph = 0, pv = 0;
+  for (double a : q.ground.horizontal) ph = std::max(ph, std::abs(a));
+  for (double a : q.ground.vertical) pv = std::max(pv, std::abs(a));
+  std::printf("  ground-motion record: %zu samples over t = %g-%g s of the analysis, peak %.4g m/s² (%.3g g) horizontal",
+              q.ground.times.size(), q.ground.times.front(), q.ground.times.back(), ph, ph / ddaslope::io::kStandardGravity);
+  if (!q.ground.vertical.empty()) std::printf(", %.4g m/s² (%.3g g) vertical", pv, pv / ddaslope::io::kStandardGravity);
+  std::printf("\n");
+}
+
 int checkCommand(const std::string& casePath, const Overrides& o) {
   ddaslope::model::Scene scene = loadCase(casePath, o);
   applyOverrides(scene, o, casePath);
@@ -252,6 +269,7 @@ int checkCommand(const std::string& casePath, const Overrides& o) {
   std::printf("  step limit %g m per step (g2·w0 = %g m%s), contact search distance %g m\n", sim.stepLimit(), g2w0,
               sim.stepLimit() < g2w0 ? ", held to a tenth of the thinnest block" : "", sim.searchDistance());
   std::printf("  %s\n", settingsLine(scene).c_str());
+  printSeismicNote(scene);
   printKinkNotes(scene);
   return kExitOk;
 }
