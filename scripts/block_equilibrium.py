@@ -29,9 +29,12 @@ surface (docs/calibration.md). The comparison separates what the blocks are from
 computes with them.
 
 Run: python3 scripts/block_equilibrium.py CASE --joint sliding_surface --friction 18 [--json]
+          [--kh K] [--kv K]                 (pseudo-static coefficients instead of the case's)
           [--without-corners [BLOCK ...]]   (no corner forces: of those blocks, or of any)
           [--kink-block-width M]            (a section case cut with another kink block width)
      python3 scripts/block_equilibrium.py CASE --joint sliding_surface --cohesion 50e3 --solve friction
+     python3 scripts/block_equilibrium.py CASE --solve seismic-coefficient --direction=-x
+          (the largest horizontal coefficient the blocks stand: the yield acceleration k_y)
      (CASE with a "section": the script calls build/ddaslope cut; --ddaslope PATH to point elsewhere)
 Needs scipy (Debian python3-scipy, installed by scripts/install-deps).
 """
@@ -186,13 +189,18 @@ class BlockModel:
         if "water" in case and self.level is None:
             sys.exit("block_equilibrium: only a reservoir level (water.level) is supported")
         self.gamma_w = case.get("water", {}).get("unit_weight", WATER_UNIT_WEIGHT)
+        # Pseudo-static seismic coefficients (docs/seismic.md): a force (k_h, k_v)·m·|g|, +x and up.
+        seismic = case.get("seismic", {})
+        self.kh, self.kv = seismic.get("k_h", 0.0), seismic.get("k_v", 0.0)
 
     def loads(self, b):
         """Weight and buoyancy of block b: force (fx, fy) and its moment about the origin."""
         poly = self.polys[b]
         area, (cx, cy) = area_centroid(poly)
         rho = self.densities[self.blocks[b]["material"]]
-        fx, fy = rho * area * self.gravity[0], rho * area * self.gravity[1]
+        g = math.hypot(*self.gravity)
+        fx = rho * area * (self.gravity[0] + self.kh * g)
+        fy = rho * area * (self.gravity[1] + self.kv * g)
         m = cx * fy - cy * fx
         if self.level is not None:
             sub = below(poly, self.level)
@@ -285,11 +293,34 @@ def critical_friction(model, joint, cohesion, width=1e-3):
     return hi
 
 
+def yield_coefficient(model, direction, width=1e-6):
+    """The largest horizontal coefficient along `direction` (+1: +x) the blocks can stand, with
+    their strengths: the yield acceleration k_y in g (inf: beyond 2; -1: not even at 0)."""
+    c = lambda j: model.joints[j].get("cohesion", 0.0)
+    phi = lambda j: model.joints[j]["friction_angle"]
+    def holds(k):
+        model.kh = direction * k
+        return model.feasible_or_min(None, phi, c, False)
+    lo, hi = 0.0, 2.0
+    if not holds(lo):
+        return -1.0
+    if holds(hi):
+        return math.inf
+    while hi - lo > width:
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if holds(mid) else (lo, mid)
+    return 0.5 * (lo + hi)
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("case")
-    ap.add_argument("--joint", required=True)
-    ap.add_argument("--solve", choices=["cohesion", "friction"], default="cohesion")
+    ap.add_argument("--joint", help="the joint to solve for (cohesion, friction)")
+    ap.add_argument("--solve", choices=["cohesion", "friction", "seismic-coefficient"], default="cohesion")
+    ap.add_argument("--direction", choices=["+x", "-x"], default="+x",
+                    help="seismic-coefficient: the direction of the horizontal load")
+    ap.add_argument("--kh", type=float, help="horizontal seismic coefficient (+x), instead of the case's")
+    ap.add_argument("--kv", type=float, help="vertical seismic coefficient (up), instead of the case's")
     ap.add_argument("--friction", type=float, help="friction angle of the joint (deg) when solving c")
     ap.add_argument("--cohesion", type=float, help="cohesion of the joint (Pa) when solving phi")
     ap.add_argument("--ddaslope", default=os.path.join(ROOT, "build", "ddaslope"))
@@ -300,12 +331,30 @@ def main():
     ap.add_argument("--json", action="store_true")
     args = ap.parse_args()
     model = BlockModel(load_blocks(args.case, args.ddaslope, args.kink_block_width))
-    if args.joint not in model.joints:
-        sys.exit(f"block_equilibrium: {args.case}: no joint named '{args.joint}'")
+    if args.kh is not None:
+        model.kh = args.kh
+    if args.kv is not None:
+        model.kv = args.kv
     if args.without_corners is not None:
         named = set(args.without_corners)
         model.contacts = [c for c in model.contacts
                           if c[4] > 0 or (named and model.blocks[c[0]].get("id") not in named)]
+    if args.solve == "seismic-coefficient":
+        k = yield_coefficient(model, 1 if args.direction == "+x" else -1)
+        if k < 0:
+            sys.exit(f"block_equilibrium: {args.case}: the blocks cannot stand without seismic loading")
+        text = "beyond 2" if math.isinf(k) else f"{k:.6g}"
+        if args.json:
+            print(json.dumps({"solve": args.solve, "direction": args.direction, "value": None if math.isinf(k) else k,
+                              "unit": "g", "blocks": len(model.blocks), "contact_points": len(model.contacts)}))
+        else:
+            print(f"{args.case}: largest horizontal seismic coefficient along {args.direction} the blocks can stand "
+                  f"(k_v = {model.kv:g}): {text} g ({len(model.blocks)} blocks, {len(model.contacts)} contact points)")
+        return
+    if args.joint is None:
+        sys.exit("block_equilibrium: --joint is needed to solve for cohesion or friction")
+    if args.joint not in model.joints:
+        sys.exit(f"block_equilibrium: {args.case}: no joint named '{args.joint}'")
     point = sum(1 for c in model.contacts if c[4] == 0)
     model.corner_forces = []
     if args.solve == "cohesion":

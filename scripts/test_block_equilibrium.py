@@ -38,6 +38,13 @@ class BlockEquilibrium(unittest.TestCase):
         m = model("sliding_block_30deg.json")
         self.assertAlmostEqual(be.critical_friction(m, "interface", 0.0), 30, delta=1e-3)
 
+    def test_yield_coefficient_of_a_block_on_an_incline(self):
+        # Closed form (benchmarks.md §E): a block on alpha = 40 deg with phi = 40.1 deg stands a
+        # horizontal coefficient toward the valley (-x here) up to tan(phi - alpha) = tan 0.1 deg;
+        # the bisection narrows to 1e-6.
+        m = model("stable_block_40deg.json")
+        self.assertAlmostEqual(be.yield_coefficient(m, -1), math.tan(math.radians(0.1)), delta=2e-6)
+
     def test_chair_without_its_corner_contacts_is_the_multi_wedge_method(self):
         # Independent code: with only edge-to-edge interfaces (no block corner carrying a point
         # force) the blocks of the chair slide are the vertical slices of the multi-wedge method

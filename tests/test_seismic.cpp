@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "ddaslope/calibration/strength_search.hpp"
+#include "ddaslope/io/case_reader.hpp"
 #include "ddaslope/model/presets.hpp"
 #include "ddaslope/solver/simulation.hpp"
 #include "scene_builders.hpp"
@@ -181,5 +182,28 @@ TEST(Seismic, SlidingUnderASineMatchesTheSlidingBlockEquation) {
     SCOPED_TRACE(rigid ? "rigid" : "deformable");
     EXPECT_NEAR(slid, expected, 0.02 * expected);
     EXPECT_LE(t.largestEnergyGain(), 1e-6 * t.energyInPlay());
+  }
+}
+
+// A multi-block slope (calibration/two_block_slide: an active block on a 40° plane thrusting
+// through a vertical joint, φ = 40°, on a passive block on a flat toe), its sliding surface at
+// φ = 20°: the largest horizontal coefficient its own blocks can stand in limit equilibrium is
+// 0.170625 (scripts/block_equilibrium.py … --solve seismic-coefficient, Livesley's rigid-block
+// programme on the same blocks). DDA's yield coefficient must match it within 0.5 % whatever the
+// settings that should not matter: Δt, block model and contact treatment.
+TEST(Seismic, YieldCoefficientOfATwoBlockSlideMatchesItsBlocksLimitEquilibrium) {
+  const double bound = 0.170625;
+  model::Scene base = io::readCase(std::string(DDASLOPE_SOURCE_DIR) + "/calibration/two_block_slide/case.json");
+  for (model::JointProperties& j : base.joints)
+    if (j.name == "sliding_surface") j.frictionAngle = 20 * M_PI / 180;
+  for (int variant = 0; variant < 4; ++variant) {
+    model::Scene scene = base;
+    if (variant == 1) scene.settings.timeStep *= 5;
+    if (variant == 2) scene.settings.rigidBlocks = true;
+    if (variant == 3) scene.settings.contactTreatment = model::ContactTreatment::Vertex;
+    const calibration::CriticalResult r = calibration::criticalSeismicCoefficient(scene, +1, 1e-4);
+    SCOPED_TRACE("variant " + std::to_string(variant));
+    ASSERT_TRUE(r.found) << r.message;
+    EXPECT_NEAR(r.critical, bound, 0.005 * bound);
   }
 }
