@@ -198,9 +198,12 @@ class BlockModel:
         poly = self.polys[b]
         area, (cx, cy) = area_centroid(poly)
         rho = self.densities[self.blocks[b]["material"]]
+        # k_h along the horizontal (+x turned perpendicular to gravity), k_v up (as ddaslope).
         g = math.hypot(*self.gravity)
-        fx = rho * area * (self.gravity[0] + self.kh * g)
-        fy = rho * area * (self.gravity[1] + self.kv * g)
+        up = (-self.gravity[0] / g, -self.gravity[1] / g)
+        horizontal = (up[1], -up[0])
+        fx = rho * area * (self.gravity[0] + g * (self.kh * horizontal[0] + self.kv * up[0]))
+        fy = rho * area * (self.gravity[1] + g * (self.kh * horizontal[1] + self.kv * up[1]))
         m = cx * fy - cy * fx
         if self.level is not None:
             sub = below(poly, self.level)

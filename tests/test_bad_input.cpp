@@ -438,9 +438,16 @@ TEST(CaseReader, GroundMotionRecordErrors) {
 TEST(Cli, SeismicCoefficientsOnTheCommandLine) {
   const std::string path = std::string(DDASLOPE_SOURCE_DIR) + "/cases/stable_block_40deg.json";
   std::string err;
-  const std::string json = captureCli("critical " + path + " --solve seismic-coefficient --direction -x --width 1e-6 --json", &err);
+  // Both directions by default: the slope faces −x, and that is the direction reported.
+  const std::string json = captureCli("critical " + path + " --solve seismic-coefficient --json", &err);
   const auto r = nlohmann::json::parse(json);
   EXPECT_NEAR(r["critical"].get<double>(), 0.0017453, 0.005 * 0.0017453) << err;
+  EXPECT_EQ(r["direction"], "-x");
+  // Strength options mean nothing to this search: refused, not ignored.
+  EXPECT_EQ(runCli("critical " + path + " --solve seismic-coefficient --friction 10", &err), 2);
+  EXPECT_NE(err.find("--friction"), std::string::npos) << err;
+  EXPECT_EQ(runCli("critical " + path + " --solve seismic-coefficient --kh 0.1", &err), 2);
+  EXPECT_NE(err.find("seismic.k_h"), std::string::npos) << err;
   // Past k_y the block slides in a run; below it, it stands (--kh is --set seismic.k_h).
   const fs::path out = fs::temp_directory_path() / ("ddaslope_kh_" + std::to_string(::getpid()));
   ASSERT_EQ(runCli("run " + path + " --quiet --duration 0.5 --kh -0.01 --out " + out.string(), &err), 0) << err;

@@ -110,16 +110,54 @@ TEST(Seismic, NewmarkRectangularPulse) {
   spec.alphaDeg = 0;
   spec.phiDeg = std::atan(n) * 180 / M_PI;
   spec.duration = 2.0;  // the block stops at t0·A/N = 1.25 s
-  model::Scene scene = scenes::makeIncline(spec);
-  model::applyPreset(scene.settings, *model::findPreset("balanced"), scene.modelHalfSize(), g);
-  scene.settings.rigidBlocks = true;
-  scene.seismic.ground.times = {0, t0};
-  scene.seismic.ground.horizontal = {a * g, a * g};
-  const io::Trace t = scenes::runTrace(scene);
   const double v = a * g * t0, expected = v * v / (2 * g * n) * (1 - n / a);  // 0.9197 m
-  const double slid = -scenes::measureAt(t, "centre", "ux", 2.0);
-  EXPECT_NEAR(slid, expected, 0.02 * expected);
-  EXPECT_LE(t.largestEnergyGain(), 1e-6 * t.energyInPlay());
+  // The balanced preset, and steps that divide t0 (where summed Δt lands a hair past the pulse's
+  // end: the step there must still receive its share of the impulse).
+  for (const double dt : {0.0, 1e-3, 1e-2}) {
+    model::Scene scene = scenes::makeIncline(spec);
+    model::applyPreset(scene.settings, *model::findPreset("balanced"), scene.modelHalfSize(), g);
+    if (dt > 0) scene.settings.timeStep = dt;
+    scene.settings.rigidBlocks = true;
+    scene.seismic.ground.times = {0, t0};
+    scene.seismic.ground.horizontal = {a * g, a * g};
+    const io::Trace t = scenes::runTrace(scene);
+    const double slid = -scenes::measureAt(t, "centre", "ux", 2.0);
+    SCOPED_TRACE("dt " + std::to_string(dt));
+    EXPECT_NEAR(slid, expected, 0.001 * expected);
+    EXPECT_LE(t.largestEnergyGain(), 1e-6 * t.energyInPlay());
+  }
+}
+
+// A step applies the record's mean over the step: the exact integral of the piecewise-linear
+// record, divided by the step (a triangle of area 1 over [0, 2], zero outside).
+TEST(Seismic, RecordMeanOverAStepIsItsExactIntegral) {
+  model::GroundMotion m;
+  m.times = {0, 1, 2};
+  m.horizontal = {0, 1, 0};
+  m.vertical = {0, -2, 0};
+  EXPECT_NEAR(m.meanOver(0, 2).x(), 0.5, 1e-15);          // area 1 over 2 s
+  EXPECT_NEAR(m.meanOver(0.5, 1.5).x(), 0.75, 1e-15);     // 0.75 over 1 s
+  EXPECT_NEAR(m.meanOver(-1, 3).x(), 0.25, 1e-15);        // outside the record: zero
+  EXPECT_NEAR(m.meanOver(0.25, 0.75).y(), -1.0, 1e-15);   // the vertical component too
+  EXPECT_EQ(m.meanOver(2, 3).x(), 0.0);
+  // A zero-mean wave sampled every 5 ms averages to nothing over 10 ms steps (no aliasing).
+  model::GroundMotion wave;
+  for (int k = 0; k <= 200; ++k) wave.times.push_back(0.005 * k), wave.horizontal.push_back(k % 2 ? 5.0 : -5.0);
+  EXPECT_NEAR(wave.meanOver(0.1, 0.11).x(), 0.0, 1e-12);
+}
+
+// With gravity tilted by 20° (a plane drawn along x in a slope-aligned frame), "horizontal" is
+// perpendicular to gravity: the block on that plane has k_y = tan(φ − α) = tan 10° (0.5 %).
+TEST(Seismic, CoefficientsFollowTiltedGravity) {
+  InclineSpec spec;
+  spec.alphaDeg = 0;
+  spec.phiDeg = 30;
+  model::Scene scene = scenes::makeIncline(spec);
+  const double alpha = 20 * M_PI / 180;
+  scene.gravity = 9.81 * Vec2(-std::sin(alpha), -std::cos(alpha));  // down the plane along −x
+  const calibration::CriticalResult r = calibration::criticalSeismicCoefficient(scene, -1, 1e-4);
+  ASSERT_TRUE(r.found) << r.message;
+  EXPECT_NEAR(r.critical, std::tan(10 * M_PI / 180), 0.005 * std::tan(10 * M_PI / 180));
 }
 
 namespace {

@@ -127,6 +127,7 @@ CriticalResult criticalSeismicCoefficient(const model::Scene& scene, int directi
   CountedVerdict stableAt{[&](double k) {
     model::Scene trial = scene;
     trial.seismic.kh = direction * k;
+    trial.seismic.ground = {};  // k_y belongs to the slope, not to a record
     return judgeStability(trial, s.verdict, nullptr);
   }};
   const std::function<bool(double)> f = std::ref(stableAt);
@@ -146,7 +147,7 @@ CriticalResult criticalSeismicCoefficient(const model::Scene& scene, int directi
                   ": does the slope face the other way (--direction)?";
       r.stableEnd = stable;
     } else {
-      const BisectionResult b = narrowBracket(f, stable, k, width, s.threads);
+      const BisectionResult b = narrowBracket(f, stable, k, width > 0 ? width : 1e-3 * k, s.threads);
       copyBracket(b, r);
       r.critical = b.critical;
     }

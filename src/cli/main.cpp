@@ -81,9 +81,9 @@ void addModelOptions(CLI::App* cmd, Overrides& o) {
     };
   };
   cmd->add_option_function<double>("--kh", coefficient("k_h"),
-                                   "horizontal seismic coefficient: a force k_h·m·g along +x (negative: -x) from t = 0")
+                                   "horizontal seismic coefficient: a force k_h·m·g along +x (negative: -x), part of the loads from the initial equilibrium on")
       ->check(finiteIn(-2, 2, "a coefficient in [-2, 2]"));
-  cmd->add_option_function<double>("--kv", coefficient("k_v"), "vertical seismic coefficient: a force k_v·m·g upward from t = 0")
+  cmd->add_option_function<double>("--kv", coefficient("k_v"), "vertical seismic coefficient: a force k_v·m·g upward, part of the loads from the initial equilibrium on")
       ->check(finiteIn(-2, 2, "a coefficient in [-2, 2]"));
 }
 
@@ -252,6 +252,20 @@ void printSeismicNote(const ddaslope::model::Scene& scene) {
               q.ground.times.size(), q.ground.times.front(), q.ground.times.back(), ph, ph / ddaslope::io::kStandardGravity);
   if (!q.ground.vertical.empty()) std::printf(", %.4g m/s² (%.3g g) vertical", pv, pv / ddaslope::io::kStandardGravity);
   std::printf("\n");
+  // What a user may not expect of a record (docs/seismic.md).
+  const ddaslope::Vec2 first = q.ground.at(q.ground.times.front());
+  if (first.norm() > 1e-3 * std::max(ph, pv))
+    std::printf("  note: the record starts at %.4g m/s², not 0: a step load, which rings the contact springs; taper it in\n",
+                first.norm());
+  if (q.ground.times.front() >= scene.settings.duration)
+    std::printf("  note: the record starts at t = %g s, after the analysis ends (analysis.duration %g s): it never acts\n",
+                q.ground.times.front(), scene.settings.duration);
+  double sample = INFINITY;
+  for (size_t k = 1; k < q.ground.times.size(); ++k) sample = std::min(sample, q.ground.times[k] - q.ground.times[k - 1]);
+  if (scene.settings.timeStep > sample)
+    std::printf("  note: Δt %g s is longer than the record's sampling (%g s): each step applies the record's mean over "
+                "the step, so content above %.3g Hz is averaged out\n",
+                scene.settings.timeStep, sample, 0.5 / scene.settings.timeStep);
 }
 
 int checkCommand(const std::string& casePath, const Overrides& o) {
@@ -285,7 +299,7 @@ int jointIndex(const ddaslope::model::Scene& scene, const std::string& name, con
 struct CriticalOptions {
   std::string joint;
   std::string solve = "cohesion";
-  std::string direction = "+x";  ///< of the seismic coefficient searched for
+  std::string direction = "auto";  ///< of the seismic coefficient searched for: +x, -x or auto (both)
   double friction = -1;
   double cohesion = -1;
   double width = 0;
@@ -345,30 +359,62 @@ void warnAboutTrials(const std::string& casePath, const std::string& warning) {
   if (!warning.empty()) std::fprintf(stderr, "ddaslope: warning: %s: %s\n", casePath.c_str(), warning.c_str());
 }
 
-/// The yield seismic coefficient k_y (critical --solve seismic-coefficient).
+/// The yield seismic coefficient k_y (critical --solve seismic-coefficient): along the direction
+/// asked, or along both (auto), the smaller being the slope's.
 int seismicCoefficientCommand(const std::string& casePath, const ddaslope::model::Scene& scene,
                               const CriticalOptions& opt) {
+  // Options of the strength searches mean nothing here: refuse them rather than ignore them.
+  for (const auto& [given, name] : {std::pair{!opt.joint.empty(), "--joint"}, std::pair{opt.friction >= 0, "--friction"},
+                                    std::pair{opt.cohesion >= 0, "--cohesion"}, std::pair{!opt.curve.empty(), "--curve"}})
+    if (given)
+      throw ddaslope::InputError(name, "", "not used by --solve seismic-coefficient (set strengths with --set, e.g. "
+                                           "joints.NAME.friction_angle=30)");
+  if (scene.seismic.kh != 0)
+    throw ddaslope::InputError(casePath, "seismic.k_h",
+                               "the search sets k_h itself; remove it from the case or the command (--kh)");
+  if (scene.seismic.ground.active() && !opt.json)
+    std::fprintf(stderr, "ddaslope: note: %s: the ground-motion record is not used: k_y belongs to the slope\n", casePath.c_str());
   ddaslope::calibration::SearchSettings s;
   s.threads = opt.threads;
-  const int direction = opt.direction == "-x" ? -1 : 1;
-  const auto r = ddaslope::calibration::criticalSeismicCoefficient(scene, direction, opt.width > 0 ? opt.width : 1e-3, s);
+  std::vector<std::pair<std::string, ddaslope::calibration::CriticalResult>> results;
+  for (const char* d : {"+x", "-x"})
+    if (opt.direction == "auto" || opt.direction == d)
+      results.emplace_back(d, ddaslope::calibration::criticalSeismicCoefficient(scene, d[0] == '-' ? -1 : 1, opt.width, s));
+  // The slope's yield coefficient: the smaller of those found.
+  size_t best = 0;
+  for (size_t k = 1; k < results.size(); ++k)
+    if (results[k].second.found && (!results[best].second.found || results[k].second.critical < results[best].second.critical))
+      best = k;
+  const auto& [direction, r] = results[best];
+  int runs = 0;
+  double wall = 0;
+  for (const auto& [d, x] : results) runs += x.runs, wall += x.wallTime;
   if (opt.json) {
     ddaslope::io::JsonRecord j;
-    j.set("case", casePath).set("solve", opt.solve).set("direction", opt.direction).set("k_v", scene.seismic.kv);
+    j.set("case", casePath).set("solve", opt.solve).set("direction", direction).set("k_v", scene.seismic.kv);
     j.set("found", r.found).set("critical", r.critical).set("unit", "g");
-    j.set("bracket", std::vector<double>{r.failingEnd, r.stableEnd});
-    j.set("forward_runs", r.runs).set("wall_time_s", r.wallTime).set("message", r.message);
+    j.set("failing_at", r.failingEnd).set("stable_at", r.stableEnd);
+    j.set("forward_runs", runs).set("wall_time_s", wall).set("message", r.message);
     j.set("settings", settingsLine(scene));
     ddaslope::calibration::appendTrials(j, r.trials, "k_h");
     std::printf("%s\n", j.dump().c_str());
-  } else if (r.found) {
-    std::printf("yield seismic coefficient k_y along %s (k_v = %g): %.6g g (failing at %.6g, stable at %.6g)\n",
-                opt.direction.c_str(), scene.seismic.kv, r.critical, r.failingEnd, r.stableEnd);
-    std::printf("%d forward runs, %.2f s wall; %s\n", r.runs, r.wallTime, settingsLine(scene).c_str());
   } else {
-    std::fprintf(stderr, "ddaslope: %s: no yield seismic coefficient found after %d forward runs: %s\n",
-                 casePath.c_str(), r.runs, r.message.c_str());
+    for (const auto& [d, x] : results) {
+      if (x.found)
+        std::printf("yield seismic coefficient k_y along %s (k_v = %g): %.6g g (failing at %.6g, stable at %.6g)%s\n",
+                    d.c_str(), scene.seismic.kv, x.critical, x.failingEnd, x.stableEnd,
+                    results.size() > 1 && &x == &r ? "  <- the slope's" : "");
+      else
+        std::printf("along %s: none: %s\n", d.c_str(), x.message.c_str());
+    }
+    if (r.found)
+      std::printf("  (a force k_y·m·g along %s; a ground acceleration of k_y·g along %s)\n", direction.c_str(),
+                  direction == "+x" ? "-x" : "+x");
+    std::printf("%d forward runs, %.2f s wall; %s\n", runs, wall, settingsLine(scene).c_str());
   }
+  if (!r.found)
+    std::fprintf(stderr, "ddaslope: %s: no yield seismic coefficient found after %d forward runs: %s\n", casePath.c_str(),
+                 runs, r.message.c_str());
   warnAboutTrials(casePath, ddaslope::calibration::smallMotionWarning(r.trials, "k_h"));
   return r.found ? kExitOk : kExitNonConvergence;
 }
@@ -658,15 +704,16 @@ int main(int argc, char** argv) {
                        "cohesion or friction of the joint, or seismic-coefficient: the yield acceleration k_y (in g)")
       ->check(CLI::IsMember({"cohesion", "friction", "seismic-coefficient"}))
       ->capture_default_str();
-  critical->add_option("--direction", crit.direction, "seismic-coefficient: the horizontal direction the load acts in")
-      ->check(CLI::IsMember({"+x", "-x"}))
+  critical->add_option("--direction", crit.direction,
+                       "seismic-coefficient: the direction of the horizontal force (+x, -x, or auto: both, the smaller wins)")
+      ->check(CLI::IsMember({"+x", "-x", "auto"}))
       ->capture_default_str();
   critical->add_option("--friction", crit.friction, "friction angle (degrees) while solving for cohesion (default: the case's)")
       ->check(finiteIn(0, 89.9, "a friction angle in [0, 89.9] degrees"));
   critical->add_option("--cohesion", crit.cohesion, "cohesion (Pa) while solving for friction (default: the case's)")
       ->check(finiteIn(0, 1e12, "a cohesion in [0, 1e12] Pa"));
   // Widths below 1e-6 would ask the bisection for more digits than the verdict has.
-  critical->add_option("--width", crit.width, "final bracket width (Pa, degrees or g; default 10 Pa, 0.01° or 0.001 g)")
+  critical->add_option("--width", crit.width, "final bracket width (Pa, degrees or g; default 10 Pa, 0.01° or 1e-3 of k_y)")
       ->check(finiteIn(1e-6, 1e12, "a width in [1e-6, 1e12]"));
   critical->add_option("--threads", crit.threads, "forward runs at once")->capture_default_str()->check(CLI::Range(1, 256));
   addModelOptions(critical, overrides);

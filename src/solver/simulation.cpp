@@ -246,10 +246,12 @@ void Simulation::assembleBlockTerms(double dt, Regime regime, std::vector<Mat6>&
                              scene_.settings.mode == model::AnalysisMode::Dynamic;
   // Water (and any load history) at the end of the step; equilibrium is found at t = 0.
   const model::WaterTable water = scene_.water.at(regime == Regime::Analysis ? time_ + dt : 0.0);
-  // Seismic body acceleration (model/seismic.hpp): the pseudo-static part always, the ground
-  // motion in the analysis, at the end of the step. A load, so that its work enters the budget.
-  Vec2 inertial = scene_.seismic.pseudoStatic(scene_.gravity.norm());
-  if (regime == Regime::Analysis) inertial -= scene_.seismic.ground.at(time_ + dt);
+  // Seismic body acceleration (model/seismic.hpp): the pseudo-static part always; in the
+  // analysis, the ground motion's mean over the step, so that the step receives exactly the
+  // record's impulse however the record is sampled. A load, so that its work enters the budget.
+  Vec2 inertial = scene_.seismic.pseudoStatic(scene_.gravity);
+  if (regime == Regime::Analysis && scene_.seismic.ground.active())
+    inertial -= model::SeismicLoad::toModelFrame(scene_.seismic.ground.meanOver(time_, time_ + dt), scene_.gravity);
   const bool shaking = inertial.x() != 0 || inertial.y() != 0;
   for (size_t b = 0; b < scene_.blocks.size(); ++b) {
     const int i = active_[b];

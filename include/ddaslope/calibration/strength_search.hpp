@@ -46,7 +46,8 @@ CriticalResult criticalFriction(const model::Scene& scene, int joint, double coh
 /// The yield (critical) horizontal seismic coefficient k_y of Newmark's method: the smallest k_h
 /// (a fraction of g, acting along `direction`, +1 for +x or −1 for −x, with the case's k_v) at
 /// which the slope fails. Brackets upward from 0 by doubling from 0.05 (to at most 2), then
-/// bisects to `width`. Not found if the slope fails without it or holds at 2.
+/// bisects to `width` (≤ 0: to 1e-3 of the bracket's failing end). Not found if the slope fails
+/// without it or holds at 2. A ground-motion record in the scene is left out of the trials.
 CriticalResult criticalSeismicCoefficient(const model::Scene& scene, int direction, double width,
                                           const SearchSettings& s = {});
 

@@ -19,6 +19,10 @@ struct GroundMotion {
   bool active() const { return !times.empty(); }
   /// a_g at time t (m/s²).
   Vec2 at(double t) const;
+  /// The mean of a_g over [t0, t1] (m/s²): the exact integral of the piecewise-linear record over
+  /// the interval, divided by its length. What a step from t0 to t1 applies: the impulse the
+  /// record delivers in that step, whatever the record's sampling against the step.
+  Vec2 meanOver(double t0, double t1) const;
 };
 
 struct SeismicLoad {
@@ -26,8 +30,12 @@ struct SeismicLoad {
   double kv = 0;  ///< vertical coefficient: a force k_v·m·|g| upward (negative: downward)
   GroundMotion ground;
   bool active() const { return kh != 0 || kv != 0 || ground.active(); }
-  /// The pseudo-static body acceleration (m/s²) for gravity of magnitude g.
-  Vec2 pseudoStatic(double g) const { return {kh * g, kv * g}; }
+  /// The pseudo-static body acceleration (m/s²) under `gravity`: k_h·|g| along the horizontal
+  /// (the model's +x turned to lie perpendicular to gravity) and k_v·|g| up (against gravity).
+  Vec2 pseudoStatic(const Vec2& gravity) const;
+  /// A (horizontal, up) pair of accelerations as a vector of the model's frame under `gravity`
+  /// (the identity for gravity along −y).
+  static Vec2 toModelFrame(const Vec2& horizontalUp, const Vec2& gravity);
 };
 
 }  // namespace ddaslope::model
