@@ -55,6 +55,23 @@ void copyBracket(const BisectionResult& b, Result& r) {
   r.failingEnd = b.failingEnd;
 }
 
+/// Narrows a known [stable, failing] bracket to `width` and records it in r.
+void narrowInto(CriticalResult& r, const std::function<bool(double)>& f, double stable, double failing, double width,
+                int threads) {
+  const BisectionResult b = narrowBracket(f, stable, failing, width, threads);
+  copyBracket(b, r);
+  r.critical = b.critical;
+}
+
+/// The search's accounting: its forward runs, every trial by value, and its wall time.
+template <class Result>
+Result& account(Result& r, CountedVerdict& v, std::chrono::steady_clock::time_point t0) {
+  r.runs = v.runs;
+  r.trials = v.sortedTrials();
+  r.wallTime = secondsSince(t0);
+  return r;
+}
+
 }  // namespace
 
 CriticalResult criticalCohesion(const model::Scene& scene, int joint, double frictionDeg, double width,
@@ -82,15 +99,10 @@ CriticalResult criticalCohesion(const model::Scene& scene, int joint, double fri
     if (hi >= 1e12) {
       r.message = "fails even with a cohesion of 1e12 Pa: strength cannot hold this scene";
     } else {
-      const BisectionResult b = narrowBracket(f, hi, failing, width, s.threads);
-      copyBracket(b, r);
-      r.critical = b.critical;
+      narrowInto(r, f, hi, failing, width, s.threads);
     }
   }
-  r.runs = stableAt.runs;
-  r.trials = stableAt.sortedTrials();
-  r.wallTime = secondsSince(t0);
-  return r;
+  return account(r, stableAt, t0);
 }
 
 CriticalResult criticalFriction(const model::Scene& scene, int joint, double cohesion, double width,
@@ -114,10 +126,7 @@ CriticalResult criticalFriction(const model::Scene& scene, int joint, double coh
       r.critical = 0;
     }
   }
-  r.runs = stableAt.runs;
-  r.trials = stableAt.sortedTrials();
-  r.wallTime = secondsSince(t0);
-  return r;
+  return account(r, stableAt, t0);
 }
 
 CriticalResult criticalSeismicCoefficient(const model::Scene& scene, int direction, double width,
@@ -147,15 +156,10 @@ CriticalResult criticalSeismicCoefficient(const model::Scene& scene, int directi
                   ": does the slope face the other way (--direction)?";
       r.stableEnd = stable;
     } else {
-      const BisectionResult b = narrowBracket(f, stable, k, width > 0 ? width : 1e-3 * k, s.threads);
-      copyBracket(b, r);
-      r.critical = b.critical;
+      narrowInto(r, f, stable, k, width > 0 ? width : 1e-3 * k, s.threads);
     }
   }
-  r.runs = stableAt.runs;
-  r.trials = stableAt.sortedTrials();
-  r.wallTime = secondsSince(t0);
-  return r;
+  return account(r, stableAt, t0);
 }
 
 std::vector<CurvePoint> criticalCurve(const model::Scene& scene, int joint, double phiMinDeg, double phiMaxDeg,
@@ -207,10 +211,7 @@ FactorOfSafetyResult factorOfSafety(const model::Scene& scene, const std::vector
     r.factor = b.critical;
     r.rounds = b.rounds;
   }
-  r.runs = stableAt.runs;
-  r.trials = stableAt.sortedTrials();
-  r.wallTime = secondsSince(t0);
-  return r;
+  return account(r, stableAt, t0);
 }
 
 }  // namespace ddaslope::calibration
