@@ -443,6 +443,10 @@ TEST(Cli, SeismicCoefficientsOnTheCommandLine) {
   const auto r = nlohmann::json::parse(json);
   EXPECT_NEAR(r["critical"].get<double>(), 0.0017453, 0.005 * 0.0017453) << err;
   EXPECT_EQ(r["direction"], "-x");
+  // The default width is 1e-3 of k_y itself, however small, with one thread as with two.
+  const auto one = nlohmann::json::parse(captureCli("critical " + path + " --solve seismic-coefficient --threads 1 --json", &err));
+  EXPECT_NEAR(one["critical"].get<double>(), 0.0017453, 0.005 * 0.0017453) << err;
+  EXPECT_LE(one["failing_at"].get<double>() - one["stable_at"].get<double>(), 1.001e-3 * one["failing_at"].get<double>());
   // Strength options mean nothing to this search: refused, not ignored.
   EXPECT_EQ(runCli("critical " + path + " --solve seismic-coefficient --friction 10", &err), 2);
   EXPECT_NE(err.find("--friction"), std::string::npos) << err;

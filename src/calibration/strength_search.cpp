@@ -156,7 +156,18 @@ CriticalResult criticalSeismicCoefficient(const model::Scene& scene, int directi
                   ": does the slope face the other way (--direction)?";
       r.stableEnd = stable;
     } else {
-      narrowInto(r, f, stable, k, width > 0 ? width : 1e-3 * k, s.threads);
+      if (width > 0) {
+        narrowInto(r, f, stable, k, width, s.threads);
+      } else {
+        // To 1e-3 of k_y itself: narrow, and again while the bracket is wider than that of its
+        // new failing end (a small k_y is found in a bracket that began at 0.05).
+        double failing = k;
+        do {
+          narrowInto(r, f, stable, failing, 1e-3 * failing, s.threads);
+          stable = r.stableEnd;
+          failing = r.failingEnd;
+        } while (r.found && failing - stable > 1e-3 * failing * (1 + 1e-9));
+      }
     }
   }
   return account(r, stableAt, t0);
