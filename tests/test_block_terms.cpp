@@ -60,3 +60,20 @@ TEST(BlockTerms, PointForceMoment) {
   EXPECT_DOUBLE_EQ(f[1], 10);
   EXPECT_DOUBLE_EQ(f[2], 20);  // moment = x·Fy
 }
+
+// A square block's two lowest strain modes are degenerate: the stretch εx = −εy, stiffness
+// S E/(1+ν), and the shear γ, stiffness S G = S E/(2(1+ν)) against its mass ρ (Sxx+Syy)/4;
+// both give ω₁² = 12 E / (ρ b² (1+ν)) in plane stress, and the same in plane strain, whose
+// E' = E/(1−ν²) and ν' = ν/(1−ν) have E'/(1+ν') = E/(1+ν). 10 m, 5 GPa, ρ 2000, ν 0.25:
+// 489.9 rad/s. Round-off tolerance (the generalized eigensolver).
+TEST(BlockTerms, LowestStrainFrequencyOfASquare) {
+  const double b = 10, e = 5e9, rho = 2000, nu = 0.25;
+  const std::vector<Vec2> square{{0, 0}, {b, 0}, {b, b}, {0, b}};
+  const auto m = geometry::computeMoments(square);
+  const double expected = std::sqrt(12 * e / (rho * b * b * (1 + nu)));
+  for (const model::PlaneMode plane : {model::PlaneMode::Stress, model::PlaneMode::Strain}) {
+    const double w1 = assembly::lowestStrainFrequency(
+        rho * assembly::unitMassMatrix(m), assembly::elasticStiffness(m.area, assembly::elasticityMatrix(e, nu, plane)));
+    EXPECT_NEAR(w1, expected, 1e-9 * expected);
+  }
+}

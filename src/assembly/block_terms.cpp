@@ -2,6 +2,8 @@
 
 #include "ddaslope/model/block.hpp"
 
+#include <Eigen/Eigenvalues>
+
 namespace ddaslope::assembly {
 
 Mat6 unitMassMatrix(const geometry::PolygonMoments& m) {
@@ -29,6 +31,16 @@ Mat6 elasticStiffness(double area, const Eigen::Matrix3d& em) {
   Mat6 k = Mat6::Zero();
   k.bottomRightCorner<3, 3>() = area * em;
   return k;
+}
+
+double lowestStrainFrequency(const Mat6& mass, const Mat6& elastic) {
+  // M is positive definite and K_e positive semi-definite: three zero eigenvalues (u0, v0, r0),
+  // zero to round-off of the largest, then the strain modes.
+  const Eigen::GeneralizedSelfAdjointEigenSolver<Mat6> modes(elastic, mass, Eigen::EigenvaluesOnly);
+  const Vec6& w2 = modes.eigenvalues();
+  for (int k = 0; k < 6; ++k)
+    if (w2[k] > 1e-9 * w2[5]) return std::sqrt(w2[k]);
+  return 0;
 }
 
 Vec6 bodyForce(double area, const Vec2& f) {

@@ -532,7 +532,7 @@ void readAnalysis(const Reader& r, const json& doc, model::Scene& s) {
                     "settle_dynamically",
                     "equilibrium_max_steps", "edge_parallel_tolerance", "initial_contact_tolerance",
                     "contact_state_tolerance", "contact_treatment", "failure_displacement", "resting_speed", "preset",
-                    "blocks"});
+                    "blocks", "strain_damping"});
   model::AnalysisSettings& st = s.settings;
   st.duration = r.numberIn(r.required(a, p, "duration"), p + ".duration", 0, limits::kMaxDuration, true, false,
                            "a duration in (0, 1e6] s");
@@ -555,6 +555,8 @@ void readAnalysis(const Reader& r, const json& doc, model::Scene& s) {
   st.rigidBlocks = r.choice(a, p, "blocks", "deformable", {"deformable", "rigid"}) == "rigid";
   st.failureDisplacement = r.optionalIn(a, p, "failure_displacement", 0, 0, 1e6, false, false, "a distance ≥ 0 m (0: 1e-3 of w0)");
   st.restingSpeed = r.optionalIn(a, p, "resting_speed", 0, 0, 1e6, false, false, "a speed ≥ 0 m/s (0: automatic)");
+  st.strainDamping = r.optionalIn(a, p, "strain_damping", st.strainDamping, 0, 100, false, false,
+                                  "a fraction of critical in [0, 100]");
   st.contactTreatment = r.choice(a, p, "contact_treatment", "edge", {"edge", "vertex"}) == "vertex"
                             ? model::ContactTreatment::Vertex
                             : model::ContactTreatment::Edge;

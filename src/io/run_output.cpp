@@ -171,6 +171,7 @@ void writeSummary(const fs::path& dir, const model::Scene& scene, const RunOptio
                    {"plane", s.plane == model::PlaneMode::Strain ? "strain" : "stress"},
                    {"blocks", s.rigidBlocks ? "rigid" : "deformable"},
                    {"contact_treatment", s.contactTreatment == model::ContactTreatment::Edge ? "edge" : "vertex"},
+                   {"strain_damping", s.strainDamping},
                    {"penalty", scene.normalPenalty()},
                    {"shear_penalty_ratio", s.shearPenaltyRatio},
                    {"max_displacement_ratio", s.maxDisplacementRatio},

@@ -29,19 +29,14 @@ EnergyBudget storedEnergy(const model::Scene& scene, const std::vector<double>& 
   }
   for (const model::FixedPoint& f : scene.fixedPoints)
     e.elastic += 0.5 * normalStiffness * (f.point.current - f.point.initial).squaredNorm();
-  std::vector<contact::JointStrength> joints;  // once per call, not per contact
-  for (const model::JointProperties& j : scene.joints) joints.push_back(contact::jointStrength(j));
   for (const contact::Contact& c : contacts) {
     if (!c.closed()) continue;
     e.elastic += 0.5 * c.normalForce * c.normalForce / normalStiffness;
     // The shear spring is elastic-plastic: locked, it holds S; sliding, it stays stretched to
-    // the resistance it slides against, N tan φ plus c·L while a softening bond lasts (a contact
-    // that sticks again keeps that force), so it stores ½ S² / p_s while it slides.
-    const double shear =
-        c.state == contact::ContactState::Locked
-            ? c.shearForce
-            : contact::shearStrength(c.bonded, c.normalForce,
-                                     contact::contactStrength(joints[c.joint], c.intact, c.geometry.overlap / 2));
+    // the friction it slides against (Simulation::slidingFriction: N tan φ plus c·L while a
+    // softening bond lasts, shared by the ends of an edge; a contact that sticks again keeps that
+    // force), so it stores ½ S² / p_s either way.
+    const double shear = c.shearForce;
     e.elastic += 0.5 * shear * shear / shearStiffness;
   }
   return e;

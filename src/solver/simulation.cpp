@@ -86,6 +86,17 @@ Simulation::Simulation(model::Scene scene)
   penalty_ = scene_.normalPenalty();
   for (const model::Material& m : scene_.materials)
     elasticity_.push_back(assembly::elasticityMatrix(m.youngModulus, m.poissonRatio, scene_.settings.plane));
+  for (size_t b = 0; b < scene_.blocks.size(); ++b) {
+    const model::Block& blk = scene_.blocks[b];
+    double beta = 0;
+    if (!blk.fixed && !scene_.settings.rigidBlocks && scene_.settings.strainDamping > 0) {
+      const Mat6 mass = (mass_[b] / blk.moments.area) * assembly::unitMassMatrix(blk.moments);
+      const double w1 = assembly::lowestStrainFrequency(
+          mass, assembly::elasticStiffness(blk.moments.area, elasticity_[blk.material]));
+      if (w1 > 0) beta = 2 * scene_.settings.strainDamping / w1;
+    }
+    strainRetardation_.push_back(beta);
+  }
   markActiveBlocks({});
   lightestPenetration_ = INFINITY;
   for (const model::Block& b : scene_.blocks)
@@ -236,6 +247,34 @@ double Simulation::slidingResistance(const Contact& c) const {
   return contact::shearStrength(c.bonded, c.normalForce, strengthOf(c));
 }
 
+std::vector<double> Simulation::slidingFriction(const std::vector<Contact>& cs) const {
+  // Why the ends of a sliding edge share its friction equally. Each end's own N tan φ makes the
+  // friction follow the difference of the two normal forces, which the block's rotation and shear
+  // strain set, and that difference stretches a deformable block along the edge (Poisson's ratio
+  // turns the stretch into a normal squeeze, which changes the normal forces again). This
+  // non-symmetric coupling is a flutter instability of steady sliding. A 10 x 10 m block on a 40°
+  // plane with ν = 0.25 and φ = 39.9° grows oscillations at 69/s and walks down the slope like an
+  // inchworm: 0.28 m in 2 s against the closed form's 0.0455 m (docs/accuracy.md, "Friction
+  // flutter"). Spread evenly, the friction depends on the sum of the normal forces only and the
+  // loop is cut. The two ends' forces lie on the edge, so a rigid block's motion is the same either
+  // way; only a deformable block's stretch along the edge, ∫ x τ dx, loses the friction gradient.
+  // Only the edge treatment shares: there the pair is one contact judged against the strength of
+  // the whole. The vertex treatment (original DDA) judges each end against its own strength, which
+  // must then be the friction it meets.
+  std::vector<double> friction(cs.size(), 0.0);
+  for (size_t q = 0; q < cs.size(); ++q)
+    if (cs[q].state == ContactState::Sliding) friction[q] = slidingResistance(cs[q]);
+  if (scene_.settings.contactTreatment != model::ContactTreatment::Edge) return friction;
+  for (size_t q = 0; q < cs.size(); ++q) {
+    const int p = partner_[q];
+    if (p <= static_cast<int>(q) || cs[q].state != ContactState::Sliding) continue;
+    const Contact& o = cs[p];
+    if (o.state != ContactState::Sliding || o.slideDirection != cs[q].slideDirection) continue;
+    friction[q] = friction[p] = 0.5 * (friction[q] + friction[p]);
+  }
+  return friction;
+}
+
 void Simulation::assembleBlockTerms(double dt, Regime regime, std::vector<Mat6>& k, std::vector<Vec6>& f,
                                     std::vector<Vec6>& loads, std::vector<Vec6>& magnitude) const {
   k.assign(nActive_, Mat6::Zero());
@@ -262,6 +301,10 @@ void Simulation::assembleBlockTerms(double dt, Regime regime, std::vector<Mat6>&
     const Mat6 mass = density * assembly::unitMassMatrix(blk.moments);
     // Newmark β = 1/2, γ = 1 (Shi): K += 2M/Δt², F += 2M V/Δt.
     k[i] = assembly::elasticStiffness(blk.moments.area, elasticity_[blk.material]) + (2 / (dt * dt)) * mass;
+    // Kelvin–Voigt damping of the strain rates, σ_v = β E ε̇, at the step's mean rate D/Δt: it
+    // dissipates d·(β/Δt)K_e·d ≥ 0 in every step and leaves rest and rigid motion alone.
+    if (carryVelocity && strainRetardation_[b] > 0)
+      k[i] += (strainRetardation_[b] / dt) * assembly::elasticStiffness(blk.moments.area, elasticity_[blk.material]);
     const Vec6 body = assembly::bodyForce(blk.moments.area, density * scene_.gravity);
     const Vec6 stress = assembly::initialStressForce(blk.moments.area, blk.stress);
     f[i] = body + stress;
@@ -430,6 +473,7 @@ Simulation::Attempt Simulation::tryStep(double dt, Regime regime, bool freezeCyc
       addForce(c, s, v);
       if (residualAtRoundOff) addMagnitude(c, s, v);
     };
+    const std::vector<double> friction = slidingFriction(a.contacts);
     for (size_t q = 0; q < a.contacts.size(); ++q) {
       const Contact& c = a.contacts[q];
       if (!c.closed()) continue;
@@ -439,7 +483,7 @@ Simulation::Attempt Simulation::tryStep(double dt, Regime regime, bool freezeCyc
       } else {
         // Friction N tanφ (plus c·L while a softening bond lasts) opposite to the slip, as a pair
         // of point loads: K stays symmetric.
-        addTerm(c, -c.slideDirection * slidingResistance(c), kin[q].shearStep);
+        addTerm(c, -c.slideDirection * friction[q], kin[q].shearStep);
       }
     }
     stats_.times.assembly += sw.lap();
@@ -550,7 +594,7 @@ Simulation::Attempt Simulation::tryStep(double dt, Regime regime, bool freezeCyc
         // would jump onto its neighbours and break them.
         c.lockRatio = c.geometry.ratio;
         if (c.state == ContactState::Sliding)
-          c.lockRatio -= c.slideDirection * slidingResistance(c) / (ps * edgeLength(c));
+          c.lockRatio -= c.slideDirection * friction[q] / (ps * edgeLength(c));
         kin[q] = assembly::linearise(scene_.blocks[c.key().vertexBlock], scene_.blocks[c.key().edgeBlock], c);
       }
       // A brittle joint's contact drops to its residual strength the moment it slides.
@@ -562,6 +606,10 @@ Simulation::Attempt Simulation::tryStep(double dt, Regime regime, bool freezeCyc
       c.normalForce = r.normalForce;
       c.shearForce = c.state == ContactState::Locked ? r.lockedShear : 0.0;
     }
+    // A sliding contact's shear spring stays stretched to the friction it slides against.
+    const std::vector<double> carried = slidingFriction(a.contacts);
+    for (size_t q = 0; q < a.contacts.size(); ++q)
+      if (a.contacts[q].state == ContactState::Sliding) a.contacts[q].shearForce = carried[q];
     stats_.times.stateChecks += sw.lap();
     if (const int period = cycles.record(a.contacts); period > 0) {
       a.failure = "open-close iteration cycles: the contact states repeat every " + std::to_string(period) +

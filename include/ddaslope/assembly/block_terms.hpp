@@ -12,6 +12,9 @@ Mat6 unitMassMatrix(const geometry::PolygonMoments& m);
 Eigen::Matrix3d elasticityMatrix(double e, double nu, model::PlaneMode plane);
 /// Elastic stiffness: S·E_m on the strain unknowns.
 Mat6 elasticStiffness(double area, const Eigen::Matrix3d& em);
+/// Lowest angular frequency (rad/s) of a free block's own strain modes, K_e φ = ω² M φ with the
+/// three rigid modes left out; 0 when K_e is zero.
+double lowestStrainFrequency(const Mat6& mass, const Mat6& elastic);
 /// Body force per unit volume f acting on the block: F[u0, v0] = S f.
 Vec6 bodyForce(double area, const Vec2& f);
 /// Force of the accumulated stress σ on the next step: F[ε] = −S σ.

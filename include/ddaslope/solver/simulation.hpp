@@ -177,6 +177,9 @@ class Simulation {
   contact::ContactStrength strengthOf(const contact::Contact& c) const;
   /// Shear a sliding contact resists with: N tanφ, plus c·L while a softening bond lasts.
   double slidingResistance(const contact::Contact& c) const;
+  /// The friction force each sliding contact applies (0 for the others): its own resistance, but
+  /// the two ends of an edge-to-edge contact that slide together apply half their sum each.
+  std::vector<double> slidingFriction(const std::vector<contact::Contact>& cs) const;
   /// Finds the two halves of every edge-to-edge contact (partner_).
   void pairEdgeHalves();
   /// States after a solve: vertex rule per contact, or edge rule per pair (contact_treatment).
@@ -188,6 +191,7 @@ class Simulation {
   model::Scene scene_;
   double w0_ = 1;
   std::vector<double> mass_;   ///< per block (kg/m), fixed at the start: ρ·S₀
+  std::vector<double> strainRetardation_;  ///< per block: β = 2ξ/ω₁ of its strain damping (s), 0 if none
   std::vector<contact::JointStrength> jointStrength_;  ///< per joint, resolved at the start
   double stepLimit_ = 0;       ///< largest vertex displacement in one step (m)
   double searchDistance_ = 0;  ///< 2.5 × stepLimit_
