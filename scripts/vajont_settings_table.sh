@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The Vajont rows of docs/accuracy.md's rigid-block and preset tables: the critical friction of
-# cases/vajont.json (c = 0) and the run-out at φ_res = 6.22° (calibration/vajont_runout's estimate), each with
+# cases/vajont.json (c = 0) and the run-out at φ_res = 5.54° (calibration/vajont_runout's estimate), each with
 # the case's own settings, rigid blocks and the three presets, with wall times.
 # Usage: scripts/vajont_settings_table.sh [BIN]   (about 4 minutes; from the repository root; time
 # it on an otherwise idle machine)
@@ -8,7 +8,7 @@ set -euo pipefail
 bin="${1:-build/ddaslope}"
 tmp="$(mktemp -d)"
 trap 'rm -rf "$tmp"' EXIT
-phi_res=6.22
+phi_res=5.54
 echo "| settings | critical φ (°), wall (s) | run-out at ${phi_res}°: crown travel (m), peak speed (m/s), wall (s) |"
 echo "|---|---|---|"
 for opt in "" "--blocks rigid" "--preset fast" "--preset balanced" "--preset accurate"; do

@@ -209,7 +209,7 @@ TEST(PlanarMultiBlockSlide, CriticalCohesionMatchesTheClosedFormWhenSettledAtRes
 // Vajont from trigger to deposit in one run (calibration/vajont_trigger/case.json): one law for
 // the sliding surface, peak φ 19.3° (0.1° below the 19.41° critical at the failure level of the
 // layout with 10 m kink blocks, so the slope fails) softening over 1 m of slip to the run-out
-// study's residual 6.22° (calibration/vajont_runout; docs/vajont.md). The crown must travel
+// study's residual 5.54° (calibration/vajont_runout; docs/vajont.md). The crown must travel
 // and move as observed (300–400 m horizontal, 17–30 m/s; ../shared/data/vajont/README.md, S8 p46,
 // S1 p147) and come to rest within the run (the collapse lasted under 45 s), and the energy budget
 // must only dissipate (largest rise below 1e-3 of the energy scale, as for the run-out table).
