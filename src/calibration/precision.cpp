@@ -156,8 +156,28 @@ Precision measurePrecision(const io::BackanalysisJob& job, const std::vector<dou
   for (size_t k = 0; k < job.observations.size(); ++k)
     s << (k ? "," : "") << " " << job.observations[k].label << " by ±" << formatted(out.noise[k]);
   s << ". State the parameter as its range, not the point.";
+  out.better = betterThanEstimate(out, bestMisfit);
+  if (out.better)
+    s << " The search stopped short: the scan's misfit " << formatted(out.better->misfit) << " at "
+      << out.parameters[out.better->parameter].name << " = " << formatted(out.better->value)
+      << " beats the estimate's " << formatted(bestMisfit) << " by more than the Δt ensemble's misfit noise (±"
+      << formatted(out.better->misfitNoise)
+      << "): raise the optimiser's evaluations, or give that point as the parameters' start.";
   out.statement = s.str();
   return out;
+}
+
+std::optional<BetterPoint> betterThanEstimate(const Precision& p, double estimateMisfit) {
+  double lo = estimateMisfit, hi = estimateMisfit;
+  for (const EnsembleMember& m : p.ensemble)
+    if (std::isfinite(m.misfit)) lo = std::min(lo, m.misfit), hi = std::max(hi, m.misfit);
+  const double noise = (hi - lo) / 2;
+  std::optional<BetterPoint> best;
+  for (size_t i = 0; i < p.parameters.size(); ++i)
+    for (const ScanPoint& s : p.parameters[i].scan)
+      if (std::isfinite(s.misfit) && s.misfit < estimateMisfit - noise && (!best || s.misfit < best->misfit))
+        best = BetterPoint{i, s.value, s.misfit, estimateMisfit, noise};
+  return best;
 }
 
 }  // namespace ddaslope::calibration

@@ -563,6 +563,15 @@ void appendPrecision(ddaslope::io::JsonRecord& j, const ddaslope::calibration::P
   std::vector<std::string> labels;
   for (const auto& o : job.observations) labels.push_back(o.label);
   out.set("observations", labels).set("noise", p.noise).set("statement", p.statement);
+  if (p.better) {
+    ddaslope::io::JsonRecord b;
+    b.set("parameter", p.parameters[p.better->parameter].name).set("value", p.better->value);
+    b.set("misfit", p.better->misfit).set("estimate_misfit", p.better->estimateMisfit);
+    b.set("misfit_noise", p.better->misfitNoise);
+    out.set("search_stopped_short", b);
+  } else {
+    out.set("search_stopped_short", false);
+  }
   j.set("precision", out);
 }
 

@@ -10,6 +10,7 @@
 //   range (which should not matter): the spread of each simulated observable is the objective's
 //   numerical noise, and divided by the observable's slope along the scan, a resolution.
 #include <string>
+#include <optional>
 #include <vector>
 
 #include "ddaslope/io/job_reader.hpp"
@@ -40,12 +41,28 @@ struct EnsembleMember {
   std::vector<double> simulated;
 };
 
+/// A scan point that fits better than the estimate (see betterThanEstimate).
+struct BetterPoint {
+  size_t parameter = 0;  ///< index of the scanned parameter
+  double value = 0;      ///< its value there (the others at the estimate)
+  double misfit = 0;
+  double estimateMisfit = 0;
+  double misfitNoise = 0;  ///< half the spread of the Δt ensemble's misfits
+};
+
 struct Precision {
   std::vector<ParameterRange> parameters;
   std::vector<EnsembleMember> ensemble;  ///< at the estimate, the unperturbed run first
   std::vector<double> noise;             ///< per observation: half the ensemble's spread (max − min)/2
   std::string statement;
+  /// Set when the scan found a clearly better point: the search stopped short of the optimum.
+  std::optional<BetterPoint> better;
 };
+
+/// The scan point of lowest misfit, when it beats `estimateMisfit` by more than the Δt
+/// ensemble's misfit noise (half the spread of its members' misfits): then the optimiser's
+/// estimate is not the best fit, and its budget was too small. Nothing otherwise.
+std::optional<BetterPoint> betterThanEstimate(const Precision& p, double estimateMisfit);
 
 /// Scans each parameter around `estimate` and runs the Δt ensemble there (job.precision), in
 /// parallel on job.threads. `bestMisfit` and `fitAtEstimate` (simulated values, one per
