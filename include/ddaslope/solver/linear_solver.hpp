@@ -44,6 +44,9 @@ class LinearSolver {
   bool modifyFactor(const assembly::BlockSparseMatrix& k, const std::vector<SparseCholesky::Column>& added,
                     const std::vector<SparseCholesky::Column>& removed);
   bool hasFactor() const { return haveFactor_; }
+  /// Drops the factor: the next solve refactorises (K's block terms changed in a way CG would
+  /// absorb at a few iterations per step, for ever).
+  void discardFactor() { haveFactor_ = false; }
   const LinearSolverStats& stats() const { return stats_; }
   int symbolicAnalyses() const { return cholesky_.symbolicAnalyses(); }
 

@@ -4,6 +4,7 @@
 // The DDA forward model. One step reads top-down (STYLE.md):
 // broad phase → contacts → (assemble → factorise → solve → judge states)* → accept or cut Δt
 // → update geometry → commit contacts.
+#include <cmath>
 #include <algorithm>
 #include <functional>
 #include <memory>
@@ -191,6 +192,17 @@ class Simulation {
   model::Scene scene_;
   double w0_ = 1;
   std::vector<double> mass_;   ///< per block (kg/m), fixed at the start: ρ·S₀
+  /// The block terms a large system's factor was made with: its Δt, and whether its steps carry
+  /// velocity (strain damping then stiffens K_e by β/Δt). A change refactorises.
+  struct FactorBlockTerms {
+    double dt = 0;
+    bool carriesVelocity = false;
+    /// Δt to 1e-9: the last step of a run or before a load change is shortened by round-off.
+    bool sameAs(const FactorBlockTerms& o) const {
+      return carriesVelocity == o.carriesVelocity && std::abs(dt - o.dt) <= 1e-9 * std::max(dt, o.dt);
+    }
+  };
+  FactorBlockTerms factorBlockTerms_;
   std::vector<double> strainRetardation_;  ///< per block: β = 2ξ/ω₁ of its strain damping (s), 0 if none
   std::vector<contact::JointStrength> jointStrength_;  ///< per joint, resolved at the start
   double stepLimit_ = 0;       ///< largest vertex displacement in one step (m)
