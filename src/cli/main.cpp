@@ -624,8 +624,11 @@ int backanalyseCommand(const std::string& jobPath, const std::string& outDir, bo
   } else {
     std::printf("back-analysis of %s\n  forward runs at %s\n", job.casePath.c_str(), settings.c_str());
     for (size_t i = 0; i < r.names.size(); ++i) std::printf("  %s = %.6g\n", r.names[i].c_str(), r.estimate[i]);
-    std::printf("  misfit %.4g after %d evaluations (%d forward runs), %.1f s wall\n  %s; %s\n", r.misfit, r.evaluations,
-                r.forwardRuns, r.wallTime, r.globalStatus.c_str(), r.localStatus.c_str());
+    const std::string searches = r.globalStatus.empty() || r.localStatus.empty()
+                                     ? r.globalStatus + r.localStatus
+                                     : r.globalStatus + "; " + r.localStatus;
+    std::printf("  misfit %.4g after %d evaluations (%d forward runs), %.1f s wall\n  %s\n", r.misfit, r.evaluations,
+                r.forwardRuns, r.wallTime, searches.c_str());
     for (const auto& f : r.fit) {
       if (!f.converged) std::printf("  %s: forward run did not converge\n", f.label.c_str());
       else if (f.series) std::printf("  %s: RMS residual %.4g (sigma %.4g)\n", f.label.c_str(), f.simulated, f.sigma);
