@@ -262,7 +262,7 @@ void printSeismicNote(const ddaslope::model::Scene& scene) {
                 q.ground.times.front(), scene.settings.duration);
   double sample = INFINITY;
   for (size_t k = 1; k < q.ground.times.size(); ++k) sample = std::min(sample, q.ground.times[k] - q.ground.times[k - 1]);
-  if (scene.settings.timeStep > sample)
+  if (scene.settings.timeStep > sample * (1 + 1e-6))  // the samples' times carry their text's round-off
     std::printf("  note: Δt %g s is longer than the record's sampling (%g s): each step applies the record's mean over "
                 "the step, so content above %.3g Hz is averaged out\n",
                 scene.settings.timeStep, sample, 0.5 / scene.settings.timeStep);
