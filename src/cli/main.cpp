@@ -211,7 +211,22 @@ std::string settingsLine(const ddaslope::model::Scene& scene) {
                 s.rigidBlocks ? "rigid" : "deformable",
                 s.contactTreatment == ddaslope::model::ContactTreatment::Edge ? "edge" : "vertex",
                 jointKind(scene));
-  return buf;
+  // The seismic loading a result was found under: F and critical strengths under a record or a
+  // coefficient are not the static ones.
+  std::string line = buf;
+  const ddaslope::model::SeismicLoad& q = scene.seismic;
+  if (q.kh != 0 || q.kv != 0) {
+    std::snprintf(buf, sizeof buf, ", pseudo-static k_h %g, k_v %g", q.kh, q.kv);
+    line += buf;
+  }
+  if (q.ground.active()) {
+    double peak = 0;
+    for (double a : q.ground.horizontal) peak = std::max(peak, std::abs(a));
+    std::snprintf(buf, sizeof buf, ", under the ground-motion record (horizontal peak %.3g g; without it: --set "
+                  "seismic.record.scale=0)", peak / ddaslope::io::kStandardGravity);
+    line += buf;
+  }
+  return line;
 }
 
 /// A note per concave kink of the sliding surface with a block on it: there the block model leans on
@@ -374,6 +389,8 @@ int seismicCoefficientCommand(const std::string& casePath, const ddaslope::model
                                "the search sets k_h itself; remove it from the case or the command (--kh)");
   if (scene.seismic.ground.active() && !opt.json)
     std::fprintf(stderr, "ddaslope: note: %s: the ground-motion record is not used: k_y belongs to the slope\n", casePath.c_str());
+  ddaslope::model::Scene searched = scene;  // what the trials run: no record, k_h their own
+  searched.seismic.ground = {};
   ddaslope::calibration::SearchSettings s;
   s.threads = opt.threads;
   std::vector<std::pair<std::string, ddaslope::calibration::CriticalResult>> results;
@@ -395,7 +412,7 @@ int seismicCoefficientCommand(const std::string& casePath, const ddaslope::model
     j.set("found", r.found).set("critical", r.critical).set("unit", "g");
     j.set("failing_at", r.failingEnd).set("stable_at", r.stableEnd);
     j.set("forward_runs", runs).set("wall_time_s", wall).set("message", r.message);
-    j.set("settings", settingsLine(scene));
+    j.set("settings", settingsLine(searched));
     ddaslope::calibration::appendTrials(j, r.trials, "k_h");
     std::printf("%s\n", j.dump().c_str());
   } else {
@@ -410,7 +427,7 @@ int seismicCoefficientCommand(const std::string& casePath, const ddaslope::model
     if (r.found)
       std::printf("  (a force k_y·m·g along %s; a ground acceleration of k_y·g along %s)\n", direction.c_str(),
                   direction == "+x" ? "-x" : "+x");
-    std::printf("%d forward runs, %.2f s wall; %s\n", runs, wall, settingsLine(scene).c_str());
+    std::printf("%d forward runs, %.2f s wall; %s\n", runs, wall, settingsLine(searched).c_str());
   }
   if (!r.found)
     std::fprintf(stderr, "ddaslope: %s: no yield seismic coefficient found after %d forward runs: %s\n", casePath.c_str(),
