@@ -125,6 +125,13 @@ TEST(Seismic, NewmarkRectangularPulse) {
     SCOPED_TRACE("dt " + std::to_string(dt));
     EXPECT_NEAR(slid, expected, 0.001 * expected);
     EXPECT_LE(t.largestEnergyGain(), 1e-6 * t.energyInPlay());
+    // The record's work (history.csv's ground_motion_work): its force m·A·g acts while the block
+    // slides ½(A − N) g t0² relative to the ground, m·A·g·½(A − N)g t0² (= m N g d, the friction
+    // the slide dissipates: the energy balance of Newmark's block). Same 0.1 %.
+    const double mass = spec.density * spec.b * spec.h;
+    const double work = mass * a * g * 0.5 * (a - n) * g * t0 * t0;
+    EXPECT_NEAR(t.energy.back().groundMotionWork, work, 0.001 * work);
+    EXPECT_NEAR(t.energy.back().loadWork, t.energy.back().groundMotionWork, 1e-12 * work);
   }
 }
 

@@ -67,7 +67,9 @@ class HistoryWriter {
     out_ << "time,dt,iterations";
     if (ground_.active()) out_ << ",ground_ax,ground_ay";
     for (const auto& id : monitors) out_ << ',' << id << "_ux," << id << "_uy," << id << "_vx," << id << "_vy";
-    out_ << ",kinetic_energy,potential_energy,elastic_energy,load_work,energy_gain\n";
+    out_ << ",kinetic_energy,potential_energy,elastic_energy,load_work";
+    if (ground_.active()) out_ << ",ground_motion_work";  // the record's share of load_work
+    out_ << ",energy_gain\n";
   }
   void row(const solver::StepRecord& r, const std::vector<MonitorSample>& s, const solver::EnergyBudget& e,
            double initialMechanical) {
@@ -77,8 +79,9 @@ class HistoryWriter {
       out_ << ',' << fmt(a.x()) << ',' << fmt(a.y());
     }
     for (const auto& m : s) out_ << ',' << fmt(m.ux) << ',' << fmt(m.uy) << ',' << fmt(m.vx) << ',' << fmt(m.vy);
-    out_ << ',' << fmt(e.kinetic) << ',' << fmt(e.potential) << ',' << fmt(e.elastic) << ',' << fmt(e.loadWork)
-         << ',' << fmt(e.mechanical() - initialMechanical) << '\n';
+    out_ << ',' << fmt(e.kinetic) << ',' << fmt(e.potential) << ',' << fmt(e.elastic) << ',' << fmt(e.loadWork);
+    if (ground_.active()) out_ << ',' << fmt(e.groundMotionWork);
+    out_ << ',' << fmt(e.mechanical() - initialMechanical) << '\n';
   }
   void finish(bool completed) {
     out_.close();
@@ -138,13 +141,18 @@ void writeSummary(const fs::path& dir, const model::Scene& scene, const RunOptio
   j["max_penetration_m"] = st.maxPenetration;
   j["step_limit_m"] = o.stepLimit;
   j["search_distance_m"] = o.searchDistance;
-  if (!o.trace.energy.empty())
+  if (!o.trace.energy.empty()) {
     j["energy_J_per_m"] = {{"mechanical_at_start", o.trace.energy.front().mechanical()},
                            {"mechanical_at_end", o.trace.energy.back().mechanical()},
                            {"largest_gain", o.trace.largestEnergyGain()},
                            {"largest_step_gain", o.trace.largestStepGain()},
                            {"in_play", o.trace.energyInPlay()},
                            {"scale", o.trace.energyScale()}};
+    if (scene.seismic.ground.active()) {
+      j["energy_J_per_m"]["load_work"] = o.trace.energy.back().loadWork;
+      j["energy_J_per_m"]["ground_motion_work"] = o.trace.energy.back().groundMotionWork;
+    }
+  }
   j["symbolic_analyses"] = st.symbolicAnalyses;
   j["phase_times_s"] = {{"broad_phase", st.times.broadPhase}, {"contacts", st.times.contacts},
                         {"assembly", st.times.assembly},      {"factorisation", st.times.factorisation},

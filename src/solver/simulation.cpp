@@ -280,7 +280,8 @@ std::vector<double> Simulation::slidingFriction(const std::vector<Contact>& cs) 
 }
 
 void Simulation::assembleBlockTerms(double dt, Regime regime, std::vector<Mat6>& k, std::vector<Vec6>& f,
-                                    std::vector<Vec6>& loads, std::vector<Vec6>& magnitude) const {
+                                    std::vector<Vec6>& loads, std::vector<Vec6>& magnitude,
+                                    std::vector<Vec6>* groundLoads) const {
   k.assign(nActive_, Mat6::Zero());
   f.assign(nActive_, Vec6::Zero());
   loads.assign(nActive_, Vec6::Zero());
@@ -293,8 +294,11 @@ void Simulation::assembleBlockTerms(double dt, Regime regime, std::vector<Mat6>&
   // analysis, the ground motion's mean over the step, so that the step receives exactly the
   // record's impulse however the record is sampled. A load, so that its work enters the budget.
   Vec2 inertial = scene_.seismic.pseudoStatic(scene_.gravity);
+  Vec2 recordInertial = Vec2::Zero();
   if (regime == Regime::Analysis && scene_.seismic.ground.active())
-    inertial -= model::SeismicLoad::toModelFrame(scene_.seismic.ground.meanOver(time_, time_ + dt), scene_.gravity);
+    recordInertial = -model::SeismicLoad::toModelFrame(scene_.seismic.ground.meanOver(time_, time_ + dt), scene_.gravity);
+  inertial += recordInertial;
+  if (groundLoads) groundLoads->assign(nActive_, Vec6::Zero());
   const bool shaking = inertial.x() != 0 || inertial.y() != 0;
   for (size_t b = 0; b < scene_.blocks.size(); ++b) {
     const int i = active_[b];
@@ -320,6 +324,7 @@ void Simulation::assembleBlockTerms(double dt, Regime regime, std::vector<Mat6>&
     }
     if (water.active()) loads[i] += assembly::waterForce(blk, water);
     if (shaking) loads[i] += assembly::bodyForce(blk.moments.area, density * inertial);
+    if (groundLoads) (*groundLoads)[i] = assembly::bodyForce(blk.moments.area, density * recordInertial);
   }
   for (const model::PointLoad& l : scene_.pointLoads) {
     const int i = active_[l.point.block];
@@ -364,7 +369,7 @@ Simulation::Attempt Simulation::tryStep(double dt, Regime regime, bool freezeCyc
 
   std::vector<Mat6> blockK;
   std::vector<Vec6> blockF, blockMagnitude;
-  assembleBlockTerms(dt, regime, blockK, blockF, a.loads, blockMagnitude);
+  assembleBlockTerms(dt, regime, blockK, blockF, a.loads, blockMagnitude, &a.groundLoads);
   stats_.times.assembly += sw.lap();
 
   const auto ends = [&](const Contact& c) {
@@ -1000,7 +1005,10 @@ StepRecord Simulation::advance() {
     Attempt a = tryStep(dt, Regime::Analysis, cuts >= 2, true);
     if (a.converged) {
       if (a.frozeContacts) ++stats_.frozenSteps;
-      for (int i = 0; i < nActive_; ++i) loadWork_ += a.loads[i].dot(a.d.segment<6>(6 * i));
+      for (int i = 0; i < nActive_; ++i) {
+        loadWork_ += a.loads[i].dot(a.d.segment<6>(6 * i));
+        groundMotionWork_ += a.groundLoads[i].dot(a.d.segment<6>(6 * i));
+      }
       commit(a, dt, true);
       // A state that overflowed would fill the history with inf and NaN: stop at the first one.
       for (const model::Block& b : scene_.blocks)
@@ -1036,6 +1044,7 @@ EnergyBudget Simulation::energy() const {
   EnergyBudget e = storedEnergy(scene_, mass_, elasticity_, contacts_.contacts(), penalty_,
                                 penalty_ * scene_.settings.shearPenaltyRatio);
   e.loadWork = loadWork_;
+  e.groundMotionWork = groundMotionWork_;
   return e;
 }
 

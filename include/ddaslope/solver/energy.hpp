@@ -15,6 +15,7 @@ struct EnergyBudget {
   double potential = 0;  ///< −Σ m g·x_c of free blocks (gravity; zero level at the origin)
   double elastic = 0;    ///< block strain energy + contact springs (½ N²/p + ½ S²/p_s; sliding: S = N tan φ)
   double loadWork = 0;   ///< work done on the blocks by water pressure, point loads and seismic loading
+  double groundMotionWork = 0;  ///< the share of loadWork done by a ground-motion record's inertial force
   /// Kinetic + potential + elastic − load work: non-increasing in a dissipative run.
   double mechanical() const { return kinetic + potential + elastic - loadWork; }
 };

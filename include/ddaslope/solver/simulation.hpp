@@ -140,6 +140,7 @@ class Simulation {
     bool frozeContacts = false;  ///< converged only because cycling contacts were frozen
     Eigen::VectorXd d;  ///< solution, 6 per active block
     std::vector<Vec6> loads;  ///< water and point loads on each active block (their work: loads·d)
+    std::vector<Vec6> groundLoads;  ///< the record's inertial force among them (its work, reported apart)
     std::vector<contact::Contact> contacts;
   };
 
@@ -169,7 +170,8 @@ class Simulation {
   /// Block terms of a step; `loads` receives the water, point-load and seismic part of f (its work),
   /// `magnitude` the sum of the absolute values of the terms that make up f (its round-off scale).
   void assembleBlockTerms(double dt, Regime regime, std::vector<Mat6>& k, std::vector<Vec6>& f,
-                          std::vector<Vec6>& loads, std::vector<Vec6>& magnitude) const;
+                          std::vector<Vec6>& loads, std::vector<Vec6>& magnitude,
+                          std::vector<Vec6>* groundLoads = nullptr) const;
   /// Accepts an attempt; `weakens`: its slip softens the joints (analysis steps only).
   void commit(const Attempt& a, double dt, bool weakens);
   /// Solves matrix_ d = rhs (6 per active block); rigid blocks solve for their 3 unknowns.
@@ -211,6 +213,7 @@ class Simulation {
   double lightestPenetration_ = INFINITY;  ///< 1e-3 of the lightest free block's W/p (m)
   double time_ = 0;
   double loadWork_ = 0;  ///< work of water and point loads since t = 0 (J/m)
+  double groundMotionWork_ = 0;  ///< the record's share of it (J/m)
   double relaxationTravel_ = 0;  ///< summed largest vertex displacement of stage 2's steps (m)
   std::vector<int> active_;  ///< dof block index per block, −1 when fixed or held
   int nActive_ = 0;
