@@ -222,9 +222,14 @@ std::string settingsLine(const ddaslope::model::Scene& scene) {
   if (q.ground.active()) {
     double peak = 0;
     for (double a : q.ground.horizontal) peak = std::max(peak, std::abs(a));
-    std::snprintf(buf, sizeof buf, ", under the ground-motion record (horizontal peak %.3g g; without it: --set "
-                  "seismic.record.scale=0)", peak / ddaslope::io::kStandardGravity);
-    line += buf;
+    for (double a : q.ground.vertical) peak = std::max(peak, std::abs(a));
+    if (peak == 0)
+      line += ", the ground-motion record scaled to 0 (no shaking: the static slope)";
+    else {
+      std::snprintf(buf, sizeof buf, ", under the ground-motion record (peak %.3g g; without it: --set "
+                    "seismic.record.scale=0)", peak / ddaslope::io::kStandardGravity);
+      line += buf;
+    }
   }
   return line;
 }
