@@ -127,7 +127,7 @@ int main(int argc, char** argv) {
   std::printf("blocks,contacts,unknowns,equilibrium_ms,step_ms,broad_phase_ms,contacts_ms,assembly_ms,"
               "factorisation_ms,solve_ms,state_checks_ms,update_ms,iterations_per_step,factorisations_per_step,"
               "cg_iterations_per_step,cuts,resident_mb,peak_resident_mb,simulated_s,wall_s,factor_update_ms,"
-              "factor_columns_per_step\n");
+              "factor_columns_per_step,stick_slip_changes_per_step,open_close_changes_per_step\n");
   std::vector<std::pair<int, double>> perStep;
   // The anchor wall by rows, or the bench's own wall by bricks.
   const std::vector<int>& runs = anchorRows.empty() ? sizes : anchorRows;
@@ -160,7 +160,7 @@ int main(int argc, char** argv) {
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     const solver::RunStatistics& a = sim.statistics();
     const auto d = [&](double solver::PhaseTimes::*f) { return ms(a.times.*f - before.times.*f, accepted); };
-    std::printf("%d,%zu,%d,%.1f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.2f,%.2f,%.2f,%d,%.1f,%.1f,%.4f,%.3f,%.3f,%.1f\n", n,
+    std::printf("%d,%zu,%d,%.1f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.2f,%.2f,%.2f,%d,%.1f,%.1f,%.4f,%.3f,%.3f,%.1f,%.1f,%.1f\n", n,
                 sim.contacts().contacts().size(), (rigid ? 3 : 6) * n, 1e3 * eq, ms(wall, accepted),
                 d(&solver::PhaseTimes::broadPhase), d(&solver::PhaseTimes::contacts),
                 d(&solver::PhaseTimes::assembly), d(&solver::PhaseTimes::factorisation),
@@ -169,7 +169,9 @@ int main(int argc, char** argv) {
                 double(a.factorisations - before.factorisations) / accepted,
                 double(a.cgIterations - before.cgIterations) / accepted,
                 a.cuts - before.cuts, statusMb("VmRSS"), peakReset ? statusMb("VmHWM") : NAN, sim.time(), wall,
-                d(&solver::PhaseTimes::factorUpdate), double(a.factorColumns - before.factorColumns) / accepted);
+                d(&solver::PhaseTimes::factorUpdate), double(a.factorColumns - before.factorColumns) / accepted,
+                double(a.stickSlipChanges - before.stickSlipChanges) / accepted,
+                double(a.openCloseChanges - before.openCloseChanges) / accepted);
     std::fflush(stdout);
     // The final state in two numbers, to see that two settings give the same run.
     double sum = 0, fastest = 0;

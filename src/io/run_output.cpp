@@ -111,6 +111,7 @@ void writeSummary(const fs::path& dir, const model::Scene& scene, const RunOptio
   j["factorisations"] = st.factorisations;
   j["factor_updates"] = st.factorUpdates;
   j["factor_columns"] = st.factorColumns;
+  j["state_changes"] = {{"locked_sliding", st.stickSlipChanges}, {"open_closed", st.openCloseChanges}};
   j["linear_solves"] = st.linearSolves;
   j["cg_iterations"] = st.cgIterations;
   j["wall_time_s"] = o.wallTime;

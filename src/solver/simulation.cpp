@@ -608,6 +608,9 @@ Simulation::Attempt Simulation::tryStep(double dt, Regime regime, bool freezeCyc
         frictionDrift = std::max(frictionDrift, std::abs(r.normalForce - c.normalForce));
       if (j.state != ContactState::Open) forceScale = std::max(forceScale, std::abs(r.normalForce));
       if (j.state != c.state || j.direction != c.slideDirection) stateChanged = true;
+      if (j.state != c.state)
+        ++((j.state == ContactState::Open || c.state == ContactState::Open) ? stats_.openCloseChanges
+                                                                              : stats_.stickSlipChanges);
       if (j.bonded != c.bonded) bondChanged = true;
       if (j.state == ContactState::Locked && c.state != ContactState::Locked) {
         // The locked spring starts at the step-start position; a contact that sticks after

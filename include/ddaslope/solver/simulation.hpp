@@ -56,6 +56,10 @@ struct RunStatistics {
   long factorColumns = 0;          ///< rank-one terms (springs switched on or off) they applied
   long linearSolves = 0;           ///< systems solved (one per open-close iteration)
   long cgIterations = 0;           ///< conjugate-gradient iterations on a reused factor
+  /// Contact state changes between open-close iterates (issue #16's profile of sudden loading):
+  /// between locked and sliding, and between open and closed (locked or sliding).
+  long stickSlipChanges = 0;
+  long openCloseChanges = 0;
   int maxContacts = 0;
   double maxPenetration = 0;       ///< largest penetration of a closed contact (m)
   PhaseTimes times;
