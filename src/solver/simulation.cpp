@@ -308,11 +308,12 @@ void Simulation::assembleBlockTerms(double dt, Regime regime, std::vector<Mat6>&
     const double density = mass_[b] / blk.moments.area;
     const Mat6 mass = density * assembly::unitMassMatrix(blk.moments);
     // Newmark β = 1/2, γ = 1 (Shi): K += 2M/Δt², F += 2M V/Δt.
-    k[i] = assembly::elasticStiffness(blk.moments.area, elasticity_[blk.material]) + (2 / (dt * dt)) * mass;
+    const Mat6 elastic = assembly::elasticStiffness(blk.moments.area, elasticity_[blk.material]);
+    k[i] = elastic + (2 / (dt * dt)) * mass;
     // Kelvin–Voigt damping of the strain rates, σ_v = β E ε̇, at the step's mean rate D/Δt: it
     // dissipates d·(β/Δt)K_e·d ≥ 0 in every step and leaves rest and rigid motion alone.
     if (carryVelocity && strainRetardation_[b] > 0)
-      k[i] += (strainRetardation_[b] / dt) * assembly::elasticStiffness(blk.moments.area, elasticity_[blk.material]);
+      k[i] += (strainRetardation_[b] / dt) * elastic;
     const Vec6 body = assembly::bodyForce(blk.moments.area, density * scene_.gravity);
     const Vec6 stress = assembly::initialStressForce(blk.moments.area, blk.stress);
     f[i] = body + stress;
@@ -630,10 +631,6 @@ Simulation::Attempt Simulation::tryStep(double dt, Regime regime, bool freezeCyc
       c.normalForce = r.normalForce;
       c.shearForce = c.state == ContactState::Locked ? r.lockedShear : 0.0;
     }
-    // A sliding contact's shear spring stays stretched to the friction it slides against.
-    const std::vector<double> carried = slidingFriction(a.contacts);
-    for (size_t q = 0; q < a.contacts.size(); ++q)
-      if (a.contacts[q].state == ContactState::Sliding) a.contacts[q].shearForce = carried[q];
     stats_.times.stateChecks += sw.lap();
     if (const int period = cycles.record(a.contacts); period > 0) {
       a.failure = "open-close iteration cycles: the contact states repeat every " + std::to_string(period) +
@@ -654,6 +651,11 @@ Simulation::Attempt Simulation::tryStep(double dt, Regime regime, bool freezeCyc
     a.failure = "open-close iteration did not converge in " + std::to_string(maxIterations) + " iterations";
     return a;
   }
+  // A sliding contact's shear spring stays stretched to the friction it slides against (once,
+  // for the converged states: only the energy budget reads it).
+  const std::vector<double> carried = slidingFriction(a.contacts);
+  for (size_t q = 0; q < a.contacts.size(); ++q)
+    if (a.contacts[q].state == ContactState::Sliding) a.contacts[q].shearForce = carried[q];
   double worst = 0;
   for (size_t b = 0; b < scene_.blocks.size(); ++b)
     if (active_[b] >= 0)
