@@ -34,7 +34,7 @@ TEST(ContactTerms, PenetrationLinearisationIsFirstOrderExact) {
     Vec6 di;
     di << 0.3, -1.0, 0.2, 0.1, -0.2, 0.05;
     di *= eps;
-    assembly::Vec12 d = assembly::Vec12::Zero();
+    Vec12 d = Vec12::Zero();
     d.head<6>() = di;
     const Vec2 p = model::displacedPoint(top.moments.centroid, top.vertices[0], di);
     const double exact = 4.0 - p.y();  // penetration below the line y = 4

@@ -18,8 +18,8 @@ ContactSprings spring(int vertex, double normalK, double shearK, double value) {
   s.blockJ = 1;
   s.normalK = normalK;
   s.shearK = shearK;
-  s.normal = solver::Vec12::Constant(value);
-  s.shear = solver::Vec12::Constant(-value);
+  s.normal = Vec12::Constant(value);
+  s.shear = Vec12::Constant(-value);
   return s;
 }
 }  // namespace

@@ -1,9 +1,13 @@
 // Block-sparse assembly and the CHOLMOD solve against a dense Eigen reference.
 #include <gtest/gtest.h>
 
+#include <tuple>
+#include <vector>
+
 #include <Eigen/Dense>
 
 #include "ddaslope/assembly/block_sparse_matrix.hpp"
+#include "ddaslope/assembly/system_terms.hpp"
 #include "ddaslope/solver/sparse_cholesky.hpp"
 
 using namespace ddaslope;
@@ -123,4 +127,42 @@ TEST(SparseSolve, FactorFollowsRankOneChanges) {
   EXPECT_LT((sol - x).norm(), 1e-9 * x.norm());
   // Removing the spring a second time would take away stiffness K never had.
   EXPECT_FALSE(chol.modify({c}, false));
+}
+
+TEST(SystemTerms, ProductsEqualTheAssembledMatrixAndItsDenseReference) {
+  // K kept as terms (issue #16) must be the same operator as K assembled: three blocks, springs
+  // between 0–1 and 1–2 and one to a fixed block (−1). Dense reference: Σ blocks + Σ k·v·vᵀ,
+  // exact linear algebra; the products agree to round-off (1e-13 of |K·x|).
+  for (int dof : {6, 3}) {
+    std::srand(11);
+    std::vector<Mat6> blocks(3);
+    for (Mat6& b : blocks) {
+      const Mat6 a = Mat6::Random();
+      b = a * a.transpose() + 10 * Mat6::Identity();
+    }
+    std::vector<Vec12> v(4);
+    for (Vec12& x : v) x = Vec12::Random();
+    const std::vector<std::tuple<int, int, double>> springs{{0, 1, 3.0}, {1, 2, 0.4}, {2, 1, 5.0}, {1, -1, 2.0}};
+    assembly::SystemTerms terms;
+    terms.reset(dof, blocks);
+    Eigen::MatrixXd dense = Eigen::MatrixXd::Zero(3 * dof, 3 * dof);
+    for (int b = 0; b < 3; ++b) dense.block(dof * b, dof * b, dof, dof) = blocks[b].topLeftCorner(dof, dof);
+    for (size_t s = 0; s < springs.size(); ++s) {
+      const auto [i, j, k] = springs[s];
+      terms.addSpring(i, j, k, v[s]);
+      Eigen::VectorXd u = Eigen::VectorXd::Zero(3 * dof);
+      if (i >= 0) u.segment(dof * i, dof) = v[s].head(dof);
+      if (j >= 0) u.segment(dof * j, dof) = v[s].segment(6, dof);
+      dense += k * u * u.transpose();
+    }
+    assembly::BlockSparseMatrix m;
+    m.setPattern(3, {{0, 1}, {1, 2}}, dof);
+    terms.assembleInto(m);
+    const Eigen::VectorXd x = Eigen::VectorXd::LinSpaced(3 * dof, -1, 2);
+    Eigen::VectorXd y;
+    terms.multiply(x, y);
+    const double scale = (dense * x).norm();
+    EXPECT_LT((y - dense * x).norm(), 1e-13 * scale) << "dof " << dof;
+    EXPECT_LT((m.multiply(x) - dense * x).norm(), 1e-13 * scale) << "dof " << dof;
+  }
 }

@@ -4,27 +4,29 @@
 
 namespace ddaslope::solver {
 
-bool LinearSolver::refactorise(const assembly::BlockSparseMatrix& k) {
+bool LinearSolver::refactorise(const SystemOperator& k) {
   ++stats_.factorisations;
-  haveFactor_ = cholesky_.factorise(k);
+  haveFactor_ = cholesky_.factorise(k.matrix());
   factorCurrent_ = haveFactor_;
   patternVersion_ = k.patternVersion();
   return haveFactor_;
 }
 
-bool LinearSolver::conjugateGradients(const assembly::BlockSparseMatrix& k, const Eigen::VectorXd& b,
+bool LinearSolver::conjugateGradients(const SystemOperator& k, const Eigen::VectorXd& b,
                                       Eigen::VectorXd& x, double residualFloor) {
   const double target = std::max(settings_.tolerance * b.norm(), residualFloor);
   cholesky_.solve(b, x);
-  Eigen::VectorXd r = b - k.multiply(x);
+  Eigen::VectorXd q;
+  k.multiply(x, q);
+  Eigen::VectorXd r = b - q;
   if (r.norm() <= target) return true;
-  Eigen::VectorXd z, p, q;
+  Eigen::VectorXd z, p;
   cholesky_.solve(r, z);
   p = z;
   double rz = r.dot(z);
   for (int it = 0; it < settings_.maxIterations; ++it) {
     ++stats_.cgIterations;
-    q = k.multiply(p);
+    k.multiply(p, q);
     const double pq = p.dot(q);
     if (!(pq > 0)) return false;  // K no longer positive definite along p: refactorise
     const double alpha = rz / pq;
@@ -39,7 +41,7 @@ bool LinearSolver::conjugateGradients(const assembly::BlockSparseMatrix& k, cons
   return false;
 }
 
-bool LinearSolver::solve(const assembly::BlockSparseMatrix& k, const Eigen::VectorXd& b, Eigen::VectorXd& x,
+bool LinearSolver::solve(const SystemOperator& k, const Eigen::VectorXd& b, Eigen::VectorXd& x,
                          double residualFloor) {
   ++stats_.solves;
   if (b.squaredNorm() == 0) {

@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "ddaslope/assembly/block_terms.hpp"
+#include "ddaslope/assembly/system_terms.hpp"
 #include "ddaslope/assembly/water_terms.hpp"
 #include "ddaslope/contact/broad_phase.hpp"
 #include "ddaslope/contact/contact_law.hpp"
@@ -22,7 +23,6 @@
 namespace ddaslope::solver {
 
 using assembly::ContactKinematics;
-using assembly::Vec12;
 using contact::Contact;
 using contact::ContactState;
 
@@ -59,6 +59,27 @@ class Stopwatch {
   std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
 };
 
+
+/// K kept as its terms: products from the terms, entries assembled into `matrix` only when a
+/// factorisation asks for them (once per change of K).
+class TermsOnDemand final : public SystemOperator {
+ public:
+  TermsOnDemand(const assembly::SystemTerms& terms, assembly::BlockSparseMatrix& matrix)
+      : terms_(terms), matrix_(matrix) {}
+  void changed() { assembled_ = false; }
+  void multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const override { terms_.multiply(x, y); }
+  const assembly::BlockSparseMatrix& matrix() const override {
+    if (!assembled_) terms_.assembleInto(matrix_);
+    assembled_ = true;
+    return matrix_;
+  }
+  long patternVersion() const override { return matrix_.patternVersion(); }
+
+ private:
+  const assembly::SystemTerms& terms_;
+  assembly::BlockSparseMatrix& matrix_;
+  mutable bool assembled_ = false;
+};
 }  // namespace
 
 Simulation::Simulation(model::Scene scene)
@@ -376,14 +397,6 @@ Simulation::Attempt Simulation::tryStep(double dt, Regime regime, bool freezeCyc
   const auto ends = [&](const Contact& c) {
     return std::pair{active_[c.key().vertexBlock], active_[c.key().edgeBlock]};
   };
-  const auto addSpring = [&](const Contact& c, double k, const Vec12& v) {
-    const auto [i, j] = ends(c);
-    // k·v·vᵀ, only the entries the matrix stores.
-    const Vec6 vi = v.head<6>(), vj = v.tail<6>();
-    if (i >= 0) matrix_.addDiagonalOuter(i, k, vi);
-    if (j >= 0) matrix_.addDiagonalOuter(j, k, vj);
-    if (i >= 0 && j >= 0) matrix_.addCouplingOuter(i, j, k, vi, vj);
-  };
   Eigen::VectorXd rhs(6 * nActive_);
   const auto addForce = [&](const Contact& c, double s, const Vec12& v) {
     const auto [i, j] = ends(c);
@@ -430,6 +443,10 @@ Simulation::Attempt Simulation::tryStep(double dt, Regime regime, bool freezeCyc
   // (solver/factor_springs.hpp) instead of being redone; small systems refactorise, which is
   // cheap there and keeps their results as they were.
   const bool followFactor = factorFollowing_ && matrix_.size() >= kFactorFollowingMinUnknowns;
+  assembly::SystemTerms terms;
+  TermsOnDemand lazySystem(terms, matrix_);
+  const AssembledSystem assembledSystem(matrix_);
+  const SystemOperator& system = followFactor ? static_cast<const SystemOperator&>(lazySystem) : assembledSystem;
   // The right-hand side is a sum of forces that nearly cancel in a scene at rest (weights against
   // contact preloads and stresses: 3e7 N of terms for a 0.2 N sum in a 2047-brick wall), so it is
   // known only to the round-off of those terms. A large system's solve stops there instead of at
@@ -474,14 +491,20 @@ Simulation::Attempt Simulation::tryStep(double dt, Regime regime, bool freezeCyc
   for (a.iterations = 1; a.iterations <= maxIterations; ++a.iterations) {
     sw.lap();
     if (stiffnessChanged) {
-      matrix_.setZero();
-      for (int i = 0; i < nActive_; ++i) matrix_.addDiagonal(i, blockK[i]);
+      terms.reset(dof, blockK);
       for (size_t q = 0; q < a.contacts.size(); ++q) {
         const Contact& c = a.contacts[q];
         if (!c.closed()) continue;
-        addSpring(c, penalty_, kin[q].normal);
-        if (c.state == ContactState::Locked) addSpring(c, ps, kin[q].shearLocked);
+        const auto [i, j] = ends(c);
+        terms.addSpring(i, j, penalty_, kin[q].normal);
+        if (c.state == ContactState::Locked) terms.addSpring(i, j, ps, kin[q].shearLocked);
       }
+      // A large system assembles K only if a factorisation asks for it; a small one at once,
+      // which keeps its products (and results) as they were.
+      if (followFactor)
+        lazySystem.changed();
+      else
+        terms.assembleInto(matrix_);
     }
     for (int i = 0; i < nActive_; ++i) rhs.segment<6>(6 * i) = blockF[i];
     if (residualAtRoundOff) {
@@ -523,7 +546,7 @@ Simulation::Attempt Simulation::tryStep(double dt, Regime regime, bool freezeCyc
     if (residualAtRoundOff)
       for (int i = 0; i < nActive_; ++i) magnitudeNorm2 += magnitude.segment(6 * i, dof).squaredNorm();
     const double roundOff = 16 * std::numeric_limits<double>::epsilon() * std::sqrt(magnitudeNorm2);
-    const bool solved = nActive_ == 0 || solveSystem(rhs, a.d, roundOff);
+    const bool solved = nActive_ == 0 || solveSystem(system, rhs, a.d, roundOff);
     if (followFactor && linearSolver_.stats().factorisations > factorisationsBefore) {
       factorSprings_.reset(contactSprings());
       factorBlockTerms_ = blockTerms;
@@ -670,13 +693,14 @@ Simulation::Attempt Simulation::tryStep(double dt, Regime regime, bool freezeCyc
   return a;
 }
 
-bool Simulation::solveSystem(const Eigen::VectorXd& rhs, Eigen::VectorXd& d, double residualFloor) {
+bool Simulation::solveSystem(const SystemOperator& k, const Eigen::VectorXd& rhs, Eigen::VectorXd& d,
+                             double residualFloor) {
   const int dof = matrix_.blockSize();
-  if (dof == 6) return linearSolver_.solve(matrix_, rhs, d, residualFloor);
+  if (dof == 6) return linearSolver_.solve(k, rhs, d, residualFloor);
   // Rigid blocks: the matrix holds u0, v0, r0 of each block; the strains stay zero.
   Eigen::VectorXd reduced(dof * nActive_), x;
   for (int i = 0; i < nActive_; ++i) reduced.segment(dof * i, dof) = rhs.segment(6 * i, dof);
-  if (!linearSolver_.solve(matrix_, reduced, x, residualFloor)) return false;
+  if (!linearSolver_.solve(k, reduced, x, residualFloor)) return false;
   d = Eigen::VectorXd::Zero(6 * nActive_);
   for (int i = 0; i < nActive_; ++i) d.segment(6 * i, dof) = x.segment(dof * i, dof);
   return true;

@@ -7,8 +7,6 @@
 
 namespace ddaslope::assembly {
 
-using Vec12 = Eigen::Matrix<double, 12, 1>;
-
 /// Penetration and shear of a vertex-to-edge contact as linear functions of [D_i; D_j]
 /// (i: the vertex's block, j: the edge's block), evaluated on the geometry at the step start.
 struct ContactKinematics {

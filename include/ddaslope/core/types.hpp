@@ -9,6 +9,8 @@ using Vec3 = Eigen::Vector3d;
 /// The six unknowns of a block (Shi 1988): u0, v0, r0, εx, εy, γxy about the centroid.
 using Vec6 = Eigen::Matrix<double, 6, 1>;
 using Mat6 = Eigen::Matrix<double, 6, 6>;
+/// The unknowns of the two blocks of a contact, block i's six then block j's.
+using Vec12 = Eigen::Matrix<double, 12, 1>;
 /// Displacement matrix T(x, y): point displacement = T · D.
 using Mat26 = Eigen::Matrix<double, 2, 6>;
 

@@ -13,7 +13,6 @@
 
 namespace ddaslope::solver {
 
-using assembly::Vec12;
 
 /// The springs one contact puts into K.
 struct ContactSprings {

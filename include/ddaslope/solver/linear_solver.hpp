@@ -25,6 +25,30 @@ struct LinearSolverStats {
   long factorModifications = 0;  ///< low-rank updates/downdates applied instead of refactorising
 };
 
+/// K as the solver uses it: products with K for conjugate gradients, and K's entries when a
+/// factorisation needs them (K kept as its terms assembles them only then: assembly/system_terms).
+class SystemOperator {
+ public:
+  virtual ~SystemOperator() = default;
+  virtual void multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const = 0;
+  virtual const assembly::BlockSparseMatrix& matrix() const = 0;
+  /// The version of K's pattern (known without its entries): a factor's symbolic analysis holds
+  /// while it is the same.
+  virtual long patternVersion() const = 0;
+};
+
+/// An assembled K.
+class AssembledSystem final : public SystemOperator {
+ public:
+  explicit AssembledSystem(const assembly::BlockSparseMatrix& k) : k_(k) {}
+  void multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const override { y = k_.multiply(x); }
+  const assembly::BlockSparseMatrix& matrix() const override { return k_; }
+  long patternVersion() const override { return k_.patternVersion(); }
+
+ private:
+  const assembly::BlockSparseMatrix& k_;
+};
+
 class LinearSolver {
  public:
   explicit LinearSolver(LinearSolverSettings s = {}) : settings_(s) {}
@@ -35,8 +59,11 @@ class LinearSolver {
   /// Returns false if K is not positive definite. CG stops at a residual of tolerance·‖b‖ or
   /// `residualFloor`, whichever is larger: b is known only to the round-off of the terms summed
   /// into it, and iterating below that refines noise.
+  bool solve(const SystemOperator& k, const Eigen::VectorXd& b, Eigen::VectorXd& x, double residualFloor = 0);
   bool solve(const assembly::BlockSparseMatrix& k, const Eigen::VectorXd& b, Eigen::VectorXd& x,
-             double residualFloor = 0);
+             double residualFloor = 0) {
+    return solve(AssembledSystem(k), b, x, residualFloor);
+  }
   /// K changed by these rank-one terms since the factor was made (or last modified): the factor
   /// follows them by update/downdate, and CG then converges as if it were fresh. Returns false
   /// (and drops the factor, so the next solve refactorises) if the result lost positive
@@ -51,9 +78,9 @@ class LinearSolver {
   int symbolicAnalyses() const { return cholesky_.symbolicAnalyses(); }
 
  private:
-  bool refactorise(const assembly::BlockSparseMatrix& k);
+  bool refactorise(const SystemOperator& k);
   /// Preconditioned CG from the factor's solution; false if it did not reach the tolerance.
-  bool conjugateGradients(const assembly::BlockSparseMatrix& k, const Eigen::VectorXd& b, Eigen::VectorXd& x,
+  bool conjugateGradients(const SystemOperator& k, const Eigen::VectorXd& b, Eigen::VectorXd& x,
                           double residualFloor);
 
   LinearSolverSettings settings_;

@@ -178,9 +178,9 @@ class Simulation {
                           std::vector<Vec6>* groundLoads = nullptr) const;
   /// Accepts an attempt; `weakens`: its slip softens the joints (analysis steps only).
   void commit(const Attempt& a, double dt, bool weakens);
-  /// Solves matrix_ d = rhs (6 per active block); rigid blocks solve for their 3 unknowns.
+  /// Solves K d = rhs (6 per active block); rigid blocks solve for their 3 unknowns.
   /// residualFloor: the residual below which the right-hand side is round-off (0: none).
-  bool solveSystem(const Eigen::VectorXd& rhs, Eigen::VectorXd& d, double residualFloor);
+  bool solveSystem(const SystemOperator& k, const Eigen::VectorXd& rhs, Eigen::VectorXd& d, double residualFloor);
   contact::ContactStrength strengthOf(const contact::Contact& c) const;
   /// Shear a sliding contact resists with: N tanφ, plus c·L while a softening bond lasts.
   double slidingResistance(const contact::Contact& c) const;
