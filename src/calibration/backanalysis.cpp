@@ -9,6 +9,7 @@
 
 #include "ddaslope/calibration/minimiser.hpp"
 #include "ddaslope/calibration/strength_search.hpp"
+#include "ddaslope/core/byte_record.hpp"
 #include "ddaslope/core/errors.hpp"
 #include "ddaslope/io/case_reader.hpp"
 #include "ddaslope/io/run_case.hpp"
@@ -176,8 +177,61 @@ double misfitOf(const io::BackanalysisJob& job, const model::Scene& scene, int* 
   return total;
 }
 
-BackanalysisResult runBackanalysis(const io::BackanalysisJob& job) {
+namespace {
+
+/// Misfits at parameter vectors (physical units), spread over the farm (one thread per point, so
+/// a point's misfit is the same on any farm); on the root, values[k], and the forward runs taken.
+std::vector<double> misfitsAt(const io::BackanalysisJob& job, const std::vector<std::vector<double>>& points,
+                              const solver::HeldEquilibrium* shared, TaskFarm& farm, std::atomic<int>& runs) {
+  std::vector<double> values(points.size(), HUGE_VAL);
+  std::vector<int> indices(points.size());
+  for (size_t k = 0; k < points.size(); ++k) indices[k] = static_cast<int>(k);
+  farm.run(
+      indices,
+      [&](int k) {
+        int m = 0;
+        const double v = misfitAt(job, points[k], &m, shared);
+        return BytePacker().put(v).put(m).bytes();
+      },
+      [&](int k, const TaskResult& bytes) {
+        ByteUnpacker b(bytes);
+        values[k] = b.get<double>();
+        runs += b.get<int>();
+      });
+  return values;
+}
+
+/// n values per parameter evenly over its range, every combination, the last parameter fastest:
+/// the misfit map's points for two parameters. `unit`: the same points in the unit box.
+std::vector<std::vector<double>> parameterGrid(const io::BackanalysisJob& job, int n,
+                                               std::vector<std::vector<double>>* unit = nullptr) {
+  const size_t dims = job.parameters.size();
+  size_t total = 1;
+  for (size_t d = 0; d < dims; ++d) total *= static_cast<size_t>(n);
+  std::vector<std::vector<double>> points(total, std::vector<double>(dims));
+  if (unit) unit->assign(total, std::vector<double>(dims));
+  for (size_t k = 0; k < total; ++k) {
+    size_t rest = k;
+    for (size_t d = dims; d-- > 0;) {
+      const int i = static_cast<int>(rest % n);
+      rest /= n;
+      const io::ParameterSpec& p = job.parameters[d];
+      points[k][d] = p.min + (p.max - p.min) * i / (n - 1);
+      if (unit) (*unit)[k][d] = static_cast<double>(i) / (n - 1);
+    }
+  }
+  return points;
+}
+
+}  // namespace
+
+BackanalysisResult runBackanalysis(const io::BackanalysisJob& job, TaskFarm* farm) {
   const auto t0 = std::chrono::steady_clock::now();
+  std::unique_ptr<TaskFarm> own;
+  if (!farm) own = makeThreadFarm(job.threads), farm = own.get();
+  // Under MPI the other ranks take part in the grid stages only (the optimisers' evaluations
+  // depend on one another); the root runs the rest.
+  const bool root = farm->isRoot();
   BackanalysisResult r;
   for (const auto& p : job.parameters) r.names.push_back(p.name);
   std::atomic<int> runs{0};
@@ -204,22 +258,37 @@ BackanalysisResult runBackanalysis(const io::BackanalysisJob& job) {
     if (job.parameters[i].hasStart)
       u[i] = (job.parameters[i].start - job.parameters[i].min) / (job.parameters[i].max - job.parameters[i].min);
   double best = HUGE_VAL;
-  if (!job.optimiser.global.empty()) {
+  const bool gridSearch = job.optimiser.global == io::kGridSearch;
+  std::vector<double> gridValues;
+  if (gridSearch) {
+    // A global stage whose evaluations are independent: the misfit at grid_points per axis,
+    // spread over the threads (or ranks); the best point starts the local polish.
+    std::vector<std::vector<double>> unit;
+    const std::vector<std::vector<double>> grid = parameterGrid(job, job.gridPoints, &unit);
+    gridValues = misfitsAt(job, grid, shared, *farm, runs);
+    const size_t k = static_cast<size_t>(std::min_element(gridValues.begin(), gridValues.end()) - gridValues.begin());
+    u = unit[k];
+    best = gridValues[k];
+    r.evaluations += static_cast<int>(grid.size());
+    r.globalStatus = std::string(io::kGridSearch) + ": " + std::to_string(grid.size()) + " points";
+  } else if (!job.optimiser.global.empty() && root) {
     const MinimiserResult g = minimise(job.optimiser.global, f, u, job.optimiser.globalEvaluations, job.optimiser.xtolRel);
     r.globalStatus = job.optimiser.global + ": " + g.status;
     r.evaluations += g.evaluations;
     u = g.x;
     best = g.value;
   }
-  if (!job.optimiser.local.empty()) {
+  if (!job.optimiser.local.empty() && root) {
     const MinimiserResult l = minimise(job.optimiser.local, f, u, job.optimiser.localEvaluations, job.optimiser.xtolRel);
     r.localStatus = job.optimiser.local + ": " + l.status;
     r.evaluations += l.evaluations;
     if (l.value <= best) u = l.x, best = l.value;
   }
+  // The observations' fit at the estimate (the local stage recorded it if it ran from there).
+  if (root && bestSeen > best) f(u), ++r.evaluations;
   r.estimate = physical(job, u);
   r.misfit = best;
-  if (job.precision.enabled) {
+  if (job.precision.enabled && root) {
     std::vector<double> simulated;
     for (const auto& f : r.fit) simulated.push_back(f.converged ? f.simulated : NAN);
     int n = 0;
@@ -233,20 +302,13 @@ BackanalysisResult runBackanalysis(const io::BackanalysisJob& job) {
       r.axis0.push_back(job.parameters[0].min + (job.parameters[0].max - job.parameters[0].min) * i / (n - 1));
       r.axis1.push_back(job.parameters[1].min + (job.parameters[1].max - job.parameters[1].min) * i / (n - 1));
     }
+    // The map is the grid search's own grid when there was one (the same points, last axis
+    // fastest); else its n² evaluations are spread over the farm.
+    const std::vector<double> values =
+        gridSearch ? gridValues : misfitsAt(job, parameterGrid(job, n), shared, *farm, runs);
     r.map.assign(n, std::vector<double>(n, 0));
-    std::atomic<int> next{0};
-    const auto work = [&] {
-      for (int k = next++; k < n * n; k = next++) {
-        int m = 0;
-        r.map[k / n][k % n] = misfitAt(job, {r.axis0[k / n], r.axis1[k % n]}, &m, shared);
-        runs += m;
-      }
-    };
-    std::vector<std::thread> pool;
-    for (int t = 1; t < std::max(1, job.threads); ++t) pool.emplace_back(work);
-    work();
-    for (auto& t : pool) t.join();
-    judgeConstraint(job, r);
+    for (int k = 0; k < n * n; ++k) r.map[k / n][k % n] = values[k];
+    if (root) judgeConstraint(job, r);
   }
   r.forwardRuns = runs;
   r.wallTime = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

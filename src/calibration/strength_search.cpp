@@ -9,6 +9,7 @@
 #include <thread>
 
 #include "ddaslope/calibration/bisection.hpp"
+#include "ddaslope/core/byte_record.hpp"
 #include "ddaslope/core/types.hpp"
 
 namespace ddaslope::calibration {
@@ -174,21 +175,36 @@ CriticalResult criticalSeismicCoefficient(const model::Scene& scene, int directi
 }
 
 std::vector<CurvePoint> criticalCurve(const model::Scene& scene, int joint, double phiMinDeg, double phiMaxDeg,
-                                      int n, double width, const SearchSettings& s) {
+                                      int n, double width, const SearchSettings& s, TaskFarm* farm) {
   std::vector<CurvePoint> curve(std::max(2, n));
-  for (size_t i = 0; i < curve.size(); ++i)
+  std::vector<int> points(curve.size());
+  for (size_t i = 0; i < curve.size(); ++i) {
     curve[i].frictionDeg = phiMinDeg + (phiMaxDeg - phiMinDeg) * i / (curve.size() - 1);
+    points[i] = static_cast<int>(i);
+  }
   SearchSettings single = s;
-  single.threads = 1;  // parallel over points instead
-  std::atomic<size_t> next{0};
-  const auto work = [&] {
-    for (size_t i = next++; i < curve.size(); i = next++)
-      curve[i].cohesion = criticalCohesion(scene, joint, curve[i].frictionDeg, width, single);
-  };
-  std::vector<std::thread> pool;
-  for (int t = 1; t < std::max(1, s.threads); ++t) pool.emplace_back(work);
-  work();
-  for (auto& t : pool) t.join();
+  single.threads = 1;  // parallel over points instead: a point's search is the same on any farm
+  std::unique_ptr<TaskFarm> own;
+  if (!farm) own = makeThreadFarm(s.threads), farm = own.get();
+  farm->run(
+      points,
+      [&](int i) {
+        const CriticalResult r = criticalCohesion(scene, joint, curve[i].frictionDeg, width, single);
+        BytePacker b;
+        b.put(r.found).put(r.critical).put(r.stableEnd).put(r.failingEnd).put(r.runs).put(r.wallTime).put(r.message);
+        return b.bytes();
+      },
+      [&](int i, const TaskResult& bytes) {
+        ByteUnpacker b(bytes);
+        CriticalResult& r = curve[i].cohesion;
+        r.found = b.get<bool>();
+        r.critical = b.get<double>();
+        r.stableEnd = b.get<double>();
+        r.failingEnd = b.get<double>();
+        r.runs = b.get<int>();
+        r.wallTime = b.get<double>();
+        r.message = b.getString();
+      });
   return curve;
 }
 

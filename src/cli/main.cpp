@@ -26,6 +26,8 @@
 #include "ddaslope/model/presets.hpp"
 #include "ddaslope/model/settings_override.hpp"
 #include "ddaslope/core/errors.hpp"
+#include "ddaslope/core/byte_record.hpp"
+#include "ddaslope/core/task_farm.hpp"
 #include "ddaslope/model/input_limits.hpp"
 #include "ddaslope/io/case_reader.hpp"
 #include "ddaslope/io/run_case.hpp"
@@ -337,7 +339,10 @@ int curveCommand(const std::string& casePath, const ddaslope::model::Scene& scen
   ddaslope::calibration::SearchSettings s;
   s.threads = opt.threads;
   const auto t0 = std::chrono::steady_clock::now();
-  const auto curve = ddaslope::calibration::criticalCurve(scene, joint, lo, hi, n, opt.width > 0 ? opt.width : 10, s);
+  const std::unique_ptr<ddaslope::TaskFarm> farm = ddaslope::makeTaskFarm(opt.threads);
+  const auto curve =
+      ddaslope::calibration::criticalCurve(scene, joint, lo, hi, n, opt.width > 0 ? opt.width : 10, s, farm.get());
+  if (!farm->isRoot()) return kExitOk;  // the root writes
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   std::filesystem::create_directories(opt.outDir);
   const std::string csv = opt.outDir + "/critical_curve.csv", png = opt.outDir + "/critical_curve.png";
@@ -508,21 +513,56 @@ int fosSweep(const std::string& casePath, const Overrides& o, const FosOptions& 
       n > 1000 || !std::isfinite(lo) || !std::isfinite(hi))
     throw ddaslope::InputError("--sweep", opt.sweep, "expected json.path=min:max:n with finite min, max and 2 ≤ n ≤ 1000");
   const std::string path = opt.sweep.substr(0, eq);
-  std::filesystem::create_directories(opt.outDir);
   const std::string csv = opt.outDir + "/fos_sweep.csv", png = opt.outDir + "/fos_sweep.png";
+  // The values are independent searches (one thread each, so a value's F is the same on any
+  // farm), spread over the threads, or the ranks under mpirun.
+  struct Point {
+    ddaslope::calibration::FactorOfSafetyResult fos;
+    bool done = false;
+  };
+  std::vector<Point> points(static_cast<size_t>(n));
+  std::vector<int> indices(static_cast<size_t>(n));
+  for (int i = 0; i < n; ++i) indices[i] = i;
+  const auto valueAt = [&](int i) { return lo + (hi - lo) * i / (n - 1); };
+  FosOptions single = opt;
+  single.threads = 1;
+  const std::unique_ptr<ddaslope::TaskFarm> farm = ddaslope::makeTaskFarm(opt.threads);
+  farm->run(
+      indices,
+      [&](int i) {
+        ddaslope::model::Scene scene = loadCase(casePath, o, {{path, valueAt(i)}});
+        applyOverrides(scene, o, casePath);
+        const auto r = factorFor(scene, casePath, single);
+        ddaslope::BytePacker b;
+        b.put(r.found).put(r.factor).put(r.stableEnd).put(r.failingEnd).put(r.runs).put(r.wallTime).put(r.message);
+        return b.bytes();
+      },
+      [&](int i, const ddaslope::TaskResult& bytes) {
+        ddaslope::ByteUnpacker b(bytes);
+        auto& r = points[i].fos;
+        r.found = b.get<bool>();
+        r.factor = b.get<double>();
+        r.stableEnd = b.get<double>();
+        r.failingEnd = b.get<double>();
+        r.runs = b.get<int>();
+        r.wallTime = b.get<double>();
+        r.message = b.getString();
+        points[i].done = true;
+        std::printf("  %s = %-10g F = %s (%d forward runs, %.1f s)\n", path.c_str(), valueAt(i),
+                    r.found ? std::to_string(r.factor).c_str() : r.message.c_str(), r.runs, r.wallTime);
+        std::fflush(stdout);
+      });
+  if (!farm->isRoot()) return kExitOk;  // the root writes
+  std::filesystem::create_directories(opt.outDir);
   std::ofstream out(csv + ".tmp");
   out << path << ",factor_of_safety,stable_at,failing_at,found,forward_runs,wall_time_s\n";
   ddaslope::io::PlotSeries series{"F", {}, {}, true};
   bool all = true;
   for (int i = 0; i < n; ++i) {
-    const double v = lo + (hi - lo) * i / (n - 1);
-    ddaslope::model::Scene scene = loadCase(casePath, o, {{path, v}});
-    applyOverrides(scene, o, casePath);
-    const auto r = factorFor(scene, casePath, opt);
+    const auto& r = points[i].fos;
+    const double v = valueAt(i);
     out << v << "," << r.factor << "," << r.stableEnd << "," << r.failingEnd << "," << r.found << "," << r.runs << ","
         << r.wallTime << "\n";
-    std::printf("  %s = %-10g F = %s (%d forward runs, %.1f s)\n", path.c_str(), v,
-                r.found ? std::to_string(r.factor).c_str() : r.message.c_str(), r.runs, r.wallTime);
     series.x.push_back(v);
     series.y.push_back(r.found ? r.factor : NAN);
     all &= r.found;
@@ -602,7 +642,9 @@ int backanalyseCommand(const std::string& jobPath, const std::string& outDir, bo
   // The command line's choices are applied after the job's own (its "preset", "blocks").
   job.model.push_back(o.model);
   for (const auto& s : o.settings) job.caseOverrides.push_back(parseSetting(s));
-  const ddaslope::calibration::BackanalysisResult r = ddaslope::calibration::runBackanalysis(job);
+  const std::unique_ptr<ddaslope::TaskFarm> farm = ddaslope::makeTaskFarm(job.threads);
+  const ddaslope::calibration::BackanalysisResult r = ddaslope::calibration::runBackanalysis(job, farm.get());
+  if (!farm->isRoot()) return kExitOk;  // the root writes
   std::filesystem::create_directories(outDir);
   ddaslope::io::JsonRecord j;
   j.set("job", jobPath).set("case", job.casePath);
@@ -684,12 +726,11 @@ int cutCommand(const std::string& casePath, const std::string& outDir) {
   return kExitOk;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+int runCommandLine(int argc, char** argv) {
   CLI::App app{"ddaslope: shear strength of landslide sliding surfaces and factor of safety of jointed rock "
                "slopes with Discontinuous Deformation Analysis"};
   app.require_subcommand(1);
+  app.set_version_flag("--version", std::string("ddaslope ") + DDASLOPE_VERSION + ", " + ddaslope::processSupport());
   std::string casePath, outDir = "out";
   Overrides overrides;
   bool quiet = false, verbose = false;
@@ -803,4 +844,18 @@ int main(int argc, char** argv) {
     return 1;
   }
   return kExitOk;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  // Under mpirun every rank parses the same command line; the root reports and writes, the
+  // others run their share of a study's forward runs (core/task_farm.hpp).
+  ddaslope::startProcesses(argc, argv);
+  if (ddaslope::processRank() != 0 && !std::freopen("/dev/null", "w", stdout)) return 1;
+  const int code = runCommandLine(argc, argv);
+  // An error on one rank must not leave the others waiting for it.
+  if (ddaslope::processCount() > 1 && code != kExitOk && code != kExitNonConvergence) ddaslope::abortProcesses(code);
+  ddaslope::stopProcesses();
+  return code;
 }

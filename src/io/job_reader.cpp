@@ -194,6 +194,19 @@ BackanalysisJob readJob(const std::string& path) {
   }
   readPrecision(r, doc, job);
   if (doc.contains("grid_points")) job.gridPoints = static_cast<int>(r.number(doc.at("grid_points"), "grid_points"));
+  if (job.gridPoints < 0 || job.gridPoints > 1000)
+    throw InputError(job.jobPath, "grid_points", "expected 0 (no misfit map) to 1000 values per parameter, found " +
+                                                     std::to_string(job.gridPoints));
+  if (job.optimiser.global == kGridSearch) {
+    // grid_points^n evaluations: a cap that keeps a typo from asking for years of runs.
+    double points = 1;
+    for (size_t i = 0; i < job.parameters.size(); ++i) points *= job.gridPoints;
+    if (job.gridPoints < 2 || points > 1e5)
+      throw InputError(job.jobPath, "grid_points",
+                       "the grid search evaluates grid_points^" + std::to_string(job.parameters.size()) +
+                           " points: expected 2 or more per parameter and at most 100000 in all, found " +
+                           std::to_string(job.gridPoints) + " per parameter");
+  }
   if (doc.contains("threads")) job.threads = static_cast<int>(r.number(doc.at("threads"), "threads"));
   model::SettingsOverride own;
   own.origin = "job ";

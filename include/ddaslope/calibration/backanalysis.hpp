@@ -7,6 +7,7 @@
 
 #include "ddaslope/calibration/precision.hpp"
 #include "ddaslope/calibration/strength_search.hpp"
+#include "ddaslope/core/task_farm.hpp"
 
 #include "ddaslope/io/job_reader.hpp"
 #include "ddaslope/model/scene.hpp"
@@ -65,6 +66,10 @@ double misfitOf(const io::BackanalysisJob& job, const model::Scene& scene, int* 
                 const solver::HeldEquilibrium* shared = nullptr, int searchThreads = 1,
                 std::vector<ObservationFit>* fit = nullptr);
 
-BackanalysisResult runBackanalysis(const io::BackanalysisJob& job);
+/// The search, the precision study and the misfit map of a job. Independent evaluations (a
+/// grid global stage, "optimiser.global": "grid", and the map) run on `farm` (null: job.threads
+/// threads in this process). Under MPI only the root's result is complete: the other ranks take
+/// part in those stages only.
+BackanalysisResult runBackanalysis(const io::BackanalysisJob& job, TaskFarm* farm = nullptr);
 
 }  // namespace ddaslope::calibration

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "ddaslope/calibration/verdict.hpp"
+#include "ddaslope/core/task_farm.hpp"
 #include "ddaslope/model/scene.hpp"
 
 namespace ddaslope::calibration {
@@ -57,10 +58,12 @@ struct CurvePoint {
 };
 
 /// The curve of critical (c, φ) pairs of `joint`: the critical cohesion at n friction angles
-/// evenly spaced over [phiMin, phiMax] (n ≥ 2). Points are independent searches, run
-/// `threads` at a time.
+/// evenly spaced over [phiMin, phiMax] (n ≥ 2). Points are independent searches (one thread
+/// each), run on `farm` (null: `threads` at a time in this process). Under MPI only the root's
+/// curve is filled in (the search's record of trials stays empty: the points' results are
+/// what crosses between ranks).
 std::vector<CurvePoint> criticalCurve(const model::Scene& scene, int joint, double phiMinDeg, double phiMaxDeg,
-                                      int n, double width, const SearchSettings& s = {});
+                                      int n, double width, const SearchSettings& s = {}, TaskFarm* farm = nullptr);
 
 struct FactorOfSafetyResult {
   bool found = false;

@@ -32,6 +32,10 @@ struct ObservationSpec {
   double weight = 1;
 };
 
+/// optimiser.global's name for a grid scan (grid_points per parameter; its evaluations are
+/// independent, so they spread over threads and MPI ranks) instead of an NLopt algorithm.
+inline constexpr const char* kGridSearch = "grid";
+
 struct OptimiserSpec {
   std::string global = "GN_DIRECT_L";  ///< "" for none
   std::string local = "LN_BOBYQA";     ///< "" for none

@@ -1,0 +1,54 @@
+#!/usr/bin/env bash
+# A study spread over 3 MPI ranks (oversubscribed on any machine) gives the same answer as one
+# process (issue #18): the fos sweep's, the critical curve's and a back-analysis's grid outputs
+# are byte-identical once the wall time (which measures the machine, not the slope) is left out.
+# usage: scripts/test_mpi.sh DDASLOPE_CLI SOURCE_DIR
+set -euo pipefail
+cli=$1 src=$(cd "$2" && pwd)
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+# CI runs as root in a container; Open MPI refuses that unless told it is meant.
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+mpi=(mpirun -np 3 --oversubscribe)
+case_file=$src/cases/planar_failure.json
+
+same() {  # same CSV, columns 1..$3 (the wall time last or absent)
+  if ! cmp -s <(cut -d, -f"1-$3" "$1") <(cut -d, -f"1-$3" "$2"); then
+    echo "FAIL: $1 and $2 differ:"; diff <(cut -d, -f"1-$3" "$1") <(cut -d, -f"1-$3" "$2") || true
+    exit 1
+  fi
+  echo "same: $(basename "$1") ($(($(wc -l < "$1") - 1)) rows)"
+}
+
+sweep=joints.sliding_plane.cohesion=0:50000:6
+"$cli" fos "$case_file" --sweep "$sweep" --out "$work/fos1" > /dev/null
+"${mpi[@]}" "$cli" fos "$case_file" --sweep "$sweep" --out "$work/fos3" > /dev/null
+same "$work/fos1/fos_sweep.csv" "$work/fos3/fos_sweep.csv" 6
+
+"$cli" critical "$case_file" --joint sliding_plane --curve 20:40:5 --out "$work/curve1" > /dev/null
+"${mpi[@]}" "$cli" critical "$case_file" --joint sliding_plane --curve 20:40:5 --out "$work/curve3" > /dev/null
+same "$work/curve1/critical_curve.csv" "$work/curve3/critical_curve.csv" 6
+
+# The back-analysis's grid search and misfit map (the planar failure's job, on a 5 × 5 grid).
+sed -e 's/"global": "GN_DIRECT_L"/"global": "grid"/' -e 's/"grid_points": 9/"grid_points": 5/' \
+    -e 's/"local_evaluations": 30/"local_evaluations": 10/' \
+    -e "s#\"../../cases/planar_failure.json\"#\"$case_file\"#" "$src/calibration/planar_failure/job.json" > "$work/job.json"
+grep -q '"global": "grid"' "$work/job.json"
+"$cli" backanalyse "$work/job.json" --out "$work/ba1" > /dev/null
+"${mpi[@]}" "$cli" backanalyse "$work/job.json" --out "$work/ba3" > /dev/null
+same "$work/ba1/misfit_map.csv" "$work/ba3/misfit_map.csv" 99
+if ! cmp -s <(grep -v wall_time "$work/ba1/result.json") <(grep -v wall_time "$work/ba3/result.json"); then
+  echo "FAIL: the back-analysis results differ"; diff "$work/ba1/result.json" "$work/ba3/result.json" || true; exit 1
+fi
+echo "same: result.json of the back-analysis (but its wall time)"
+
+# An error in a task on any rank reaches the root and ends every rank with exit 2 (no hang).
+set +e
+timeout 60 "${mpi[@]}" "$cli" fos "$case_file" --sweep joints.sliding_plane.friction_angle=-20:30:6 \
+  --out "$work/bad" > /dev/null 2> "$work/bad.err"
+code=$?
+set -e
+if [ "$code" -ne 2 ] || ! grep -q "expected a friction angle" "$work/bad.err"; then
+  echo "FAIL: a bad sweep value under mpirun gave exit $code:"; cat "$work/bad.err"; exit 1
+fi
+echo "bad input under mpirun: exit 2 with the error"
