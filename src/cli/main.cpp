@@ -17,6 +17,8 @@
 #include "ddaslope/calibration/contact_comparison.hpp"
 #include "ddaslope/io/ground_motion.hpp"
 #include "ddaslope/io/job_reader.hpp"
+#include "ddaslope/io/probability_reader.hpp"
+#include "ddaslope/calibration/probability.hpp"
 #include "ddaslope/calibration/strength_search.hpp"
 #include "ddaslope/io/json_record.hpp"
 #include "ddaslope/calibration/trial_report.hpp"
@@ -31,6 +33,7 @@
 #include "ddaslope/io/run_case.hpp"
 #include "ddaslope/solver/simulation.hpp"
 #include "cli_common.hpp"
+#include "probability_command.hpp"
 
 namespace {
 
@@ -188,6 +191,13 @@ int checkCommand(const std::string& casePath, const Overrides& o) {
   std::printf("  %s\n", settingsLine(scene).c_str());
   printSeismicNote(scene);
   printKinkNotes(scene);
+  if (ddaslope::io::hasProbabilitySection(casePath)) {
+    const ddaslope::io::ProbabilityJob job = ddaslope::io::readProbabilityJob(casePath);
+    std::printf("  probability section: %zu uncertain inputs, %d samples (%s, measure %s): valid; run it with "
+                "ddaslope probability\n",
+                job.spec.inputs.size(), job.spec.samples, ddaslope::calibration::name(job.spec.sampling),
+                ddaslope::calibration::name(job.spec.measure));
+  }
   return kExitOk;
 }
 
@@ -651,6 +661,13 @@ int main(int argc, char** argv) {
   ba->add_flag("--json", baJson, "print the result as JSON");
   addModelOptions(ba, overrides);
 
+  ddaslope::cli::ProbabilityOptions probOpt;
+  CLI::App* probability = app.add_subcommand(
+      "probability", "probability of failure from uncertain inputs (a case's \"probability\" section): Pf with its "
+                     "95 % interval, β, every sample in a CSV");
+  ddaslope::cli::addProbabilityOptions(probability, casePath, probOpt);
+  addModelOptions(probability, overrides);
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -664,6 +681,7 @@ int main(int argc, char** argv) {
     if (cut->parsed()) return cutCommand(casePath, cutOut);
     if (ba->parsed()) return backanalyseCommand(jobPath, baOut, baJson, overrides);
     if (fos->parsed()) return fosCommand(casePath, overrides, fosOpt);
+    if (probability->parsed()) return ddaslope::cli::probabilityCommand(casePath, overrides, probOpt);
   } catch (const ddaslope::InputError& e) {
     std::cerr << "ddaslope: error: " << e.what() << "\n";
     return kExitBadInput;
