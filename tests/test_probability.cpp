@@ -575,6 +575,8 @@ TEST(Probability, CommandLine) {
   EXPECT_FALSE(fs::exists(dir + "/samples.csv"));
   EXPECT_EQ(clitest::runCli("probability " + kJob + " --set joints.sliding_plane.cohesion=1 --out " + dir, &err), 2);
   EXPECT_NE(err.find("is an uncertain input"), std::string::npos) << err;
+  EXPECT_EQ(clitest::runCli("probability " + kJob + " --seed -1 --out " + dir, &err), 2);  // not wrapped to 2^64 - 1
+  EXPECT_NE(err.find("expected a whole number 0 to 2^64 - 1, found -1"), std::string::npos) << err;
   // A case with its own section.
   json doc = json::parse(slurp(kSource + "/cases/planar_failure.json"));
   doc["probability"] = json::parse(slurp(kJob))["probability"];

@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <charconv>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -92,6 +93,28 @@ void checkDrawnValues(const io::ProbabilityJob& job, const calibration::SampleDe
     }
 }
 
+/// The study's folder: a study there is continued (--resume), replaced (--overwrite) or kept (an
+/// error, so that no sample is ever lost). Returns the samples it holds (resumed).
+std::vector<SampleResult> prepareFolder(const ProbabilityOptions& opt, SampleTable& table,
+                                        const calibration::SampleDesign& design, const std::string& fingerprint) {
+  fs::create_directories(opt.outDir);
+  const std::string fingerprintPath = opt.outDir + "/probability_settings.json";
+  if (fs::exists(table.path()) && !opt.resume && !opt.overwrite)
+    throw InputError(table.path(), "", "holds the samples of a study already: --resume continues it, --overwrite "
+                                       "starts again");
+  if (opt.overwrite)
+    for (const char* name : {"samples.csv", "probability_settings.json", "summary.json", "summary.partial.json",
+                             "pf_convergence.png", "samples_plane.png", "fos_histogram.png"})
+      fs::remove(opt.outDir + "/" + name);
+  std::vector<SampleResult> done;
+  if (opt.resume && fs::exists(table.path())) {
+    checkFingerprint(fingerprintPath, fingerprint);
+    done = table.read(design);
+  }
+  writeAtomically(fingerprintPath, fingerprint);
+  return done;
+}
+
 void printStudy(const io::ProbabilityJob& job) {
   const model::ProbabilitySpec& s = job.spec;
   std::printf("probability of failure: %s (%s), measure %s, %s, %d samples, seed %llu\n", job.casePath.c_str(),
@@ -140,7 +163,15 @@ void addProbabilityOptions(CLI::App* cmd, std::string& path, ProbabilityOptions&
   cmd->add_option("--out", opt.outDir, "output directory: samples.csv, summary.json, pictures")->capture_default_str();
   cmd->add_option("--samples", opt.samples, "number of samples N (default: the section's)")->check(CLI::Range(1, 1000000));
   cmd->add_option_function<std::uint64_t>("--seed", [&opt](std::uint64_t s) { opt.seed = s, opt.seedGiven = true; },
-                                          "seed of the samples' random numbers (default: the section's)");
+                                          "seed of the samples' random numbers (default: the section's)")
+      ->check(CLI::Validator(
+          [](std::string& text) -> std::string {
+            std::uint64_t v = 0;
+            const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+            const bool ok = ec == std::errc() && end == text.data() + text.size();
+            return ok ? "" : "expected a whole number 0 to 2^64 - 1, found " + text;
+          },
+          "0 to 2^64 - 1"));
   cmd->add_option("--measure", opt.measure, "verdict (one run per sample) or fos (a strength-reduction search per sample)")
       ->check(CLI::IsMember({"verdict", "fos"}));
   cmd->add_option("--sampling", opt.sampling, "monte_carlo or latin_hypercube (default: the section's)")
@@ -173,24 +204,10 @@ int probabilityCommand(const std::string& path, const Overrides& o, const Probab
   checkDrawnValues(job, design, make);
   const std::string line = settingsLine(reference);
 
-  // The folder: a study there is continued (--resume), replaced (--overwrite) or kept (an error).
-  fs::create_directories(opt.outDir);
-  const std::string csv = opt.outDir + "/samples.csv", fingerprintPath = opt.outDir + "/probability_settings.json";
+  const std::string csv = opt.outDir + "/samples.csv";
   const std::string summaryPath = opt.outDir + "/summary.json", partialPath = opt.outDir + "/summary.partial.json";
-  const std::string fingerprint = settingsFingerprint(job, o.settings, line);
-  if (fs::exists(csv) && !opt.resume && !opt.overwrite)
-    throw InputError(csv, "", "holds the samples of a study already: --resume continues it, --overwrite starts again");
-  if (opt.overwrite)
-    for (const char* name : {"samples.csv", "probability_settings.json", "summary.json", "summary.partial.json",
-                             "pf_convergence.png", "samples_plane.png", "fos_histogram.png"})
-      fs::remove(opt.outDir + "/" + name);
   SampleTable table(csv, spec);
-  std::vector<SampleResult> done;
-  if (opt.resume && fs::exists(csv)) {
-    checkFingerprint(fingerprintPath, fingerprint);
-    done = table.read(design);
-  }
-  writeAtomically(fingerprintPath, fingerprint);
+  std::vector<SampleResult> done = prepareFolder(opt, table, design, settingsFingerprint(job, o.settings, line));
   std::set<int> have;
   for (const auto& r : done) have.insert(r.index);
   std::vector<int> todo;
@@ -217,7 +234,13 @@ int probabilityCommand(const std::string& path, const Overrides& o, const Probab
       todo,
       [&](int k) {
         const std::vector<double> values = design.values(k);
-        return calibration::evaluateSample(make(values), settings, k, values);
+        model::Scene scene;
+        try {
+          scene = make(values);
+        } catch (const InputError& e) {  // a combination of values the case refuses
+          throw InputError(job.file, "probability", "sample " + std::to_string(k) + " cannot be run: " + e.what());
+        }
+        return calibration::evaluateSample(scene, settings, k, values);
       },
       [&](const SampleResult& r) {
         table.append(r);
