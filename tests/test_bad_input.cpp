@@ -11,9 +11,13 @@
 #include "ddaslope/core/errors.hpp"
 #include "ddaslope/io/case_reader.hpp"
 #include "ddaslope/io/job_reader.hpp"
+#include "test_io.hpp"
 
 using namespace ddaslope;
 using nlohmann::json;
+using clitest::captureCli;
+using clitest::runCli;
+using clitest::writeTemp;
 namespace fs = std::filesystem;
 
 namespace {
@@ -35,14 +39,7 @@ const char* kMinimal = R"({
 
 /// Expects parseCase to fail with this JSON path and a message containing `what`.
 void expectError(const json& doc, const std::string& path, const std::string& what) {
-  try {
-    io::parseCase(doc.dump(), "case.json");
-    ADD_FAILURE() << "accepted bad input; expected an error at " << path;
-  } catch (const InputError& e) {
-    EXPECT_EQ(e.file(), "case.json");
-    EXPECT_EQ(e.jsonPath(), path) << e.what();
-    EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << e.what();
-  }
+  clitest::expectInputError([&] { io::parseCase(doc.dump(), "case.json"); }, "case.json", path, what);
 }
 
 json minimal() { return json::parse(kMinimal); }
@@ -57,36 +54,6 @@ void expectTextError(const std::string& text, const std::string& what) {
     EXPECT_EQ(e.file(), "case.json");
     EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << e.what();
   }
-}
-
-int runCli(const std::string& args, std::string* stderrText) {
-  const fs::path err = fs::temp_directory_path() / ("ddaslope_err_" + std::to_string(::getpid()));
-  const std::string cmd = std::string(DDASLOPE_CLI) + " " + args + " >/dev/null 2>" + err.string();
-  const int status = std::system(cmd.c_str());
-  std::ifstream in(err);
-  stderrText->assign(std::istreambuf_iterator<char>(in), {});
-  fs::remove(err);
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
-
-/// Runs the CLI and returns what it printed on stdout (stderr into *stderrText).
-std::string captureCli(const std::string& args, std::string* stderrText) {
-  const fs::path out = fs::temp_directory_path() / ("ddaslope_out_" + std::to_string(::getpid()));
-  const fs::path err = fs::temp_directory_path() / ("ddaslope_err_" + std::to_string(::getpid()));
-  const std::string cmd = std::string(DDASLOPE_CLI) + " " + args + " >" + out.string() + " 2>" + err.string();
-  EXPECT_EQ(std::system(cmd.c_str()), 0) << cmd;
-  std::ifstream e(err), o(out);
-  stderrText->assign(std::istreambuf_iterator<char>(e), {});
-  std::string text((std::istreambuf_iterator<char>(o)), {});
-  fs::remove(out);
-  fs::remove(err);
-  return text;
-}
-
-std::string writeTemp(const std::string& name, const std::string& text) {
-  const fs::path p = fs::temp_directory_path() / (std::to_string(::getpid()) + "_" + name);
-  std::ofstream(p) << text;
-  return p.string();
 }
 
 }  // namespace
@@ -279,14 +246,7 @@ TEST(JobReader, BadJobs) {
   const std::string casePath = std::string(DDASLOPE_SOURCE_DIR) + "/cases/planar_failure.json";
   const auto expectJobError = [&](const json& job, const std::string& path, const std::string& what) {
     const std::string file = writeTemp("job.json", job.dump());
-    try {
-      io::readJob(file);
-      ADD_FAILURE() << "accepted a bad job; expected an error at " << path;
-    } catch (const InputError& e) {
-      EXPECT_EQ(e.file(), file);
-      EXPECT_EQ(e.jsonPath(), path) << e.what();
-      EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << e.what();
-    }
+    clitest::expectInputError([&] { io::readJob(file); }, file, path, what);
     fs::remove(file);
   };
   const json good = {{"case", casePath},

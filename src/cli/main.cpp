@@ -17,6 +17,8 @@
 #include "ddaslope/calibration/contact_comparison.hpp"
 #include "ddaslope/io/ground_motion.hpp"
 #include "ddaslope/io/job_reader.hpp"
+#include "ddaslope/io/probability_reader.hpp"
+#include "ddaslope/calibration/probability.hpp"
 #include "ddaslope/calibration/strength_search.hpp"
 #include "ddaslope/io/json_record.hpp"
 #include "ddaslope/calibration/trial_report.hpp"
@@ -32,90 +34,12 @@
 #include "ddaslope/io/case_reader.hpp"
 #include "ddaslope/io/run_case.hpp"
 #include "ddaslope/solver/simulation.hpp"
+#include "cli_common.hpp"
+#include "probability_command.hpp"
 
 namespace {
 
-constexpr int kExitOk = 0;
-constexpr int kExitBadInput = 2;
-constexpr int kExitNonConvergence = 3;
-
-struct Overrides {
-  ddaslope::model::SettingsOverride model;  ///< --preset, --time-step, --blocks, --contact-treatment
-  double duration = 0;
-  std::vector<std::string> settings;  ///< "json.path=value", applied before the case is read
-};
-
-/// A command-line number checked like a case number: finite (no nan, inf or overflow) and in
-/// [lo, hi].
-CLI::Validator finiteIn(double lo, double hi, const std::string& what) {
-  return CLI::Validator(
-      [=](std::string& text) -> std::string {
-        char* end = nullptr;
-        errno = 0;
-        const double x = std::strtod(text.c_str(), &end);
-        const bool ok = end != text.c_str() && *end == 0 && errno != ERANGE && std::isfinite(x) && x >= lo && x <= hi;
-        return ok ? "" : "expected " + what + ", found " + text;
-      },
-      what);
-}
-
-/// The options every command that runs forward models shares.
-void addModelOptions(CLI::App* cmd, Overrides& o) {
-  cmd->add_option("--preset", o.model.preset, "fast, balanced or accurate: Δt, g2 and penalty (docs/accuracy.md)")
-      ->check(CLI::IsMember({"fast", "balanced", "accurate"}));
-  cmd->add_option("--time-step", o.model.timeStep, "override analysis.time_step (s)")
-      ->check(finiteIn(ddaslope::model::limits::kMinTimeStep, ddaslope::model::limits::kMaxTimeStep,
-                       "a time step in [1e-7, 10] s"));
-  cmd->add_option("--blocks", o.model.blocks, "rigid (3 unknowns) or deformable (6)")
-      ->check(CLI::IsMember({"rigid", "deformable"}));
-  cmd->add_option("--contact-treatment", o.model.contactTreatment,
-                  "edge (one state per edge-to-edge contact) or vertex (original DDA)")
-      ->check(CLI::IsMember({"edge", "vertex"}));
-  cmd->add_flag("--brittle-joints", o.model.brittleJoints,
-                "every joint's bond lost the moment it slides (original DDA): the first-failure answer");
-  cmd->add_option("--set", o.settings, "json.path=value: override a number of the case (repeatable)");
-  // Pseudo-static seismic coefficients: shorthands for --set seismic.k_h=… (docs/seismic.md).
-  const auto coefficient = [&o](const char* key) {
-    return [&o, key](double k) {
-      std::ostringstream v;
-      v << std::setprecision(17) << k;
-      o.settings.push_back(std::string("seismic.") + key + "=" + v.str());
-    };
-  };
-  cmd->add_option_function<double>("--kh", coefficient("k_h"),
-                                   "horizontal seismic coefficient: a force k_h·m·g along +x (negative: -x), part of the loads from the initial equilibrium on")
-      ->check(finiteIn(-2, 2, "a coefficient in [-2, 2]"));
-  cmd->add_option_function<double>("--kv", coefficient("k_v"), "vertical seismic coefficient: a force k_v·m·g upward, part of the loads from the initial equilibrium on")
-      ->check(finiteIn(-2, 2, "a coefficient in [-2, 2]"));
-}
-
-/// "path=value" → an override; a malformed one is bad input.
-ddaslope::io::CaseOverride parseSetting(const std::string& text) {
-  const size_t eq = text.find('=');
-  double v = 0;
-  try {
-    if (eq == std::string::npos) throw std::invalid_argument("");
-    size_t used = 0;
-    v = std::stod(text.substr(eq + 1), &used);
-    if (used != text.size() - eq - 1 || !std::isfinite(v)) throw std::invalid_argument("");
-  } catch (const std::exception&) {
-    throw ddaslope::InputError("--set", text, "expected json.path=number (finite), e.g. joints.clay.friction_angle=20");
-  }
-  return {text.substr(0, eq), v};
-}
-
-/// Reads the case with the --set overrides and any extra ones (a sweep's value).
-ddaslope::model::Scene loadCase(const std::string& casePath, const Overrides& o,
-                                std::vector<ddaslope::io::CaseOverride> extra = {}) {
-  for (const auto& s : o.settings) extra.push_back(parseSetting(s));
-  return ddaslope::io::readCase(casePath, extra);
-}
-
-void applyOverrides(ddaslope::model::Scene& scene, const Overrides& o, const std::string& casePath) {
-  o.model.apply(scene);
-  if (o.duration > 0) scene.settings.duration = o.duration;
-  ddaslope::io::checkWorkload(scene, casePath);
-}
+using namespace ddaslope::cli;
 
 int compareContactsCommand(bool deformable, const std::string& csvPath) {
   ddaslope::calibration::ComparisonSettings s;
@@ -197,44 +121,6 @@ int runCommand(const std::string& casePath, const std::string& outDir, const Ove
   return kExitOk;
 }
 
-/// "softening", "brittle" (original DDA's bonds: a first-failure answer) or "mixed".
-const char* jointKind(const ddaslope::model::Scene& scene) {
-  int brittle = 0;
-  for (const auto& j : scene.joints) brittle += j.weakeningDistance && *j.weakeningDistance == 0;
-  return brittle == 0 ? "softening" : (brittle == static_cast<int>(scene.joints.size()) ? "brittle (first-failure)" : "mixed brittle/softening");
-}
-
-/// The settings every forward run of a command uses, and where Δt came from.
-std::string settingsLine(const ddaslope::model::Scene& scene) {
-  const ddaslope::model::AnalysisSettings& s = scene.settings;
-  char buf[320];
-  std::snprintf(buf, sizeof buf, "Δt %g s (%s), g2 %g, penalty %g N/m, %s blocks, %s contacts, %s joints", s.timeStep,
-                s.timeStepOrigin.c_str(), s.maxDisplacementRatio, scene.normalPenalty(),
-                s.rigidBlocks ? "rigid" : "deformable",
-                s.contactTreatment == ddaslope::model::ContactTreatment::Edge ? "edge" : "vertex",
-                jointKind(scene));
-  // The seismic loading a result was found under: F and critical strengths under a record or a
-  // coefficient are not the static ones.
-  std::string line = buf;
-  const ddaslope::model::SeismicLoad& q = scene.seismic;
-  if (q.kh != 0 || q.kv != 0) {
-    std::snprintf(buf, sizeof buf, ", pseudo-static k_h %g, k_v %g", q.kh, q.kv);
-    line += buf;
-  }
-  if (q.ground.active()) {
-    double peak = 0;
-    for (double a : q.ground.horizontal) peak = std::max(peak, std::abs(a));
-    for (double a : q.ground.vertical) peak = std::max(peak, std::abs(a));
-    if (peak == 0)
-      line += ", the ground-motion record scaled to 0 (no shaking: the static slope)";
-    else {
-      std::snprintf(buf, sizeof buf, ", under the ground-motion record (peak %.3g g; without it: --set "
-                    "seismic.record.scale=0)", peak / ddaslope::io::kStandardGravity);
-      line += buf;
-    }
-  }
-  return line;
-}
 
 /// A note per concave kink of the sliding surface with a block on it: there the block model leans on
 /// a corner that limit-equilibrium slices cannot, so their critical strengths differ.
@@ -307,16 +193,16 @@ int checkCommand(const std::string& casePath, const Overrides& o) {
   std::printf("  %s\n", settingsLine(scene).c_str());
   printSeismicNote(scene);
   printKinkNotes(scene);
+  if (ddaslope::io::hasProbabilitySection(casePath)) {
+    const ddaslope::io::ProbabilityJob job = ddaslope::io::readProbabilityJob(casePath);
+    std::printf("  probability section: %zu uncertain inputs, %d samples (%s, measure %s): valid; run it with "
+                "ddaslope probability\n",
+                job.spec.inputs.size(), job.spec.samples, ddaslope::calibration::name(job.spec.sampling),
+                ddaslope::calibration::name(job.spec.measure));
+  }
   return kExitOk;
 }
 
-int jointIndex(const ddaslope::model::Scene& scene, const std::string& name, const std::string& casePath) {
-  for (size_t j = 0; j < scene.joints.size(); ++j)
-    if (scene.joints[j].name == name) return static_cast<int>(j);
-  std::string known;
-  for (const auto& j : scene.joints) known += (known.empty() ? "" : ", ") + j.name;
-  throw ddaslope::InputError(casePath, "joints", "no joint named \"" + name + "\" (the case has: " + known + ")");
-}
 
 struct CriticalOptions {
   std::string joint;
@@ -816,6 +702,13 @@ int runCommandLine(int argc, char** argv) {
   ba->add_flag("--json", baJson, "print the result as JSON");
   addModelOptions(ba, overrides);
 
+  ddaslope::cli::ProbabilityOptions probOpt;
+  CLI::App* probability = app.add_subcommand(
+      "probability", "probability of failure from uncertain inputs (a case's \"probability\" section): Pf with its "
+                     "95 % interval, β, every sample in a CSV");
+  ddaslope::cli::addProbabilityOptions(probability, casePath, probOpt);
+  addModelOptions(probability, overrides);
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -829,6 +722,7 @@ int runCommandLine(int argc, char** argv) {
     if (cut->parsed()) return cutCommand(casePath, cutOut);
     if (ba->parsed()) return backanalyseCommand(jobPath, baOut, baJson, overrides);
     if (fos->parsed()) return fosCommand(casePath, overrides, fosOpt);
+    if (probability->parsed()) return ddaslope::cli::probabilityCommand(casePath, overrides, probOpt);
   } catch (const ddaslope::InputError& e) {
     std::cerr << "ddaslope: error: " << e.what() << "\n";
     return kExitBadInput;

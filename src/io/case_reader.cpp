@@ -620,7 +620,9 @@ model::Scene parseCase(const std::string& text, const std::string& file) {
   const Reader r(file);
   const json doc = parseJsonText(text, file);
   r.onlyKeys(doc, "", {"description", "gravity", "materials", "joints", "default_joint", "joint_pairs", "section",
-                       "blocks", "monitors", "point_loads", "fixed_points", "water", "seismic", "analysis", "expected"});
+                       "blocks", "monitors", "point_loads", "fixed_points", "water", "seismic", "analysis", "expected",
+                       "probability"});
+  // "probability" (a study's uncertain inputs) is read by io/probability_reader.cpp: a run ignores it.
   model::Scene s;
   if (doc.contains("description")) s.description = r.string(doc.at("description"), "description");
   if (doc.contains("gravity")) {

@@ -12,6 +12,7 @@ JsonRecord::JsonRecord() : impl_(std::make_unique<Impl>()) {}
 JsonRecord::~JsonRecord() = default;
 JsonRecord& JsonRecord::set(const std::string& k, double v) { impl_->j[k] = v; return *this; }
 JsonRecord& JsonRecord::set(const std::string& k, int v) { impl_->j[k] = v; return *this; }
+JsonRecord& JsonRecord::set(const std::string& k, std::uint64_t v) { impl_->j[k] = v; return *this; }
 JsonRecord& JsonRecord::set(const std::string& k, bool v) { impl_->j[k] = v; return *this; }
 JsonRecord& JsonRecord::set(const std::string& k, const std::string& v) { impl_->j[k] = v; return *this; }
 JsonRecord& JsonRecord::set(const std::string& k, const std::vector<double>& v) { impl_->j[k] = v; return *this; }

@@ -1,6 +1,7 @@
 #pragma once
 // A flat, ordered JSON object for command results (`--json`), so that layers above io can
 // print JSON without seeing the JSON library.
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -15,6 +16,7 @@ class JsonRecord {
   JsonRecord& operator=(const JsonRecord&) = delete;
   JsonRecord& set(const std::string& key, double value);
   JsonRecord& set(const std::string& key, int value);
+  JsonRecord& set(const std::string& key, std::uint64_t value);  ///< a seed, exactly
   JsonRecord& set(const std::string& key, bool value);
   JsonRecord& set(const std::string& key, const std::string& value);
   JsonRecord& set(const std::string& key, const char* value) { return set(key, std::string(value)); }

@@ -1,0 +1,47 @@
+#pragma once
+// What the subcommands share: exit codes, the model options every command that runs forward
+// models takes (--preset, --time-step, --blocks, --set, …), reading a case with them, and the
+// settings line each result names.
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "ddaslope/io/case_reader.hpp"
+#include "ddaslope/model/scene.hpp"
+#include "ddaslope/model/settings_override.hpp"
+
+namespace ddaslope::cli {
+
+constexpr int kExitOk = 0;
+constexpr int kExitBadInput = 2;
+constexpr int kExitNonConvergence = 3;
+
+struct Overrides {
+  ddaslope::model::SettingsOverride model;  ///< --preset, --time-step, --blocks, --contact-treatment
+  double duration = 0;
+  std::vector<std::string> settings;  ///< "json.path=value", applied before the case is read
+};
+
+/// A command-line number checked like a case number: finite (no nan, inf or overflow) and in
+/// [lo, hi].
+CLI::Validator finiteIn(double lo, double hi, const std::string& what);
+
+/// The options every command that runs forward models shares.
+void addModelOptions(CLI::App* cmd, Overrides& o);
+
+/// "path=value" → an override; a malformed one is bad input.
+ddaslope::io::CaseOverride parseSetting(const std::string& text);
+
+/// Reads the case with the --set overrides and any extra ones (a sweep's value).
+ddaslope::model::Scene loadCase(const std::string& casePath, const Overrides& o,
+                                std::vector<ddaslope::io::CaseOverride> extra = {});
+
+void applyOverrides(ddaslope::model::Scene& scene, const Overrides& o, const std::string& casePath);
+
+/// The settings every forward run of a command uses, and where Δt came from.
+std::string settingsLine(const ddaslope::model::Scene& scene);
+
+int jointIndex(const ddaslope::model::Scene& scene, const std::string& name, const std::string& casePath);
+
+}  // namespace ddaslope::cli

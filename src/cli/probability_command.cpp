@@ -1,0 +1,281 @@
+#include "probability_command.hpp"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <charconv>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <set>
+
+#include "ddaslope/calibration/sample_runner.hpp"
+#include "ddaslope/core/errors.hpp"
+#include "ddaslope/io/probability_reader.hpp"
+#include "probability_files.hpp"
+
+namespace ddaslope::cli {
+namespace {
+
+namespace fs = std::filesystem;
+using calibration::SampleResult;
+
+/// The study as the command line changes it: --samples, --seed, --measure, --sampling.
+io::ProbabilityJob readStudy(const std::string& path, const ProbabilityOptions& opt) {
+  io::ProbabilityJob job = io::readProbabilityJob(path);
+  model::ProbabilitySpec& s = job.spec;
+  if (opt.samples > 0) s.samples = opt.samples;
+  if (opt.seedGiven) s.seed = opt.seed;
+  if (!opt.measure.empty())
+    s.measure = opt.measure == "fos" ? model::ProbabilityMeasure::FactorOfSafety : model::ProbabilityMeasure::Verdict;
+  if (!opt.sampling.empty())
+    s.sampling = opt.sampling == "monte_carlo" ? model::Sampling::MonteCarlo : model::Sampling::LatinHypercube;
+  return job;
+}
+
+/// Builds the scene of a sample: the case with the sample's values at the inputs' paths and the
+/// --set numbers, then the job's model choices and the command line's.
+struct SceneMaker {
+  const io::ProbabilityJob& job;
+  const Overrides& overrides;
+  model::Scene operator()(const std::vector<double>& values) const {
+    std::vector<io::CaseOverride> extra;
+    for (size_t i = 0; i < values.size(); ++i) extra.push_back({job.spec.inputs[i].path, values[i]});
+    model::Scene scene = loadCase(job.casePath, overrides, extra);
+    job.model.apply(scene);
+    applyOverrides(scene, overrides, job.casePath);
+    return scene;
+  }
+};
+
+/// A --set (or --kh, --kv) on an input's path would replace every sample's value: refused.
+void refuseFixedInputs(const io::ProbabilityJob& job, const Overrides& o) {
+  for (const std::string& text : o.settings) {
+    const io::CaseOverride set = parseSetting(text);
+    for (const auto& in : job.spec.inputs)
+      if (in.path == set.jsonPath)
+        throw InputError("--set", text, "\"" + in.path + "\" is an uncertain input of the study: its samples set it "
+                                        "(change its distribution in " + job.file + ")");
+  }
+}
+
+/// The values the study will draw must all be accepted by the case. Checked before any run, on
+/// the samples where each input is smallest and largest, with their other inputs: a distribution
+/// that reaches an impossible value (a normal cohesion below 0) is refused with what to use
+/// instead. ddaslope never clips or redraws a value: the samples are the distribution's.
+void checkDrawnValues(const io::ProbabilityJob& job, const calibration::SampleDesign& design, const SceneMaker& make) {
+  const int n = design.inputs();
+  std::vector<int> lowest(n, 0), highest(n, 0);
+  std::vector<double> lo(n, INFINITY), hi(n, -INFINITY);
+  for (int k = 0; k < design.samples(); ++k) {
+    const std::vector<double> v = design.values(k);
+    for (int i = 0; i < n; ++i) {
+      if (v[i] < lo[i]) lo[i] = v[i], lowest[i] = k;
+      if (v[i] > hi[i]) hi[i] = v[i], highest[i] = k;
+    }
+  }
+  for (int i = 0; i < n; ++i)
+    for (int k : {lowest[i], highest[i]}) {
+      const std::vector<double> v = design.values(k);
+      try {
+        make(v);
+      } catch (const InputError& e) {
+        const model::Distribution& d = job.spec.inputs[i].distribution;
+        const bool unbounded = d.kind == model::DistributionKind::Normal;
+        throw InputError(job.file, "probability.inputs[" + std::to_string(i) + "]",
+                         "sample " + std::to_string(k) + " draws " + job.spec.inputs[i].path + " = " + exactText(v[i]) +
+                             ", which the case refuses (" + e.what() + ")" +
+                             (unbounded ? ". A normal distribution has no bounds: use truncated_normal with min "
+                                          "and/or max at the physical limits, or lognormal for a positive value"
+                                        : ". Bound the distribution within what the case accepts"));
+      }
+    }
+}
+
+/// The study's folder: a study there is continued (--resume), replaced (--overwrite) or kept (an
+/// error, so that no sample is ever lost). Returns the samples it holds (resumed).
+std::vector<SampleResult> prepareFolder(const ProbabilityOptions& opt, SampleTable& table,
+                                        const calibration::SampleDesign& design, const std::string& fingerprint) {
+  fs::create_directories(opt.outDir);
+  const std::string fingerprintPath = opt.outDir + "/probability_settings.json";
+  if (fs::exists(table.path()) && !opt.resume && !opt.overwrite)
+    throw InputError(table.path(), "", "holds the samples of a study already: --resume continues it, --overwrite "
+                                       "starts again");
+  if (opt.overwrite)
+    for (const char* name : {"samples.csv", "probability_settings.json", "summary.json", "summary.partial.json",
+                             "pf_convergence.png", "samples_plane.png", "fos_histogram.png"})
+      fs::remove(opt.outDir + "/" + name);
+  std::vector<SampleResult> done;
+  if (opt.resume && fs::exists(table.path())) {
+    checkFingerprint(fingerprintPath, fingerprint);
+    done = table.read(design);
+  }
+  writeAtomically(fingerprintPath, fingerprint);
+  return done;
+}
+
+void printStudy(const io::ProbabilityJob& job) {
+  const model::ProbabilitySpec& s = job.spec;
+  std::printf("probability of failure: %s (%s), measure %s, %s, %d samples, seed %llu\n", job.casePath.c_str(),
+              job.file.c_str(), calibration::name(s.measure), calibration::name(s.sampling), s.samples,
+              static_cast<unsigned long long>(s.seed));
+  for (const auto& in : s.inputs)
+    std::printf("  %s: %s\n", in.path.c_str(), calibration::describe(in.distribution).c_str());
+  for (const auto& c : s.correlations)
+    std::printf("  correlation %g between %s and %s (of the underlying normals)\n", c.rho, s.inputs[c.a].path.c_str(),
+                s.inputs[c.b].path.c_str());
+}
+
+void printSummary(const calibration::ProbabilitySummary& s) {
+  if (s.converged == 0) {
+    std::printf("  no sample converged: no probability of failure\n");
+  } else {
+    std::printf("  Pf = %.4g: %d of %d converged samples fail; 95 %% interval %.4g-%.4g (Wilson score)\n", s.pf,
+                s.failures, s.converged, s.pfInterval.low, s.pfInterval.high);
+    if (std::isfinite(s.beta))
+      std::printf("  reliability index β = Φ⁻¹(1 − Pf) = %.4g (%.4g to %.4g)\n", s.beta, s.betaInterval.low,
+                  s.betaInterval.high);
+    else
+      std::printf("  reliability index β = Φ⁻¹(1 − Pf): %s (at least %.4g with 95 %% confidence)\n",
+                  s.pf == 0 ? "unbounded, no sample fails" : "-∞, every sample fails",
+                  s.pf == 0 ? s.betaInterval.low : s.betaInterval.high);
+  }
+  if (s.hasFactor && s.converged > 0)
+    std::printf("  F: mean %.4f ± %.4f (standard error), sd %.4f, median %.4f, range %.4f-%.4f; β = (mean F − 1)/sd F "
+                "= %.4g\n",
+                s.factorMean, s.factorMeanError, s.factorSd, s.factorMedian, s.factorMin, s.factorMax, s.betaMoments);
+  if (s.notConverged > 0)
+    std::printf("  not converged: %d samples, not counted above; counted as stable Pf = %.4g, as failing %.4g; 95 %% "
+                "bounds with them %.4g-%.4g\n",
+                s.notConverged, s.pfNotConvergedStable, s.pfNotConvergedFailing, s.pfBounds.low, s.pfBounds.high);
+  else
+    std::printf("  not converged: none\n");
+  std::string rules;
+  for (const auto& [rule, count] : s.rules) rules += (rules.empty() ? "" : ", ") + rule + " " + std::to_string(count);
+  std::printf("  deciding rules: %s\n", rules.c_str());
+}
+
+}  // namespace
+
+void addProbabilityOptions(CLI::App* cmd, std::string& path, ProbabilityOptions& opt) {
+  cmd->add_option("case", path, "a case with a \"probability\" section, or a probability job (JSON)")->required();
+  cmd->add_option("--out", opt.outDir, "output directory: samples.csv, summary.json, pictures")->capture_default_str();
+  cmd->add_option("--samples", opt.samples, "number of samples N (default: the section's)")->check(CLI::Range(1, 1000000));
+  cmd->add_option_function<std::uint64_t>("--seed", [&opt](std::uint64_t s) { opt.seed = s, opt.seedGiven = true; },
+                                          "seed of the samples' random numbers (default: the section's)")
+      ->check(CLI::Validator(
+          [](std::string& text) -> std::string {
+            std::uint64_t v = 0;
+            const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+            const bool ok = ec == std::errc() && end == text.data() + text.size();
+            return ok ? "" : "expected a whole number 0 to 2^64 - 1, found " + text;
+          },
+          "0 to 2^64 - 1"));
+  cmd->add_option("--measure", opt.measure, "verdict (one run per sample) or fos (a strength-reduction search per sample)")
+      ->check(CLI::IsMember({"verdict", "fos"}));
+  cmd->add_option("--sampling", opt.sampling, "monte_carlo or latin_hypercube (default: the section's)")
+      ->check(CLI::IsMember({"monte_carlo", "latin_hypercube"}));
+  cmd->add_option("--threads", opt.threads, "samples run at once (the result does not depend on it)")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 256));
+  cmd->add_flag("--resume", opt.resume, "continue the study in --out: run only the samples samples.csv lacks");
+  cmd->add_flag("--overwrite", opt.overwrite, "start again in an --out that holds a study (its samples are lost)");
+  cmd->add_option("--stop-after", opt.stopAfter, "run at most this many samples now; --resume continues")
+      ->check(CLI::Range(1, 1000000));
+  cmd->add_flag("--json", opt.json, "print the summary as JSON");
+}
+
+int probabilityCommand(const std::string& path, const Overrides& o, const ProbabilityOptions& opt) {
+  if (opt.resume && opt.overwrite) throw InputError("--resume", "", "--resume and --overwrite exclude each other");
+  const auto t0 = std::chrono::steady_clock::now();
+  const io::ProbabilityJob job = readStudy(path, opt);
+  const model::ProbabilitySpec& spec = job.spec;
+  refuseFixedInputs(job, o);
+  const SceneMaker make{job, o};
+  model::Scene reference = loadCase(job.casePath, o);
+  job.model.apply(reference);
+  applyOverrides(reference, o, job.casePath);
+  calibration::SampleSettings settings;
+  settings.measure = spec.measure;
+  settings.fosWidth = spec.fosWidth;
+  for (const auto& name : spec.fosJoints) settings.fosJoints.push_back(jointIndex(reference, name, job.casePath));
+  const calibration::SampleDesign design(spec);
+  checkDrawnValues(job, design, make);
+  const std::string line = settingsLine(reference);
+
+  const std::string csv = opt.outDir + "/samples.csv";
+  const std::string summaryPath = opt.outDir + "/summary.json", partialPath = opt.outDir + "/summary.partial.json";
+  SampleTable table(csv, spec);
+  std::vector<SampleResult> done = prepareFolder(opt, table, design, settingsFingerprint(job, o.settings, line));
+  std::set<int> have;
+  for (const auto& r : done) have.insert(r.index);
+  std::vector<int> todo;
+  for (int k = 0; k < spec.samples && (opt.stopAfter == 0 || static_cast<int>(todo.size()) < opt.stopAfter); ++k)
+    if (!have.count(k)) todo.push_back(k);
+  const int resumed = static_cast<int>(done.size());
+  if (!opt.json) {
+    printStudy(job);
+    std::printf("  forward runs at %s\n", line.c_str());
+    if (opt.resume) std::printf("  resumed: %d samples in %s, %zu to run now\n", resumed, csv.c_str(), todo.size());
+  }
+
+  // The samples: CSV rows in completion order; everything else from the samples sorted by index.
+  if (!todo.empty()) fs::remove(summaryPath);
+  const bool progress = !opt.json && isatty(STDERR_FILENO);
+  const calibration::SampleScheduler schedule = [&](const std::vector<int>& indices,
+                                                    const calibration::SampleEvaluator& evaluate,
+                                                    const calibration::SampleSink& sink) {
+    calibration::runSamplesOnThreads(indices, opt.threads, evaluate, sink);
+  };
+  double sampleTime = 0;
+  table.open();
+  schedule(
+      todo,
+      [&](int k) {
+        const std::vector<double> values = design.values(k);
+        model::Scene scene;
+        try {
+          scene = make(values);
+        } catch (const InputError& e) {  // a combination of values the case refuses
+          throw InputError(job.file, "probability", "sample " + std::to_string(k) + " cannot be run: " + e.what());
+        }
+        return calibration::evaluateSample(scene, settings, k, values);
+      },
+      [&](const SampleResult& r) {
+        table.append(r);
+        done.push_back(r);
+        sampleTime += r.runTime;
+        if (progress) std::fprintf(stderr, "\r  %zu of %d samples", done.size(), spec.samples);
+      });
+  if (progress) std::fprintf(stderr, "\n");
+  std::sort(done.begin(), done.end(), [](const SampleResult& a, const SampleResult& b) { return a.index < b.index; });
+  const calibration::ProbabilitySummary summary =
+      calibration::summarise(done, spec.samples, spec.measure == model::ProbabilityMeasure::FactorOfSafety);
+  const bool complete = summary.finished == spec.samples;
+  const std::string json = summaryJson(job, summary, line, complete);
+  writeAtomically(complete ? summaryPath : partialPath, json);
+  if (complete) fs::remove(partialPath);
+  const std::vector<std::string> pictures = writePictures(job, summary, done, opt.outDir);
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  if (opt.json) {
+    std::printf("%s", json.c_str());
+  } else {
+    printSummary(summary);
+    std::printf("  %zu samples run now (%d resumed), %.2f s wall on %d threads (%.2f s of sample run time)\n",
+                todo.size(), resumed, wall, opt.threads, sampleTime);
+    std::string files;
+    for (const auto& p : pictures) files += ", " + p;
+    std::printf("  wrote %s, %s%s\n", csv.c_str(), complete ? "summary.json" : "summary.partial.json", files.c_str());
+    if (!complete)
+      std::printf("  incomplete: %d of %d samples; --resume continues (--stop-after %d)\n", summary.finished,
+                  spec.samples, opt.stopAfter);
+  }
+  if (summary.notConverged > 0)
+    std::fprintf(stderr, "ddaslope: warning: %s: %d samples did not converge: they are counted apart (see the rule "
+                         "column of %s), Pf's bounds with them are in the summary\n",
+                 job.file.c_str(), summary.notConverged, csv.c_str());
+  return kExitOk;
+}
+
+}  // namespace ddaslope::cli

@@ -1,0 +1,328 @@
+#include "probability_files.hpp"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include "ddaslope/core/errors.hpp"
+#include "ddaslope/io/json_record.hpp"
+#include "ddaslope/io/line_plot.hpp"
+
+namespace ddaslope::cli {
+namespace {
+
+namespace fs = std::filesystem;
+using calibration::SampleOutcome;
+using calibration::SampleResult;
+
+bool factorMeasure(const model::ProbabilitySpec& spec) {
+  return spec.measure == model::ProbabilityMeasure::FactorOfSafety;
+}
+
+std::vector<std::string> splitFields(const std::string& line) {
+  std::vector<std::string> out;
+  size_t start = 0;
+  for (size_t comma = line.find(','); comma != std::string::npos; comma = line.find(',', start)) {
+    out.push_back(line.substr(start, comma - start));
+    start = comma + 1;
+  }
+  out.push_back(line.substr(start));
+  return out;
+}
+
+bool parseNumber(const std::string& text, double* v) {
+  if (text.empty()) {
+    *v = std::numeric_limits<double>::quiet_NaN();
+    return true;
+  }
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), *v);
+  return ec == std::errc() && end == text.data() + text.size();
+}
+
+/// The plane of the scatter plot: cohesion and friction angle of a joint when both are inputs,
+/// otherwise the first two inputs (-1, -1 when there is one input).
+std::pair<int, int> planeAxes(const model::ProbabilitySpec& spec) {
+  const auto endsWith = [](const std::string& s, const std::string& tail) {
+    return s.size() >= tail.size() && s.compare(s.size() - tail.size(), tail.size(), tail) == 0;
+  };
+  int c = -1, phi = -1;
+  for (size_t i = 0; i < spec.inputs.size(); ++i) {
+    if (c < 0 && endsWith(spec.inputs[i].path, ".cohesion")) c = static_cast<int>(i);
+    if (phi < 0 && endsWith(spec.inputs[i].path, ".friction_angle")) phi = static_cast<int>(i);
+  }
+  if (c >= 0 && phi >= 0) return {c, phi};
+  if (spec.inputs.size() >= 2) return {0, 1};
+  return {-1, -1};
+}
+
+/// The inputs and correlations, as the summary and the fingerprint both name them.
+void appendStudy(io::JsonRecord& j, const model::ProbabilitySpec& spec) {
+  for (const auto& in : spec.inputs) {
+    io::JsonRecord r;
+    const model::Distribution& d = in.distribution;
+    r.set("path", in.path).set("distribution", calibration::name(d.kind));
+    if (d.kind != model::DistributionKind::Uniform) r.set("mean", d.mean).set("sd", d.sd);
+    if (std::isfinite(d.min)) r.set("min", d.min);
+    if (std::isfinite(d.max)) r.set("max", d.max);
+    j.append("inputs", r);
+  }
+  for (const auto& c : spec.correlations) {
+    io::JsonRecord r;
+    r.set("between", std::vector<std::string>{spec.inputs[c.a].path, spec.inputs[c.b].path}).set("rho", c.rho);
+    j.append("correlations", r);
+  }
+}
+
+}  // namespace
+
+std::string exactText(double v) {
+  if (std::isnan(v)) return "";
+  char buf[32];
+  const auto [end, ec] = std::to_chars(buf, buf + sizeof buf, v);
+  return std::string(buf, ec == std::errc() ? end : buf);
+}
+
+SampleTable::SampleTable(std::string path, const model::ProbabilitySpec& spec) : path_(std::move(path)), spec_(spec) {}
+
+SampleTable::~SampleTable() {
+  if (file_) std::fclose(file_);
+}
+
+std::string SampleTable::header() const {
+  std::string h = "sample";
+  for (const auto& in : spec_.inputs) h += "," + in.path;
+  h += ",outcome,rule";
+  if (factorMeasure(spec_)) h += ",factor_of_safety";
+  return h + ",max_displacement_m,run_time_s";
+}
+
+std::vector<SampleResult> SampleTable::read(const calibration::SampleDesign& design) {
+  std::vector<SampleResult> out;
+  if (!fs::exists(path_)) return out;
+  std::ifstream in(path_, std::ios::binary);
+  const std::string text((std::istreambuf_iterator<char>(in)), {});
+  const size_t lastNewline = text.rfind('\n');
+  // A study killed while writing a row leaves it without its line end: that sample runs again.
+  keepBytes_ = lastNewline == std::string::npos ? 0 : static_cast<long>(lastNewline + 1);
+  std::istringstream lines(text.substr(0, static_cast<size_t>(keepBytes_)));
+  std::string line;
+  if (!std::getline(lines, line)) return out;
+  if (line != header())
+    throw InputError(path_, "line 1", "expected the header \"" + header() + "\", found \"" + line +
+                                          "\": the samples of another study (other inputs or measure)");
+  const size_t n = spec_.inputs.size(), fields = n + (factorMeasure(spec_) ? 6 : 5);
+  std::set<int> seen;
+  for (int number = 2; std::getline(lines, line); ++number) {
+    const std::string where = "line " + std::to_string(number);
+    const std::vector<std::string> f = splitFields(line);
+    if (f.size() != fields)
+      throw InputError(path_, where, "expected " + std::to_string(fields) + " fields, found " +
+                                         std::to_string(f.size()) + ": the file is damaged");
+    SampleResult r;
+    const auto [end, ec] = std::from_chars(f[0].data(), f[0].data() + f[0].size(), r.index);
+    if (ec != std::errc() || end != f[0].data() + f[0].size() || r.index < 0)
+      throw InputError(path_, where, "expected a sample index, found \"" + f[0] + "\"");
+    if (r.index >= design.samples())
+      throw InputError(path_, where, "holds sample " + f[0] + ", but the study has " +
+                                         std::to_string(design.samples()) + " samples: give at least " +
+                                         std::to_string(r.index + 1) + " (--samples)");
+    if (!seen.insert(r.index).second) throw InputError(path_, where, "sample " + f[0] + " is there twice");
+    const std::vector<double> expected = design.values(r.index);
+    r.inputs.resize(n);
+    for (size_t i = 0; i < n; ++i)
+      if (!parseNumber(f[1 + i], &r.inputs[i]) || r.inputs[i] != expected[i])
+        throw InputError(path_, where, "sample " + f[0] + " has " + spec_.inputs[i].path + " = " + f[1 + i] +
+                                           ", but this study's seed and inputs give " + exactText(expected[i]) +
+                                           ": the samples of another study");
+    const std::string& outcome = f[n + 1];
+    if (outcome == "stable") r.outcome = SampleOutcome::Stable;
+    else if (outcome == "fails") r.outcome = SampleOutcome::Fails;
+    else if (outcome == "not_converged") r.outcome = SampleOutcome::NotConverged;
+    else throw InputError(path_, where, "expected stable, fails or not_converged, found \"" + outcome + "\"");
+    r.rule = f[n + 2];
+    size_t k = n + 3;
+    bool ok = true;
+    if (factorMeasure(spec_)) ok &= parseNumber(f[k++], &r.factor);
+    ok &= parseNumber(f[k++], &r.maxDisplacement);
+    ok &= parseNumber(f[k], &r.runTime);
+    if (!ok) throw InputError(path_, where, "expected numbers after the rule, found \"" + line + "\"");
+    out.push_back(r);
+  }
+  return out;
+}
+
+void SampleTable::open() {
+  if (file_) return;
+  if (keepBytes_ > 0) fs::resize_file(path_, static_cast<std::uintmax_t>(keepBytes_));
+  const bool fresh = keepBytes_ <= 0;  // not read, or not even a whole header line
+  file_ = std::fopen(path_.c_str(), fresh ? "w" : "a");
+  if (!file_) throw InputError(path_, "", "cannot write the file");
+  if (fresh && (std::fprintf(file_, "%s\n", header().c_str()) < 0 || std::fflush(file_) != 0))
+    throw InputError(path_, "", "cannot write the file");
+}
+
+void SampleTable::append(const SampleResult& r) {
+  DDASLOPE_ASSERT(file_, "samples.csv appended before it was opened");
+  std::string row = std::to_string(r.index);
+  const auto field = [&row](const std::string& text) { row.append(1, ',').append(text); };
+  for (double v : r.inputs) field(exactText(v));
+  field(calibration::name(r.outcome));
+  field(r.rule);
+  if (factorMeasure(spec_)) field(exactText(r.factor));
+  field(exactText(r.maxDisplacement));
+  char time[32];
+  std::snprintf(time, sizeof time, "%.4f", r.runTime);
+  field(time);
+  row.append(1, '\n');
+  // One write per row, flushed: a kill leaves whole rows and at most one cut-off last line.
+  if (std::fputs(row.c_str(), file_) < 0 || std::fflush(file_) != 0)
+    throw InputError(path_, "", "cannot write the file (disk full?)");
+}
+
+std::string settingsFingerprint(const io::ProbabilityJob& job, const std::vector<std::string>& caseSettings,
+                                const std::string& settingsLine) {
+  const model::ProbabilitySpec& s = job.spec;
+  io::JsonRecord j;
+  j.set("format", "ddaslope probability study 1").set("case_digest", job.caseDigest);
+  j.set("measure", calibration::name(s.measure)).set("sampling", calibration::name(s.sampling)).set("seed", s.seed);
+  // Monte Carlo samples do not depend on N (more may be added by resuming with a larger --samples);
+  // a Latin hypercube's strata do.
+  if (s.sampling == model::Sampling::LatinHypercube) j.set("samples", s.samples);
+  appendStudy(j, s);
+  if (factorMeasure(s)) j.set("fos_joints", s.fosJoints).set("fos_width", s.fosWidth);
+  j.set("set", caseSettings).set("forward_runs", settingsLine);
+  return j.dump() + "\n";
+}
+
+void checkFingerprint(const std::string& path, const std::string& expected) {
+  if (!fs::exists(path))
+    throw InputError(path, "", "is missing, so the samples beside it cannot be checked against this study: start "
+                               "again (--overwrite) or in another --out");
+  std::ifstream in(path, std::ios::binary);
+  const std::string found((std::istreambuf_iterator<char>(in)), {});
+  if (found == expected) return;
+  std::istringstream a(found), b(expected);
+  std::string was, now;
+  for (int line = 1;; ++line) {
+    const bool more = static_cast<bool>(std::getline(a, was)), more2 = static_cast<bool>(std::getline(b, now));
+    if (!more) was = "(the end)";
+    if (!more2) now = "(the end)";
+    if (was == now && (more || more2)) continue;
+    // The line without its indent and trailing comma: `"seed": 1`.
+    const auto bare = [](std::string t) {
+      t.erase(0, t.find_first_not_of(' '));
+      if (!t.empty() && t.back() == ',') t.pop_back();
+      return t;
+    };
+    throw InputError(path, "line " + std::to_string(line),
+                     "the samples in this folder belong to another study: it had " + bare(was) + ", this one has " +
+                         bare(now) + ". Resume with the same case, section and options, or start in another --out");
+  }
+}
+
+void writeAtomically(const std::string& path, const std::string& text) {
+  {
+    std::ofstream out(path + ".tmp", std::ios::binary);
+    out << text;
+    if (!out.flush()) throw InputError(path, "", "cannot write the file");
+  }
+  fs::rename(path + ".tmp", path);
+}
+
+std::string summaryJson(const io::ProbabilityJob& job, const calibration::ProbabilitySummary& s,
+                        const std::string& settingsLine, bool complete) {
+  const model::ProbabilitySpec& spec = job.spec;
+  io::JsonRecord j;
+  j.set("study", job.file).set("case", job.casePath).set("complete", complete);
+  j.set("measure", calibration::name(spec.measure)).set("sampling", calibration::name(spec.sampling));
+  j.set("seed", spec.seed).set("samples_planned", s.planned).set("samples_finished", s.finished);
+  appendStudy(j, spec);
+  j.set("converged", s.converged).set("not_converged", s.notConverged).set("failing", s.failures);
+  j.set("probability_of_failure", s.pf);
+  j.set("interval_95", std::vector<double>{s.pfInterval.low, s.pfInterval.high}).set("interval_method", "Wilson score");
+  j.set("not_converged_as_stable", s.pfNotConvergedStable).set("not_converged_as_failing", s.pfNotConvergedFailing);
+  j.set("bounds_95_with_not_converged", std::vector<double>{s.pfBounds.low, s.pfBounds.high});
+  // β is ±∞ at Pf = 0 or 1: JSON has no infinity, so null there.
+  const auto finite = [](double v) { return std::isfinite(v) ? v : std::numeric_limits<double>::quiet_NaN(); };
+  j.set("reliability_index", finite(s.beta));
+  j.set("reliability_index_interval_95", std::vector<double>{finite(s.betaInterval.low), finite(s.betaInterval.high)});
+  if (s.hasFactor) {
+    io::JsonRecord f;
+    f.set("mean", s.factorMean).set("sd", s.factorSd).set("mean_standard_error", s.factorMeanError);
+    f.set("min", s.factorMin).set("median", s.factorMedian).set("max", s.factorMax);
+    f.set("reliability_index_moments", finite(s.betaMoments));
+    j.set("factor_of_safety", f);
+  }
+  io::JsonRecord rules;
+  for (const auto& [rule, count] : s.rules) rules.set(rule, count);
+  j.set("rules", rules).set("settings", settingsLine);
+  return j.dump() + "\n";
+}
+
+std::vector<std::string> writePictures(const io::ProbabilityJob& job, const calibration::ProbabilitySummary& s,
+                                       const std::vector<SampleResult>& sorted, const std::string& dir) {
+  std::vector<std::string> written;
+  const std::string title = job.casePath;
+  {
+    // The interval as one outline: its lower end forward, its upper end back.
+    io::PlotSeries pf{"Pf", {}, s.runningPf, false};
+    io::PlotSeries band{"95 % interval (Wilson)", {}, s.runningLow, false};
+    for (size_t k = 0; k < s.runningPf.size(); ++k) pf.x.push_back(static_cast<double>(k + 1));
+    band.x = pf.x;
+    band.x.insert(band.x.end(), pf.x.rbegin(), pf.x.rend());
+    band.y.insert(band.y.end(), s.runningHigh.rbegin(), s.runningHigh.rend());
+    io::writePng({"Probability of failure: " + title, "converged samples (in index order)", "Pf", {pf, band}},
+                 dir + "/pf_convergence.png");
+    written.push_back("pf_convergence.png");
+  }
+  const auto [ax, ay] = planeAxes(job.spec);
+  if (ax >= 0) {
+    std::vector<io::PlotSeries> series;
+    for (SampleOutcome o : {SampleOutcome::Stable, SampleOutcome::Fails, SampleOutcome::NotConverged}) {
+      io::PlotSeries p{calibration::name(o), {}, {}, true, false};
+      for (const SampleResult& r : sorted)
+        if (r.outcome == o) p.x.push_back(r.inputs[ax]), p.y.push_back(r.inputs[ay]);
+      series.push_back(p);
+    }
+    io::writePng({"Samples: " + title, job.spec.inputs[ax].path, job.spec.inputs[ay].path, series},
+                 dir + "/samples_plane.png");
+    written.push_back("samples_plane.png");
+  }
+  if (s.hasFactor && s.converged > 0) {
+    std::vector<double> f;
+    for (const SampleResult& r : sorted)
+      if (std::isfinite(r.factor)) f.push_back(r.factor);
+    // √n bins (5 to 50) over the range, drawn as a step outline, with the normal of the same mean
+    // and sd scaled to counts, and F = 1.
+    const int bins = std::clamp(static_cast<int>(std::ceil(std::sqrt(static_cast<double>(f.size())))), 5, 50);
+    const double lo = s.factorMin, width = std::max(s.factorMax - s.factorMin, 1e-9) / bins;
+    std::vector<int> count(static_cast<size_t>(bins), 0);
+    for (double v : f) ++count[static_cast<size_t>(std::clamp(static_cast<int>((v - lo) / width), 0, bins - 1))];
+    io::PlotSeries hist{"samples per bin", {lo}, {0}, false};
+    for (int b = 0; b < bins; ++b) {
+      hist.x.insert(hist.x.end(), {lo + b * width, lo + (b + 1) * width});
+      hist.y.insert(hist.y.end(), {static_cast<double>(count[b]), static_cast<double>(count[b])});
+    }
+    hist.x.push_back(lo + bins * width);
+    hist.y.push_back(0);
+    io::PlotSeries normal{"normal, same mean and sd", {}, {}, false};
+    for (int k = 0; k <= 100; ++k) {
+      const double x = lo + bins * width * k / 100.0, z = s.factorSd > 0 ? (x - s.factorMean) / s.factorSd : 0;
+      normal.x.push_back(x);
+      normal.y.push_back(s.factorSd > 0 ? f.size() * width * std::exp(-0.5 * z * z) / (s.factorSd * std::sqrt(2 * M_PI)) : 0);
+    }
+    const double top = *std::max_element(hist.y.begin(), hist.y.end());
+    io::PlotSeries one{"F = 1", {1, 1}, {0, top}, false};
+    io::writePng({"Factor of safety: " + title, "F (strength reduction)", "samples", {hist, normal, one}},
+                 dir + "/fos_histogram.png");
+    written.push_back("fos_histogram.png");
+  }
+  return written;
+}
+
+}  // namespace ddaslope::cli

@@ -1,0 +1,70 @@
+#pragma once
+// The files of a probability study in its --out folder (docs/probability.md, *Outputs*):
+// samples.csv, appended a row per finished sample and read back by --resume;
+// probability_settings.json, what the samples depend on, which a resumed study must match;
+// summary.json (summary.partial.json while samples are missing), and the pictures.
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "ddaslope/calibration/probability.hpp"
+#include "ddaslope/io/probability_reader.hpp"
+
+namespace ddaslope::cli {
+
+/// The shortest text that reads back as the same double ("" for NaN): resumed samples and fresh
+/// ones then give the same summary bit for bit.
+std::string exactText(double v);
+
+/// samples.csv: sample, one column per input path, outcome, rule, factor_of_safety (fos
+/// measure), max_displacement_m, run_time_s.
+class SampleTable {
+ public:
+  SampleTable(std::string path, const model::ProbabilitySpec& spec);
+  ~SampleTable();
+  SampleTable(const SampleTable&) = delete;
+  SampleTable& operator=(const SampleTable&) = delete;
+
+  const std::string& path() const { return path_; }
+  /// The rows already in the file (a study resumed), checked against the design: the header,
+  /// each index within [0, N) and given once, and its input values equal to the design's, to the
+  /// last bit. A last line cut short by a kill is dropped (and cut from the file before rows are
+  /// appended); a damaged line elsewhere is an InputError.
+  std::vector<calibration::SampleResult> read(const calibration::SampleDesign& design);
+  /// Opens the file for appending: a new one gets its header, a read one loses a cut-off last line.
+  void open();
+  /// Appends one row, flushed at once so that a killed study keeps every sample it finished.
+  void append(const calibration::SampleResult& r);
+
+ private:
+  std::string header() const;
+  std::string path_;
+  const model::ProbabilitySpec& spec_;
+  std::FILE* file_ = nullptr;
+  long keepBytes_ = -1;  ///< the file's length up to its last whole row (-1: all of it)
+};
+
+/// probability_settings.json's text: the case's digest, the study's settings (the sample count
+/// only for a Latin hypercube, whose strata depend on it: a Monte Carlo study may be extended)
+/// and the settings every forward run uses.
+std::string settingsFingerprint(const io::ProbabilityJob& job, const std::vector<std::string>& caseSettings,
+                                const std::string& settingsLine);
+
+/// Refuses (InputError) a resumed study whose probability_settings.json differs from `expected`,
+/// naming the first line that differs.
+void checkFingerprint(const std::string& path, const std::string& expected);
+
+/// Writes `text` to `path` through a temporary file and a rename: a reader never sees half of it.
+void writeAtomically(const std::string& path, const std::string& text);
+
+/// The summary as JSON: no run times and no thread counts, so equal samples give equal bytes.
+std::string summaryJson(const io::ProbabilityJob& job, const calibration::ProbabilitySummary& s,
+                        const std::string& settingsLine, bool complete);
+
+/// pf_convergence.png, and samples_plane.png (two inputs, cohesion and friction angle when
+/// both are inputs, coloured by outcome) and fos_histogram.png (fos measure). Returns the names
+/// written.
+std::vector<std::string> writePictures(const io::ProbabilityJob& job, const calibration::ProbabilitySummary& s,
+                                       const std::vector<calibration::SampleResult>& sorted, const std::string& dir);
+
+}  // namespace ddaslope::cli

@@ -1,0 +1,66 @@
+#pragma once
+// Test helpers for what a user hands to ddaslope: running the executable (its exit code, what it
+// printed), temporary files, and the InputError a reader must throw.
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <functional>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+
+#include "ddaslope/core/errors.hpp"
+
+namespace clitest {
+
+/// Runs the CLI with `args` and returns its exit code (stderr into *stderrText).
+inline int runCli(const std::string& args, std::string* stderrText) {
+  const std::filesystem::path err = std::filesystem::temp_directory_path() / ("ddaslope_err_" + std::to_string(::getpid()));
+  const std::string cmd = std::string(DDASLOPE_CLI) + " " + args + " >/dev/null 2>" + err.string();
+  const int status = std::system(cmd.c_str());
+  std::ifstream in(err);
+  stderrText->assign(std::istreambuf_iterator<char>(in), {});
+  std::filesystem::remove(err);
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+/// Runs the CLI, expects exit 0, and returns what it printed on stdout (stderr into *stderrText).
+inline std::string captureCli(const std::string& args, std::string* stderrText) {
+  const std::filesystem::path tmp = std::filesystem::temp_directory_path();
+  const std::filesystem::path out = tmp / ("ddaslope_out_" + std::to_string(::getpid()));
+  const std::filesystem::path err = tmp / ("ddaslope_err_" + std::to_string(::getpid()));
+  const std::string cmd = std::string(DDASLOPE_CLI) + " " + args + " >" + out.string() + " 2>" + err.string();
+  EXPECT_EQ(std::system(cmd.c_str()), 0) << cmd;
+  std::ifstream e(err), o(out);
+  stderrText->assign(std::istreambuf_iterator<char>(e), {});
+  std::string text((std::istreambuf_iterator<char>(o)), {});
+  std::filesystem::remove(out);
+  std::filesystem::remove(err);
+  return text;
+}
+
+/// Writes `text` to a file named after `name` and the process in the temporary folder.
+inline std::string writeTemp(const std::string& name, const std::string& text) {
+  const std::filesystem::path p = std::filesystem::temp_directory_path() / (std::to_string(::getpid()) + "_" + name);
+  std::ofstream(p) << text;
+  return p.string();
+}
+
+/// Expects `read` to throw an InputError naming `file` and `path`, with `what` in its message.
+inline void expectInputError(const std::function<void()>& read, const std::string& file, const std::string& path,
+                             const std::string& what) {
+  try {
+    read();
+    ADD_FAILURE() << "accepted bad input; expected an error at " << path;
+  } catch (const ddaslope::InputError& e) {
+    EXPECT_EQ(e.file(), file);
+    EXPECT_EQ(e.jsonPath(), path) << e.what();
+    EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace clitest
