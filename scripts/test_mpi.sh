@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # A study spread over 3 MPI ranks (oversubscribed on any machine) gives the same answer as one
-# process (issue #18): the fos sweep's, the critical curve's and a back-analysis's grid outputs
-# are byte-identical once the wall time (which measures the machine, not the slope) is left out.
+# process (issue #18): a probability study's, the fos sweep's, the critical curve's and a
+# back-analysis's grid outputs are byte-identical once the wall time (which measures the
+# machine, not the slope) is left out.
 # usage: scripts/test_mpi.sh DDASLOPE_CLI SOURCE_DIR
 set -euo pipefail
 cli=$1 src=$(cd "$2" && pwd)
@@ -41,6 +42,22 @@ if ! cmp -s <(grep -v wall_time "$work/ba1/result.json") <(grep -v wall_time "$w
   echo "FAIL: the back-analysis results differ"; diff "$work/ba1/result.json" "$work/ba3/result.json" || true; exit 1
 fi
 echo "same: result.json of the back-analysis (but its wall time)"
+
+# A probability study (the shipped planar failure's, 60 samples): the same samples, summary and
+# pictures; and one stopped after 25 samples under mpirun and resumed under mpirun.
+study=$src/calibration/planar_failure/probability.json
+"$cli" probability "$study" --samples 60 --out "$work/pf1" > /dev/null
+"${mpi[@]}" "$cli" probability "$study" --samples 60 --out "$work/pf3" > /dev/null
+sort -t, -k1,1n "$work/pf1/samples.csv" > "$work/pf1.sorted"
+sort -t, -k1,1n "$work/pf3/samples.csv" > "$work/pf3.sorted"
+same "$work/pf1.sorted" "$work/pf3.sorted" 6
+"${mpi[@]}" "$cli" probability "$study" --samples 60 --stop-after 25 --out "$work/pfr" > /dev/null
+"${mpi[@]}" "$cli" probability "$study" --samples 60 --resume --out "$work/pfr" > /dev/null
+for f in summary.json pf_convergence.png samples_plane.png; do
+  cmp "$work/pf1/$f" "$work/pf3/$f" || { echo "FAIL: $f differs under mpirun"; exit 1; }
+  cmp "$work/pf1/$f" "$work/pfr/$f" || { echo "FAIL: $f differs after a resume under mpirun"; exit 1; }
+done
+echo "same: the study's summary.json and pictures, straight and resumed under mpirun"
 
 # An error in a task on any rank reaches the root and ends every rank with exit 2 (no hang).
 set +e

@@ -15,6 +15,7 @@
 #include "test_io.hpp"
 #include "ddaslope/calibration/probability.hpp"
 #include "ddaslope/calibration/sample_runner.hpp"
+#include "ddaslope/core/task_farm.hpp"
 #include "ddaslope/core/errors.hpp"
 #include "ddaslope/io/case_reader.hpp"
 #include "ddaslope/io/probability_reader.hpp"
@@ -108,15 +109,15 @@ std::vector<SampleResult> runStudy(const io::ProbabilityJob& job, const calibrat
   std::vector<int> all(static_cast<size_t>(design.samples()));
   std::iota(all.begin(), all.end(), 0);
   std::vector<SampleResult> out;
-  calibration::runSamplesOnThreads(
-      all, threads,
+  makeThreadFarm(threads)->run(
+      all,
       [&](int k) {
         const std::vector<double> v = design.values(k);
         std::vector<io::CaseOverride> o;
         for (size_t i = 0; i < v.size(); ++i) o.push_back({job.spec.inputs[i].path, v[i]});
-        return calibration::evaluateSample(io::readCase(job.casePath, o), settings, k, v);
+        return calibration::packSample(calibration::evaluateSample(io::readCase(job.casePath, o), settings, k, v));
       },
-      [&](const SampleResult& r) { out.push_back(r); });
+      [&](int, const TaskResult& r) { out.push_back(calibration::unpackSample(r)); });
   std::sort(out.begin(), out.end(), [](const SampleResult& a, const SampleResult& b) { return a.index < b.index; });
   return out;
 }
@@ -628,4 +629,26 @@ TEST(Probability, NonConvergedSamplesAreCountedApart) {
   }
   EXPECT_EQ(listed, notConverged);
   fs::remove_all(dir);
+}
+
+// A sample crosses between MPI ranks as bytes: every field comes back bit for bit (NaN F of the
+// verdict measure included), so the summary cannot depend on where a sample ran.
+TEST(Probability, ASampleSurvivesItsTripAsBytes) {
+  SampleResult r;
+  r.index = 1234;
+  r.inputs = {17775.90390786001, 31.141084388298225, -0.0};
+  r.outcome = calibration::SampleOutcome::NotConverged;
+  r.rule = "no_bracket";
+  r.maxDisplacement = 4.219982713339248e-12;
+  r.runTime = 0.25;
+  const SampleResult back = calibration::unpackSample(calibration::packSample(r));
+  EXPECT_EQ(back.index, r.index);
+  ASSERT_EQ(back.inputs.size(), r.inputs.size());
+  for (size_t i = 0; i < r.inputs.size(); ++i) EXPECT_EQ(std::signbit(back.inputs[i]), std::signbit(r.inputs[i]));
+  EXPECT_EQ(back.inputs, r.inputs);
+  EXPECT_EQ(back.outcome, r.outcome);
+  EXPECT_EQ(back.rule, r.rule);
+  EXPECT_TRUE(std::isnan(back.factor));
+  EXPECT_EQ(back.maxDisplacement, r.maxDisplacement);
+  EXPECT_EQ(back.runTime, r.runTime);
 }

@@ -8,34 +8,30 @@
 #include <thread>
 
 #include "ddaslope/calibration/strength_search.hpp"
+#include "ddaslope/core/byte_record.hpp"
 
 namespace ddaslope::calibration {
 
-void runSamplesOnThreads(const std::vector<int>& indices, int threads, const SampleEvaluator& evaluate,
-                         const SampleSink& sink) {
-  std::atomic<size_t> next{0};
-  std::atomic<bool> stop{false};
-  std::mutex mutex;
-  std::exception_ptr first;
-  const auto work = [&] {
-    for (size_t k = next++; k < indices.size() && !stop; k = next++) {
-      try {
-        const SampleResult r = evaluate(indices[k]);
-        const std::lock_guard<std::mutex> lock(mutex);
-        sink(r);
-      } catch (...) {
-        const std::lock_guard<std::mutex> lock(mutex);
-        if (!first) first = std::current_exception();
-        stop = true;
-      }
-    }
-  };
-  std::vector<std::thread> pool;
-  const int n = std::clamp(threads, 1, std::max(1, static_cast<int>(indices.size())));
-  for (int t = 1; t < n; ++t) pool.emplace_back(work);
-  work();
-  for (auto& t : pool) t.join();
-  if (first) std::rethrow_exception(first);
+std::string packSample(const SampleResult& r) {
+  BytePacker b;
+  b.put(r.index).put(r.inputs.size());
+  for (double v : r.inputs) b.put(v);
+  b.put(r.outcome).put(r.rule).put(r.factor).put(r.maxDisplacement).put(r.runTime);
+  return b.bytes();
+}
+
+SampleResult unpackSample(const std::string& bytes) {
+  ByteUnpacker b(bytes);
+  SampleResult r;
+  r.index = b.get<int>();
+  r.inputs.resize(b.get<size_t>());
+  for (double& v : r.inputs) v = b.get<double>();
+  r.outcome = b.get<SampleOutcome>();
+  r.rule = b.getString();
+  r.factor = b.get<double>();
+  r.maxDisplacement = b.get<double>();
+  r.runTime = b.get<double>();
+  return r;
 }
 
 SampleResult evaluateSample(const model::Scene& scene, const SampleSettings& settings, int index,

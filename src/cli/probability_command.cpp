@@ -12,6 +12,7 @@
 
 #include "ddaslope/calibration/sample_runner.hpp"
 #include "ddaslope/core/errors.hpp"
+#include "ddaslope/core/task_farm.hpp"
 #include "ddaslope/io/probability_reader.hpp"
 #include "probability_files.hpp"
 
@@ -203,6 +204,23 @@ int probabilityCommand(const std::string& path, const Overrides& o, const Probab
   const calibration::SampleDesign design(spec);
   checkDrawnValues(job, design, make);
   const std::string line = settingsLine(reference);
+  // One sample's run: the same on any thread or rank (its values come from its index).
+  const TaskFarm::Task runSample = [&](int k) {
+    const std::vector<double> values = design.values(k);
+    model::Scene scene;
+    try {
+      scene = make(values);
+    } catch (const InputError& e) {  // a combination of values the case refuses
+      throw InputError(job.file, "probability", "sample " + std::to_string(k) + " cannot be run: " + e.what());
+    }
+    return calibration::packSample(calibration::evaluateSample(scene, settings, k, values));
+  };
+  const std::unique_ptr<TaskFarm> farm = makeTaskFarm(opt.threads);
+  if (!farm->isRoot()) {
+    // Under mpirun the other ranks run the samples rank 0 deals; it alone keeps the study folder.
+    farm->run({}, runSample, {});
+    return kExitOk;
+  }
 
   const std::string csv = opt.outDir + "/samples.csv";
   const std::string summaryPath = opt.outDir + "/summary.json", partialPath = opt.outDir + "/summary.partial.json";
@@ -223,31 +241,15 @@ int probabilityCommand(const std::string& path, const Overrides& o, const Probab
   // The samples: CSV rows in completion order; everything else from the samples sorted by index.
   if (!todo.empty()) fs::remove(summaryPath);
   const bool progress = !opt.json && isatty(STDERR_FILENO);
-  const calibration::SampleScheduler schedule = [&](const std::vector<int>& indices,
-                                                    const calibration::SampleEvaluator& evaluate,
-                                                    const calibration::SampleSink& sink) {
-    calibration::runSamplesOnThreads(indices, opt.threads, evaluate, sink);
-  };
   double sampleTime = 0;
   table.open();
-  schedule(
-      todo,
-      [&](int k) {
-        const std::vector<double> values = design.values(k);
-        model::Scene scene;
-        try {
-          scene = make(values);
-        } catch (const InputError& e) {  // a combination of values the case refuses
-          throw InputError(job.file, "probability", "sample " + std::to_string(k) + " cannot be run: " + e.what());
-        }
-        return calibration::evaluateSample(scene, settings, k, values);
-      },
-      [&](const SampleResult& r) {
-        table.append(r);
-        done.push_back(r);
-        sampleTime += r.runTime;
-        if (progress) std::fprintf(stderr, "\r  %zu of %d samples", done.size(), spec.samples);
-      });
+  farm->run(todo, runSample, [&](int, const TaskResult& bytes) {
+    const SampleResult r = calibration::unpackSample(bytes);
+    table.append(r);
+    done.push_back(r);
+    sampleTime += r.runTime;
+    if (progress) std::fprintf(stderr, "\r  %zu of %d samples", done.size(), spec.samples);
+  });
   if (progress) std::fprintf(stderr, "\n");
   std::sort(done.begin(), done.end(), [](const SampleResult& a, const SampleResult& b) { return a.index < b.index; });
   const calibration::ProbabilitySummary summary =
@@ -262,8 +264,8 @@ int probabilityCommand(const std::string& path, const Overrides& o, const Probab
     std::printf("%s", json.c_str());
   } else {
     printSummary(summary);
-    std::printf("  %zu samples run now (%d resumed), %.2f s wall on %d threads (%.2f s of sample run time)\n",
-                todo.size(), resumed, wall, opt.threads, sampleTime);
+    std::printf("  %zu samples run now (%d resumed), %.2f s wall on %s (%.2f s of sample run time)\n", todo.size(),
+                resumed, wall, farm->describe().c_str(), sampleTime);
     std::string files;
     for (const auto& p : pictures) files += ", " + p;
     std::printf("  wrote %s, %s%s\n", csv.c_str(), complete ? "summary.json" : "summary.partial.json", files.c_str());

@@ -1,10 +1,8 @@
 #pragma once
-// The samples of a probability study (issue #18) as independent jobs behind one small interface:
-// a scheduler takes the indices to run, an evaluator (index → result) and a sink called once per
-// finished sample. runSamplesOnThreads is the local scheduler; an MPI one (a rank per worker,
-// results sent to rank 0's sink) can stand in for it without touching the rest, because a
-// sample's values depend on its index only and the summary is made from the samples sorted by
-// index.
+// One sample of a probability study (issue #18): its forward run or search, and its result as
+// bytes. The samples run on a task farm (core/task_farm.hpp: threads, or MPI ranks); a sample's
+// values depend on its index only and the summary is made from the samples sorted by index, so
+// the answer does not depend on the farm.
 #include <functional>
 #include <string>
 #include <vector>
@@ -15,19 +13,9 @@
 
 namespace ddaslope::calibration {
 
-using SampleEvaluator = std::function<SampleResult(int index)>;
-using SampleSink = std::function<void(const SampleResult&)>;
-/// Runs evaluate(i) for each of `indices` (in any order, on any worker) and passes every result
-/// to `sink`, one call at a time.
-using SampleScheduler =
-    std::function<void(const std::vector<int>& indices, const SampleEvaluator& evaluate, const SampleSink& sink)>;
-
-/// `threads` workers take the next index of `indices` as each frees up (dynamic balance: a
-/// sample's cost varies with its strengths). `sink` is called under a lock, in completion order.
-/// If an evaluation or the sink throws, no further index is started, the samples running finish
-/// and reach the sink, and the first exception is rethrown.
-void runSamplesOnThreads(const std::vector<int>& indices, int threads, const SampleEvaluator& evaluate,
-                         const SampleSink& sink);
+/// A sample's result as bytes and back: what crosses between MPI ranks (core/task_farm.hpp).
+std::string packSample(const SampleResult& r);
+SampleResult unpackSample(const std::string& bytes);
 
 /// How a sample's scene is judged.
 struct SampleSettings {
