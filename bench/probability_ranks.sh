@@ -34,6 +34,8 @@ start2=$(best mpirun -np 2 --oversubscribe "$cli" --version)
 serial=$(best "$cli" probability "$study" --samples "$n" --threads 1 --out "$work/out")
 rank1=$(best mpirun -np 1 "$cli" probability "$study" --samples "$n" --threads 1 --out "$work/out")
 rank2=$(best mpirun -np 2 "$cli" probability "$study" --samples "$n" --threads 1 --out "$work/out")
+# The same two cores used by threads of one process: what the machine itself gives two workers.
+threads2=$(best "$cli" probability "$study" --samples "$n" --threads 2 --out "$work/out")
 
 rate() { calc "60 * $n / ($1)"; }
 printf 'planar failure, %d verdict samples (one forward run each), one thread per rank, fastest of 3\n' "$n"
@@ -44,8 +46,15 @@ r2=$(rate "$rank2 - $start2")
 printf '| 1, no mpirun | %.2f | – | %.0f | – |\n' "$serial" "$r0"
 printf '| 1 rank | %.2f | %.2f | %.0f | %.2f |\n' "$rank1" "$start1" "$r1" "$(calc "$r1 / $r0")"
 printf '| 2 ranks | %.2f | %.2f | %.0f | %.2f |\n' "$rank2" "$start2" "$r2" "$(calc "$r2 / (2 * $r0)")"
-printf 'MPI cost per forward run (1 rank against no mpirun, start excluded): %.2f ms of a %.2f ms run\n' \
-  "$(calc "1000 * ($rank1 - $start1 - $serial) / $n")" "$(calc "1000 * $serial / $n")"
+rt=$(rate "$threads2")
+printf '| 1 process, 2 threads | %.2f | – | %.0f | %.2f |\n' "$threads2" "$rt" "$(calc "$rt / (2 * $r0)")"
+# What dealing a task costs, apart from the machine's noise: tasks that keep a core busy for as long
+# as a forward run of this study takes (the farm bench, core/task_farm.hpp).
+run_us=$(calc "1e6 * $serial / $n")
+farm=$(dirname "$cli")/ddaslope_farm_bench
+echo "the farm's cost per task, tasks of ${run_us%.*} µs (a forward run of this study):"
+"$farm" --tasks 2000 --work-us "$run_us" --threads 2 | sed 's/^/  /'
+mpirun -np 2 "$farm" --tasks 2000 --work-us "$run_us" --threads 1 | sed 's/^/  /'
 
 # Vajont: the mean time of a strength-reduction sample on one core, and what 10 000 would take.
 vajont=calibration/vajont/probability.json

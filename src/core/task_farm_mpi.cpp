@@ -2,9 +2,10 @@
 // Rank 0 deals task indices and receives results; every rank, rank 0 included, runs tasks on
 // its own threads. Only each rank's main thread calls MPI (MPI_THREAD_FUNNELED).
 //
-// Protocol, per worker thread slot: the worker sends READY once, then RESULT after each task;
-// each of those messages is answered by one TASK message with the next index, or −1 (STOP) when
-// none is left or an error stopped the farm. A worker is done when each of its slots got STOP.
+// Protocol, per worker slot (kDepth per thread): the worker sends READY once, then RESULT after
+// each task; each of those messages is answered by one TASK message with the next index, or −1
+// (STOP) when none is left or an error stopped the farm. A worker is done when each of its slots
+// got STOP.
 // MPI's C interface only (the deprecated C++ bindings need a library Debian does not link).
 #define OMPI_SKIP_MPICXX 1
 #define MPICH_SKIP_MPICXX 1
@@ -36,6 +37,10 @@ enum Tag : int { kReady = 1, kResult = 2, kTask = 3 };
 constexpr int kStop = -1;
 /// How often an idle main thread looks for messages and finished tasks.
 constexpr auto kPoll = std::chrono::microseconds(500);
+/// Tasks dealt per worker thread: one running and one waiting, so a thread never waits for the
+/// next index to travel (up to kPoll plus a message) between tasks. The cost: at the end of a
+/// study a rank may hold one waiting task per thread while another rank has finished.
+constexpr int kDepth = 2;
 
 bool launchedByMpirun() {
   return std::getenv("OMPI_COMM_WORLD_SIZE") || std::getenv("PMI_SIZE") || std::getenv("PMIX_RANK");
@@ -198,7 +203,7 @@ class MpiFarm final : public TaskFarm {
     LocalWorkers local(threads_, task);
     int localQueued = 0;  // root's own tasks dealt and not yet collected
     const auto feedLocal = [&] {
-      while (localQueued < threads_) {
+      while (localQueued < kDepth * threads_) {
         const int i = nextIndex();
         if (i == kStop) return;
         local.push(i);
@@ -206,7 +211,7 @@ class MpiFarm final : public TaskFarm {
       }
     };
     feedLocal();
-    int stopsOwed = (worldSize - 1) * threads_;
+    int stopsOwed = (worldSize - 1) * kDepth * threads_;
     for (;;) {
       for (const LocalWorkers::Done& d : local.collect()) {
         --localQueued;
@@ -239,9 +244,9 @@ class MpiFarm final : public TaskFarm {
 
   void runWorker(const Task& task) {
     LocalWorkers local(threads_, task);
-    for (int t = 0; t < threads_; ++t) MPI_Send(nullptr, 0, MPI_BYTE, 0, kReady, MPI_COMM_WORLD);
+    for (int t = 0; t < kDepth * threads_; ++t) MPI_Send(nullptr, 0, MPI_BYTE, 0, kReady, MPI_COMM_WORLD);
     int stops = 0, running = 0;
-    while (stops < threads_ || running > 0) {
+    while (stops < kDepth * threads_ || running > 0) {
       for (const LocalWorkers::Done& d : local.collect()) {
         --running;
         const std::string m = packResult(d.index, d.outcome, d.bytes);
