@@ -1,6 +1,8 @@
 #include "ddaslope/calibration/backanalysis.hpp"
 
+#include <algorithm>
 #include <atomic>
+#include <cstdio>
 #include <chrono>
 #include <cmath>
 #include <optional>
@@ -182,7 +184,8 @@ namespace {
 /// Misfits at parameter vectors (physical units), spread over the farm (one thread per point, so
 /// a point's misfit is the same on any farm); on the root, values[k], and the forward runs taken.
 std::vector<double> misfitsAt(const io::BackanalysisJob& job, const std::vector<std::vector<double>>& points,
-                              const solver::HeldEquilibrium* shared, TaskFarm& farm, std::atomic<int>& runs) {
+                              const solver::HeldEquilibrium* shared, TaskFarm& farm, std::atomic<int>& runs,
+                              const std::function<void(double)>& finished) {
   std::vector<double> values(points.size(), HUGE_VAL);
   std::vector<int> indices(points.size());
   for (size_t k = 0; k < points.size(); ++k) indices[k] = static_cast<int>(k);
@@ -197,6 +200,7 @@ std::vector<double> misfitsAt(const io::BackanalysisJob& job, const std::vector<
         ByteUnpacker b(bytes);
         values[k] = b.get<double>();
         runs += b.get<int>();
+        finished(values[k]);
       });
   return values;
 }
@@ -225,7 +229,7 @@ std::vector<std::vector<double>> parameterGrid(const io::BackanalysisJob& job, i
 
 }  // namespace
 
-BackanalysisResult runBackanalysis(const io::BackanalysisJob& job, TaskFarm* farm) {
+BackanalysisResult runBackanalysis(const io::BackanalysisJob& job, TaskFarm* farm, const io::ProgressSink& progress) {
   const auto t0 = std::chrono::steady_clock::now();
   std::unique_ptr<TaskFarm> own;
   if (!farm) own = makeThreadFarm(job.threads), farm = own.get();
@@ -245,12 +249,28 @@ BackanalysisResult runBackanalysis(const io::BackanalysisJob& job, TaskFarm* far
   }
   const solver::HeldEquilibrium* shared = held ? &*held : nullptr;
   double bestSeen = HUGE_VAL;
+  // Progress: evaluations of the current stage out of its budget, and the best misfit so far.
+  std::string stage;
+  int stageDone = 0, stagePlanned = 0;
+  double stageBest = HUGE_VAL;
+  const auto beginStage = [&](const std::string& name, int planned) {
+    stage = name, stageDone = 0, stagePlanned = planned, stageBest = HUGE_VAL;
+  };
+  const auto evaluated = [&](double v) {
+    ++stageDone;
+    stageBest = std::min(stageBest, v);
+    if (!progress) return;
+    char text[96];
+    std::snprintf(text, sizeof text, "best misfit %.4g (%d forward runs)", std::min(stageBest, bestSeen), runs.load());
+    progress({stage, stageDone, stagePlanned, text, {{"best_misfit", std::min(stageBest, bestSeen)}}});
+  };
   const std::function<double(const std::vector<double>&)> f = [&](const std::vector<double>& u) {
     int n = 0;
     std::vector<ObservationFit> fit;
     const double v = misfitAt(job, physical(job, u), &n, shared, job.threads, &fit);
     runs += n;
     if (v < bestSeen) bestSeen = v, r.fit = std::move(fit);  // the optimisers call f one at a time
+    evaluated(v);
     return v;
   };
   std::vector<double> u(job.parameters.size(), 0.5);
@@ -265,13 +285,15 @@ BackanalysisResult runBackanalysis(const io::BackanalysisJob& job, TaskFarm* far
     // spread over the threads (or ranks); the best point starts the local polish.
     std::vector<std::vector<double>> unit;
     const std::vector<std::vector<double>> grid = parameterGrid(job, job.gridPoints, &unit);
-    gridValues = misfitsAt(job, grid, shared, *farm, runs);
+    beginStage("grid", static_cast<int>(grid.size()));
+    gridValues = misfitsAt(job, grid, shared, *farm, runs, evaluated);
     const size_t k = static_cast<size_t>(std::min_element(gridValues.begin(), gridValues.end()) - gridValues.begin());
     u = unit[k];
     best = gridValues[k];
     r.evaluations += static_cast<int>(grid.size());
     r.globalStatus = std::string(io::kGridSearch) + ": " + std::to_string(grid.size()) + " points";
   } else if (!job.optimiser.global.empty() && root) {
+    beginStage("global", job.optimiser.globalEvaluations);
     const MinimiserResult g = minimise(job.optimiser.global, f, u, job.optimiser.globalEvaluations, job.optimiser.xtolRel);
     r.globalStatus = job.optimiser.global + ": " + g.status;
     r.evaluations += g.evaluations;
@@ -279,6 +301,7 @@ BackanalysisResult runBackanalysis(const io::BackanalysisJob& job, TaskFarm* far
     best = g.value;
   }
   if (!job.optimiser.local.empty() && root) {
+    beginStage("local", job.optimiser.localEvaluations);
     const MinimiserResult l = minimise(job.optimiser.local, f, u, job.optimiser.localEvaluations, job.optimiser.xtolRel);
     r.localStatus = job.optimiser.local + ": " + l.status;
     r.evaluations += l.evaluations;
@@ -289,6 +312,7 @@ BackanalysisResult runBackanalysis(const io::BackanalysisJob& job, TaskFarm* far
   r.estimate = physical(job, u);
   r.misfit = best;
   if (job.precision.enabled && root) {
+    if (progress) progress({"precision", 0, 0, "scanning the estimate's neighbourhood and Δt", {}});
     std::vector<double> simulated;
     for (const auto& f : r.fit) simulated.push_back(f.converged ? f.simulated : NAN);
     int n = 0;
@@ -304,8 +328,11 @@ BackanalysisResult runBackanalysis(const io::BackanalysisJob& job, TaskFarm* far
     }
     // The map is the grid search's own grid when there was one (the same points, last axis
     // fastest); else its n² evaluations are spread over the farm.
-    const std::vector<double> values =
-        gridSearch ? gridValues : misfitsAt(job, parameterGrid(job, n), shared, *farm, runs);
+    std::vector<double> values = gridValues;
+    if (!gridSearch) {
+      beginStage("map", n * n);
+      values = misfitsAt(job, parameterGrid(job, n), shared, *farm, runs, evaluated);
+    }
     r.map.assign(n, std::vector<double>(n, 0));
     for (int k = 0; k < n * n; ++k) r.map[k / n][k % n] = values[k];
     if (root) judgeConstraint(job, r);

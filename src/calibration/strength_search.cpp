@@ -1,6 +1,7 @@
 #include "ddaslope/calibration/strength_search.hpp"
 
 #include <algorithm>
+#include <cstdio>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -19,10 +20,18 @@ double secondsSince(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-/// Wraps a verdict function so that every forward run is counted and recorded (thread-safe).
+/// Wraps a verdict function so that every forward run is counted, recorded and reported
+/// (thread-safe).
 struct CountedVerdict {
-  explicit CountedVerdict(std::function<TrialResult(double)> v) : verdict(std::move(v)) {}
+  /// `quantity`: the searched value's symbol for the progress line; `width`: the bracket the
+  /// search narrows to (≤ 0: 1e-3 of its failing end), for the estimate of the runs left.
+  CountedVerdict(std::function<TrialResult(double)> v, const SearchSettings& s, const char* quantity, double width)
+      : verdict(std::move(v)), progress(s.progress), quantity(quantity), width(width), perRound(std::max(1, s.threads)) {}
   std::function<TrialResult(double)> verdict;
+  io::ProgressSink progress;
+  const char* quantity;
+  double width;
+  int perRound;
   std::atomic<int> runs{0};
   std::mutex mutex;
   std::vector<TrialRecord> trials;
@@ -31,12 +40,44 @@ struct CountedVerdict {
     TrialResult r = verdict(x);
     const std::lock_guard<std::mutex> lock(mutex);
     trials.push_back({x, r});
+    if (progress) report(x, r.stable);
     return r.stable;
   }
   /// The trials by value: the record does not depend on which thread finished first.
   std::vector<TrialRecord> sortedTrials() {
     std::sort(trials.begin(), trials.end(), [](const TrialRecord& a, const TrialRecord& b) { return a.value < b.value; });
     return trials;
+  }
+
+ private:
+  /// The tightest bracket so far (a stable and a failing trial closest together) and the runs a
+  /// k-section still needs to narrow it to the width.
+  void report(double last, bool lastStable) {
+    io::ProgressEvent e;
+    e.done = static_cast<int>(trials.size());
+    const TrialRecord* s = nullptr;
+    const TrialRecord* f = nullptr;
+    for (const TrialRecord& a : trials)
+      for (const TrialRecord& b : trials)
+        if (a.result.stable && !b.result.stable &&
+            (!s || std::abs(a.value - b.value) < std::abs(s->value - f->value)))
+          s = &a, f = &b;
+    char text[160];
+    if (s) {
+      const double gap = std::abs(s->value - f->value);
+      const double target = width > 0 ? width : 1e-3 * std::abs(f->value);
+      const int rounds = gap > target ? static_cast<int>(std::ceil(std::log(gap / target) / std::log(perRound + 1.0))) : 0;
+      e.stage = "narrow";
+      e.planned = e.done + rounds * perRound;
+      std::snprintf(text, sizeof text, "%s stable at %.6g, fails at %.6g", quantity, s->value, f->value);
+      e.values = {{"stable_end", s->value}, {"failing_end", f->value}};
+    } else {
+      e.stage = "bracket";
+      std::snprintf(text, sizeof text, "%s %.6g %s", quantity, last, lastStable ? "stable" : "fails");
+      e.values = {{"last_trial", last}};
+    }
+    e.detail = text;
+    progress(e);
   }
 };
 
@@ -84,7 +125,7 @@ CriticalResult criticalCohesion(const model::Scene& scene, int joint, double fri
     trial.joints[joint].cohesion = c;
     trial.joints[joint].frictionAngle = degToRad(frictionDeg);
     return judgeStability(trial, s.verdict, held ? &*held : nullptr);
-  }};
+  }, s, "c (Pa)", width};
   const std::function<bool(double)> f = std::ref(stableAt);
   CriticalResult r;
   if (stableAt(0)) {
@@ -115,7 +156,7 @@ CriticalResult criticalFriction(const model::Scene& scene, int joint, double coh
     trial.joints[joint].cohesion = cohesion;
     trial.joints[joint].frictionAngle = degToRad(phiDeg);
     return judgeStability(trial, s.verdict, held ? &*held : nullptr);
-  }};
+  }, s, "φ (°)", width};
   const BisectionResult b = bisect(std::ref(stableAt), 0.0, 89.9, width, s.threads);
   CriticalResult r;
   copyBracket(b, r);
@@ -139,7 +180,7 @@ CriticalResult criticalSeismicCoefficient(const model::Scene& scene, int directi
     trial.seismic.kh = direction * k;
     trial.seismic.ground = {};  // k_y belongs to the slope, not to a record
     return judgeStability(trial, s.verdict, nullptr);
-  }};
+  }, s, "k_h (g)", width};
   const std::function<bool(double)> f = std::ref(stableAt);
   constexpr double kFirst = 0.05, kLargest = 2.0;
   CriticalResult r;
@@ -184,6 +225,8 @@ std::vector<CurvePoint> criticalCurve(const model::Scene& scene, int joint, doub
   }
   SearchSettings single = s;
   single.threads = 1;  // parallel over points instead: a point's search is the same on any farm
+  single.progress = nullptr;  // the curve reports points
+  int finished = 0;
   std::unique_ptr<TaskFarm> own;
   if (!farm) own = makeThreadFarm(s.threads), farm = own.get();
   farm->run(
@@ -204,6 +247,11 @@ std::vector<CurvePoint> criticalCurve(const model::Scene& scene, int joint, doub
         r.runs = b.get<int>();
         r.wallTime = b.get<double>();
         r.message = b.getString();
+        if (s.progress) {
+          char text[96];
+          std::snprintf(text, sizeof text, "c = %.6g Pa at φ = %.4g°", r.critical, curve[i].frictionDeg);
+          s.progress({"points", ++finished, static_cast<int>(curve.size()), text, {}});
+        }
       });
   return curve;
 }
@@ -219,7 +267,7 @@ FactorOfSafetyResult factorOfSafety(const model::Scene& scene, const std::vector
     model::Scene trial = scene;
     for (int j : reduced) trial.joints[j] = scene.joints[j].reducedBy(f);
     return judgeStability(trial, s.verdict, held ? &*held : nullptr);
-  }};
+  }, s, "F", width};
   FactorOfSafetyResult r;
   // Bracket from F = 1 by factors of 1.5 (stable: raise F; failing: lower it).
   double stable = 0, failing = 0, f = 1;

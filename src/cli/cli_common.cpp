@@ -1,5 +1,7 @@
 #include "cli_common.hpp"
 
+#include <unistd.h>
+
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -7,6 +9,7 @@
 #include <sstream>
 
 #include "ddaslope/core/errors.hpp"
+#include "ddaslope/core/task_farm.hpp"
 #include "ddaslope/io/ground_motion.hpp"
 #include "ddaslope/model/input_limits.hpp"
 
@@ -132,6 +135,18 @@ int jointIndex(const ddaslope::model::Scene& scene, const std::string& name, con
   std::string known;
   for (const auto& j : scene.joints) known += (known.empty() ? "" : ", ") + j.name;
   throw ddaslope::InputError(casePath, "joints", "no joint named \"" + name + "\" (the case has: " + known + ")");
+}
+
+void addProgressOptions(CLI::App* cmd, ProgressOptions& p) {
+  cmd->add_flag("--quiet", p.quiet, "no progress line on stderr");
+  cmd->add_option("--log-json", p.logJson, "write the progress events to FILE as JSON lines");
+}
+
+std::unique_ptr<ddaslope::io::ProgressLog> startProgress(const std::string& command, const ProgressOptions& p,
+                                                         bool jsonResult) {
+  const bool root = ddaslope::processRank() == 0;
+  const bool terminal = root && !p.quiet && !jsonResult && isatty(STDERR_FILENO);
+  return std::make_unique<ddaslope::io::ProgressLog>(command, terminal, root ? p.logJson : std::string());
 }
 
 }  // namespace ddaslope::cli

@@ -2,12 +2,14 @@
 // What the subcommands share: exit codes, the model options every command that runs forward
 // models takes (--preset, --time-step, --blocks, --set, …), reading a case with them, and the
 // settings line each result names.
+#include <memory>
 #include <string>
 #include <vector>
 
 #include <CLI/CLI.hpp>
 
 #include "ddaslope/io/case_reader.hpp"
+#include "ddaslope/io/progress.hpp"
 #include "ddaslope/model/scene.hpp"
 #include "ddaslope/model/settings_override.hpp"
 
@@ -43,5 +45,16 @@ void applyOverrides(ddaslope::model::Scene& scene, const Overrides& o, const std
 std::string settingsLine(const ddaslope::model::Scene& scene);
 
 int jointIndex(const ddaslope::model::Scene& scene, const std::string& name, const std::string& casePath);
+
+/// Progress of a long command (issue #19): a line on stderr unless --quiet, a --json result or
+/// stderr not a terminal; JSON lines with --log-json FILE.
+struct ProgressOptions {
+  bool quiet = false;
+  std::string logJson;
+};
+void addProgressOptions(CLI::App* cmd, ProgressOptions& p);
+/// The command's progress log (never null); under mpirun only rank 0 reports.
+std::unique_ptr<ddaslope::io::ProgressLog> startProgress(const std::string& command, const ProgressOptions& p,
+                                                         bool jsonResult);
 
 }  // namespace ddaslope::cli

@@ -215,6 +215,7 @@ struct CriticalOptions {
   int threads = 2;
   std::string curve;       ///< "phiMin:phiMax:n"
   std::string outDir = "out";
+  ProgressOptions progress;
 };
 
 int curveCommand(const std::string& casePath, const ddaslope::model::Scene& scene, int joint, const CriticalOptions& opt) {
@@ -222,13 +223,16 @@ int curveCommand(const std::string& casePath, const ddaslope::model::Scene& scen
   int n = 0;
   if (std::sscanf(opt.curve.c_str(), "%lf:%lf:%d", &lo, &hi, &n) != 3 || n < 2 || lo < 0 || hi >= 90 || lo >= hi)
     throw ddaslope::InputError("--curve", "", "expected φmin:φmax:n with 0 ≤ φmin < φmax < 90 and n ≥ 2, found \"" + opt.curve + "\"");
+  const auto log = startProgress("critical --curve", opt.progress, opt.json);
   ddaslope::calibration::SearchSettings s;
   s.threads = opt.threads;
+  s.progress = ddaslope::io::sinkOf(log.get());
   const auto t0 = std::chrono::steady_clock::now();
   const std::unique_ptr<ddaslope::TaskFarm> farm = ddaslope::makeTaskFarm(opt.threads);
   const auto curve =
       ddaslope::calibration::criticalCurve(scene, joint, lo, hi, n, opt.width > 0 ? opt.width : 10, s, farm.get());
   if (!farm->isRoot()) return kExitOk;  // the root writes
+  log->finish(true, std::to_string(n) + " points");
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   std::filesystem::create_directories(opt.outDir);
   const std::string csv = opt.outDir + "/critical_curve.csv", png = opt.outDir + "/critical_curve.png";
@@ -287,12 +291,15 @@ int seismicCoefficientCommand(const std::string& casePath, const ddaslope::model
     std::fprintf(stderr, "ddaslope: note: %s: the ground-motion record is not used: k_y belongs to the slope\n", casePath.c_str());
   ddaslope::model::Scene searched = scene;  // what the trials run: no record, k_h their own
   searched.seismic.ground = {};
+  const auto log = startProgress("critical --solve seismic-coefficient", opt.progress, opt.json);
   ddaslope::calibration::SearchSettings s;
   s.threads = opt.threads;
+  s.progress = ddaslope::io::sinkOf(log.get());
   std::vector<std::pair<std::string, ddaslope::calibration::CriticalResult>> results;
   for (const char* d : {"+x", "-x"})
     if (opt.direction == "auto" || opt.direction == d)
       results.emplace_back(d, ddaslope::calibration::criticalSeismicCoefficient(scene, d[0] == '-' ? -1 : 1, opt.width, s));
+  log->finish(true, std::to_string(results.size()) + " directions searched");
   // The slope's yield coefficient: the smaller of those found.
   size_t best = 0;
   for (size_t k = 1; k < results.size(); ++k)
@@ -339,8 +346,10 @@ int criticalCommand(const std::string& casePath, const Overrides& o, const Criti
   if (opt.joint.empty()) throw ddaslope::InputError("--joint", "", "expected the joint to search (--joint NAME)");
   const int joint = jointIndex(scene, opt.joint, casePath);
   if (!opt.curve.empty()) return curveCommand(casePath, scene, joint, opt);
+  const auto log = startProgress("critical", opt.progress, opt.json);
   ddaslope::calibration::SearchSettings s;
   s.threads = opt.threads;
+  s.progress = ddaslope::io::sinkOf(log.get());
   const bool cohesion = opt.solve == "cohesion";
   const ddaslope::model::JointProperties& jp = scene.joints[joint];
   const double phi = opt.friction >= 0 ? opt.friction : ddaslope::radToDeg(jp.frictionAngle);
@@ -348,6 +357,7 @@ int criticalCommand(const std::string& casePath, const Overrides& o, const Criti
   if (opt.friction >= 90) throw ddaslope::InputError("--friction", "", "expected an angle in [0, 90) degrees");
   const auto r = cohesion ? ddaslope::calibration::criticalCohesion(scene, joint, phi, opt.width > 0 ? opt.width : 10, s)
                           : ddaslope::calibration::criticalFriction(scene, joint, c, opt.width > 0 ? opt.width : 0.01, s);
+  log->finish(r.found, r.found ? "critical " + opt.solve + " " + std::to_string(r.critical) : r.message);
   const char* unit = cohesion ? "Pa" : "degrees";
   if (opt.json) {
     ddaslope::io::JsonRecord j;
@@ -379,14 +389,16 @@ struct FosOptions {
   int threads = 2;
   std::string sweep;  ///< "json.path=min:max:n"
   std::string outDir = "out/fos";
+  ProgressOptions progress;
 };
 
 ddaslope::calibration::FactorOfSafetyResult factorFor(const ddaslope::model::Scene& scene, const std::string& casePath,
-                                                      const FosOptions& opt) {
+                                                      const FosOptions& opt, ddaslope::io::ProgressSink progress = {}) {
   std::vector<int> joints;
   for (const auto& n : opt.joints) joints.push_back(jointIndex(scene, n, casePath));
   ddaslope::calibration::SearchSettings s;
   s.threads = opt.threads;
+  s.progress = std::move(progress);
   return ddaslope::calibration::factorOfSafety(scene, joints, opt.width, s);
 }
 
@@ -412,6 +424,8 @@ int fosSweep(const std::string& casePath, const Overrides& o, const FosOptions& 
   const auto valueAt = [&](int i) { return lo + (hi - lo) * i / (n - 1); };
   FosOptions single = opt;
   single.threads = 1;
+  const auto log = startProgress("fos --sweep", opt.progress, false);
+  int finished = 0;
   const std::unique_ptr<ddaslope::TaskFarm> farm = ddaslope::makeTaskFarm(opt.threads);
   farm->run(
       indices,
@@ -434,11 +448,18 @@ int fosSweep(const std::string& casePath, const Overrides& o, const FosOptions& 
         r.wallTime = b.get<double>();
         r.message = b.getString();
         points[i].done = true;
-        std::printf("  %s = %-10g F = %s (%d forward runs, %.1f s)\n", path.c_str(), valueAt(i),
-                    r.found ? std::to_string(r.factor).c_str() : r.message.c_str(), r.runs, r.wallTime);
-        std::fflush(stdout);
+        if (log->active())
+          log->report({"points", ++finished, n,
+                       path + " = " + std::to_string(valueAt(i)) + ": F " + (r.found ? std::to_string(r.factor) : "not found"),
+                       {{"value", valueAt(i)}, {"factor_of_safety", r.found ? r.factor : NAN}}});
       });
   if (!farm->isRoot()) return kExitOk;  // the root writes
+  log->finish(true, std::to_string(n) + " values");
+  for (int i = 0; i < n; ++i) {
+    const auto& r = points[i].fos;
+    std::printf("  %s = %-10g F = %s (%d forward runs, %.1f s)\n", path.c_str(), valueAt(i),
+                r.found ? std::to_string(r.factor).c_str() : r.message.c_str(), r.runs, r.wallTime);
+  }
   std::filesystem::create_directories(opt.outDir);
   std::ofstream out(csv + ".tmp");
   out << path << ",factor_of_safety,stable_at,failing_at,found,forward_runs,wall_time_s\n";
@@ -464,7 +485,9 @@ int fosCommand(const std::string& casePath, const Overrides& o, const FosOptions
   if (!opt.sweep.empty()) return fosSweep(casePath, o, opt);
   ddaslope::model::Scene scene = loadCase(casePath, o);
   applyOverrides(scene, o, casePath);
-  const auto r = factorFor(scene, casePath, opt);
+  const auto log = startProgress("fos", opt.progress, opt.json);
+  const auto r = factorFor(scene, casePath, opt, ddaslope::io::sinkOf(log.get()));
+  log->finish(r.found, r.found ? "F " + std::to_string(r.factor) : r.message);
   if (opt.json) {
     ddaslope::io::JsonRecord j;
     j.set("case", casePath).set("found", r.found).set("factor_of_safety", r.factor);
@@ -523,14 +546,18 @@ void appendPrecision(ddaslope::io::JsonRecord& j, const ddaslope::calibration::P
   j.set("precision", out);
 }
 
-int backanalyseCommand(const std::string& jobPath, const std::string& outDir, bool json, const Overrides& o) {
+int backanalyseCommand(const std::string& jobPath, const std::string& outDir, bool json, const Overrides& o,
+                       const ProgressOptions& progress) {
   ddaslope::io::BackanalysisJob job = ddaslope::io::readJob(jobPath);
   // The command line's choices are applied after the job's own (its "preset", "blocks").
   job.model.push_back(o.model);
   for (const auto& s : o.settings) job.caseOverrides.push_back(parseSetting(s));
   const std::unique_ptr<ddaslope::TaskFarm> farm = ddaslope::makeTaskFarm(job.threads);
-  const ddaslope::calibration::BackanalysisResult r = ddaslope::calibration::runBackanalysis(job, farm.get());
+  const auto log = startProgress("backanalyse", progress, json);
+  const ddaslope::calibration::BackanalysisResult r =
+      ddaslope::calibration::runBackanalysis(job, farm.get(), ddaslope::io::sinkOf(log.get()));
   if (!farm->isRoot()) return kExitOk;  // the root writes
+  log->finish(true, "misfit " + std::to_string(r.misfit) + " after " + std::to_string(r.evaluations) + " evaluations");
   std::filesystem::create_directories(outDir);
   ddaslope::io::JsonRecord j;
   j.set("job", jobPath).set("case", job.casePath);
@@ -679,6 +706,7 @@ int runCommandLine(int argc, char** argv) {
   critical->add_option("--threads", crit.threads, "forward runs at once")->capture_default_str()->check(CLI::Range(1, 256));
   addModelOptions(critical, overrides);
   critical->add_flag("--json", crit.json, "print the result as JSON");
+  addProgressOptions(critical, crit.progress);
   critical->add_option("--curve", crit.curve, "φmin:φmax:n: the critical (c, φ) curve as CSV and PNG in --out");
   critical->add_option("--out", crit.outDir, "output directory for --curve")->capture_default_str();
 
@@ -693,6 +721,7 @@ int runCommandLine(int argc, char** argv) {
   fos->add_option("--out", fosOpt.outDir, "output directory for --sweep")->capture_default_str();
   addModelOptions(fos, overrides);
   fos->add_flag("--json", fosOpt.json, "print the result as JSON");
+  addProgressOptions(fos, fosOpt.progress);
 
   std::string jobPath, baOut = "out/backanalysis";
   bool baJson = false;
@@ -700,6 +729,8 @@ int runCommandLine(int argc, char** argv) {
   ba->add_option("job", jobPath, "back-analysis job (JSON)")->required();
   ba->add_option("--out", baOut, "output directory")->capture_default_str();
   ba->add_flag("--json", baJson, "print the result as JSON");
+  ProgressOptions baProgress;
+  addProgressOptions(ba, baProgress);
   addModelOptions(ba, overrides);
 
   ddaslope::cli::ProbabilityOptions probOpt;
@@ -720,7 +751,7 @@ int runCommandLine(int argc, char** argv) {
     if (compare->parsed()) return compareContactsCommand(deformable, csvPath);
     if (critical->parsed()) return criticalCommand(casePath, overrides, crit);
     if (cut->parsed()) return cutCommand(casePath, cutOut);
-    if (ba->parsed()) return backanalyseCommand(jobPath, baOut, baJson, overrides);
+    if (ba->parsed()) return backanalyseCommand(jobPath, baOut, baJson, overrides, baProgress);
     if (fos->parsed()) return fosCommand(casePath, overrides, fosOpt);
     if (probability->parsed()) return ddaslope::cli::probabilityCommand(casePath, overrides, probOpt);
   } catch (const ddaslope::InputError& e) {

@@ -185,6 +185,7 @@ void addProbabilityOptions(CLI::App* cmd, std::string& path, ProbabilityOptions&
   cmd->add_option("--stop-after", opt.stopAfter, "run at most this many samples now; --resume continues")
       ->check(CLI::Range(1, 1000000));
   cmd->add_flag("--json", opt.json, "print the summary as JSON");
+  addProgressOptions(cmd, opt.progress);
 }
 
 int probabilityCommand(const std::string& path, const Overrides& o, const ProbabilityOptions& opt) {
@@ -240,7 +241,10 @@ int probabilityCommand(const std::string& path, const Overrides& o, const Probab
 
   // The samples: CSV rows in completion order; everything else from the samples sorted by index.
   if (!todo.empty()) fs::remove(summaryPath);
-  const bool progress = !opt.json && isatty(STDERR_FILENO);
+  const auto log = startProgress("probability", opt.progress, opt.json);
+  // Pf so far over every finished sample, a resumed study's earlier ones included.
+  int failing = 0, finished = 0;
+  for (const SampleResult& r : done) failing += r.outcome == calibration::SampleOutcome::Fails;
   double sampleTime = 0;
   table.open();
   farm->run(todo, runSample, [&](int, const TaskResult& bytes) {
@@ -248,9 +252,16 @@ int probabilityCommand(const std::string& path, const Overrides& o, const Probab
     table.append(r);
     done.push_back(r);
     sampleTime += r.runTime;
-    if (progress) std::fprintf(stderr, "\r  %zu of %d samples", done.size(), spec.samples);
+    ++finished;
+    failing += r.outcome == calibration::SampleOutcome::Fails;
+    if (log->active()) {
+      const double pf = static_cast<double>(failing) / done.size();
+      char text[64];
+      std::snprintf(text, sizeof text, "Pf so far %.4g (%d of %zu fail)", pf, failing, done.size());
+      log->report({"samples", finished, static_cast<int>(todo.size()), text, {{"probability_of_failure", pf}}});
+    }
   });
-  if (progress) std::fprintf(stderr, "\n");
+  log->finish(true, std::to_string(finished) + " samples run");
   std::sort(done.begin(), done.end(), [](const SampleResult& a, const SampleResult& b) { return a.index < b.index; });
   const calibration::ProbabilitySummary summary =
       calibration::summarise(done, spec.samples, spec.measure == model::ProbabilityMeasure::FactorOfSafety);

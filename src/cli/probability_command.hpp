@@ -20,6 +20,7 @@ struct ProbabilityOptions {
   bool overwrite = false;     ///< start again in an outDir that holds a study
   int stopAfter = 0;          ///< run at most this many samples now (0: all); --resume continues
   bool json = false;
+  ProgressOptions progress;   ///< --quiet, --log-json
 };
 
 /// Registers the subcommand's options on `cmd` (its case, --out, --samples, …).

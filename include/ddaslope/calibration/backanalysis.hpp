@@ -8,6 +8,7 @@
 #include "ddaslope/calibration/precision.hpp"
 #include "ddaslope/calibration/strength_search.hpp"
 #include "ddaslope/core/task_farm.hpp"
+#include "ddaslope/io/progress.hpp"
 
 #include "ddaslope/io/job_reader.hpp"
 #include "ddaslope/model/scene.hpp"
@@ -70,6 +71,9 @@ double misfitOf(const io::BackanalysisJob& job, const model::Scene& scene, int* 
 /// grid global stage, "optimiser.global": "grid", and the map) run on `farm` (null: job.threads
 /// threads in this process). Under MPI only the root's result is complete: the other ranks take
 /// part in those stages only.
-BackanalysisResult runBackanalysis(const io::BackanalysisJob& job, TaskFarm* farm = nullptr);
+/// `progress`: told after every evaluation (stage global / grid / local / map, its budget, the
+/// best misfit so far).
+BackanalysisResult runBackanalysis(const io::BackanalysisJob& job, TaskFarm* farm = nullptr,
+                                   const io::ProgressSink& progress = {});
 
 }  // namespace ddaslope::calibration

@@ -7,6 +7,7 @@
 
 #include "ddaslope/calibration/verdict.hpp"
 #include "ddaslope/core/task_farm.hpp"
+#include "ddaslope/io/progress.hpp"
 #include "ddaslope/model/scene.hpp"
 
 namespace ddaslope::calibration {
@@ -21,6 +22,9 @@ struct TrialRecord {
 struct SearchSettings {
   VerdictSettings verdict;
   int threads = 2;  ///< independent forward runs evaluated at once
+  /// Told after every forward run: the runs so far, the bracket once there is one, and an
+  /// estimate of the runs left (io/progress.hpp). Empty: silent.
+  io::ProgressSink progress;
 };
 
 struct CriticalResult {
