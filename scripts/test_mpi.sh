@@ -69,3 +69,14 @@ if [ "$code" -ne 2 ] || ! grep -q "expected a friction angle" "$work/bad.err"; t
   echo "FAIL: a bad sweep value under mpirun gave exit $code:"; cat "$work/bad.err"; exit 1
 fi
 echo "bad input under mpirun: exit 2 with the error"
+
+# A command that does not spread over ranks is refused under mpirun (each rank would write the
+# same files), with exit 2.
+set +e
+timeout 60 "${mpi[@]}" "$cli" run "$src/cases/sliding_block_40deg.json" --out "$work/run" > /dev/null 2> "$work/run.err"
+code=$?
+set -e
+if [ "$code" -ne 2 ] || ! grep -q "start this command without mpirun" "$work/run.err"; then
+  echo "FAIL: run under mpirun gave exit $code:"; cat "$work/run.err"; exit 1
+fi
+echo "run under mpirun: refused, exit 2"

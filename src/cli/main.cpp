@@ -746,6 +746,13 @@ int runCommandLine(int argc, char** argv) {
     return app.exit(e) == 0 ? kExitOk : kExitBadInput;
   }
   try {
+    // Under mpirun only the studies made of independent runs spread over the ranks; any other
+    // command would run once per rank, each writing the same files.
+    const bool spreads = probability->parsed() || ba->parsed() || (fos->parsed() && !fosOpt.sweep.empty()) ||
+                         (critical->parsed() && !crit.curve.empty());
+    if (ddaslope::processCount() > 1 && !spreads)
+      throw ddaslope::InputError("mpirun", "", "only probability, fos --sweep, critical --curve and backanalyse spread "
+                                               "over MPI ranks; start this command without mpirun");
     if (run->parsed()) return runCommand(casePath, outDir, overrides, quiet, verbose, snapshots, runThreads);
     if (check->parsed()) return checkCommand(casePath, overrides);
     if (compare->parsed()) return compareContactsCommand(deformable, csvPath);
