@@ -266,11 +266,16 @@ void readJointPairs(const Reader& r, const json& doc, model::Scene& s, const std
 }
 
 void readWater(const Reader& r, const json& doc, model::Scene& s) {
+  const bool drawn = s.water.active();  // the section's drawing gave the water line
   if (!doc.contains("water")) return;
   const json& w = doc.at("water");
   r.onlyKeys(w, "water", {"level", "phreatic_line", "level_series", "unit_weight"});
   s.water.unitWeight = r.optionalIn(w, "water", "unit_weight", 9810, 10, 1e6, false, false, "a unit weight in [10, 1e6] N/m³");
   const int given = w.contains("level") + w.contains("phreatic_line") + w.contains("level_series");
+  if (drawn && given > 0)
+    r.fail("water", "the water line is drawn (section.dxf.layers.water_line): remove level, phreatic_line and "
+                    "level_series here, or the water_line layer from the section");
+  if (drawn) return;
   if (given != 1)
     r.fail("water", "expected exactly one of level (a horizontal water surface), phreatic_line or level_series");
   if (w.contains("level_series")) {
@@ -542,6 +547,13 @@ model::Scene readCase(const std::string& path, const std::vector<CaseOverride>& 
 std::string expandSection(const std::string& path) {
   const model::Scene scene = readCase(path);
   nlohmann::ordered_json doc = nlohmann::ordered_json::parse(readInputFile(path, kMaxJsonFileBytes));
+  // A water line drawn with the section stays with the blocks as the phreatic line it was.
+  const auto drawnWater = nlohmann::ordered_json::json_pointer("/section/dxf/layers/water_line");
+  if (doc.contains(drawnWater)) {
+    nlohmann::ordered_json line = nlohmann::ordered_json::array();
+    for (const Vec2& p : scene.water.line) line.push_back({p.x(), p.y()});
+    doc["water"]["phreatic_line"] = line;
+  }
   doc.erase("section");
   nlohmann::ordered_json blocks = nlohmann::ordered_json::array();
   for (const model::Block& b : scene.blocks) {
