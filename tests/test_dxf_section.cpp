@@ -1,6 +1,7 @@
 // Slope sections drawn in CAD (issue #19): a DXF's layers give the ground, the sliding surface,
 // the joints and the water line. The drawings are made by a CAD library (ezdxf) at build time,
-// tests/make_dxf_fixtures.py.
+// tests/make_dxf_fixtures.py; Vajont's is shipped (cases/vajont_section.dxf,
+// scripts/make_vajont_dxf.py).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -108,6 +109,19 @@ TEST(PolylineChain, JoinsPiecesInAnyOrderAndDirection) {
   const geometry::Chain loop = geometry::joinEndToEnd({{{0, 0}, {1, 0}}, {{1, 0}, {0, 1}}, {{0, 1}, {0, 0}}}, 1e-9);
   EXPECT_EQ(loop.stray, -1);
   EXPECT_TRUE(loop.closed);
+}
+
+// Issue #19's acceptance: the shipped Vajont drawing cuts into the JSON section's blocks, count
+// and areas within 1e-9 relative (measured: identical to the last bit, as the drawing holds the
+// JSON's doubles), and its reservoir line is the JSON case's level.
+TEST(DxfSection, VajontDrawingCutsIntoTheJsonSectionsBlocks) {
+  const std::string cases = std::string(DDASLOPE_SOURCE_DIR) + "/cases/";
+  const model::Scene fromJson = io::readCase(cases + "vajont.json");
+  const model::Scene fromDxf = io::readCase(cases + "vajont_dxf.json");
+  ASSERT_EQ(fromDxf.blocks.size(), 29u);  // base + 28 slide blocks
+  expectSameBlocks(fromDxf, fromJson, 1e-9);
+  expectSameWater(fromDxf, fromJson);
+  EXPECT_EQ(fromDxf.pairJoints, fromJson.pairJoints);
 }
 
 // The basin drawn in every way the reader accepts gives the basin of the JSON section.
@@ -237,4 +251,30 @@ TEST(DxfSection, TheCaseAndTheDrawingDoNotBothGiveALine) {
   EXPECT_EQ(s.water.headAt(50), 12);
   layers.erase("sliding_surface");
   expectRefused(drawn("basin", layers), "section.dxf.layers.sliding_surface", {"required key is missing"});
+}
+
+// The command line: `cut` writes the drawn Vajont's blocks as a plain case that keeps the drawn
+// water line; `check` on a malformed drawing exits 2 naming the case, the DXF, layer and entity.
+TEST(Cli, CutAndCheckADrawnSection) {
+  const std::string cases = std::string(DDASLOPE_SOURCE_DIR) + "/cases/";
+  const fs::path out = fs::temp_directory_path() / ("ddaslope_dxf_cut_" + std::to_string(::getpid()));
+  std::string err;
+  const std::string printed = clitest::captureCli("cut " + cases + "vajont_dxf.json --out " + out.string(), &err);
+  EXPECT_NE(printed.find("29 blocks (28 free, 1 fixed)"), std::string::npos) << printed;
+  EXPECT_NE(printed.find("section drawn in " + cases + "vajont_section.dxf (metres, declared by the drawing; scale 1)"),
+            std::string::npos)
+      << printed;
+  EXPECT_TRUE(fs::exists(out / "section.png"));
+  const model::Scene plain = io::readCase((out / "blocks.json").string());
+  const model::Scene fromJson = io::readCase(cases + "vajont.json");
+  expectSameBlocks(plain, fromJson, 1e-12);
+  expectSameWater(plain, fromJson);
+  fs::remove_all(out);
+
+  const std::string bad = clitest::writeTemp("closed_ground.json", drawnCase(drawn("closed_ground")).dump());
+  EXPECT_EQ(clitest::runCli("check " + bad, &err), 2);
+  for (const std::string& part : {bad, std::string("section.dxf.layers.ground"), fixture("closed_ground.dxf"),
+                                  "layer \"GROUND\", LWPOLYLINE #1 (handle " + handleOf("closed_ground") + ")"})
+    EXPECT_NE(err.find(part), std::string::npos) << part << " not in: " << err;
+  fs::remove(bad);
 }
