@@ -175,6 +175,10 @@ def main():
         text = f.read()
     with open(os.path.join(out, "basin_crlf.dxf"), "w", newline="\r\n") as f:  # saved on Windows
         f.write(text)
+    with open(os.path.join(out, "basin_blank_lines_after_eof.dxf"), "w") as f:
+        f.write(text + "\n\n")
+    with open(os.path.join(out, "text_after_eof.dxf"), "w") as f:  # dxflib would read it, unchecked
+        f.write(text + "  0\nLWPOLYLINE\n 90\n2147483647\n")
     with open(os.path.join(out, "truncated.dxf"), "w") as f:
         f.write(text[: len(text) // 2])
     with open(os.path.join(out, "not_dxf.dxf"), "w") as f:

@@ -130,7 +130,8 @@ TEST(DxfSection, LinesPolylinesUnitsAndViewsGiveTheSameSection) {
   ASSERT_EQ(reference.blocks.size(), 3u);
   EXPECT_NEAR(reference.blocks[1].moments.area + reference.blocks[2].moments.area, 1050, 1e-9);
   const auto read = [](const json& dxf) { return io::parseCase(drawnCase(dxf).dump(), "case.json"); };
-  for (const char* name : {"basin", "basin_drawn_otherwise", "basin_from_below", "basin_crlf"}) {
+  for (const char* name :
+       {"basin", "basin_drawn_otherwise", "basin_from_below", "basin_crlf", "basin_blank_lines_after_eof"}) {
     SCOPED_TRACE(name);
     const model::Scene s = read(drawn(name));
     expectSameBlocks(s, reference, 1e-12);
@@ -231,6 +232,7 @@ TEST(DxfSection, MalformedDrawingsNameTheFileTheLayerAndTheEntity) {
   expectRefused(drawn("not_dxf"), "section.dxf.file", {fixture("not_dxf.dxf"), "not a DXF file"});
   expectRefused(drawn("binary"), "section.dxf.file", {"a binary DXF: save the drawing as ASCII DXF"});
   expectRefused(drawn("truncated"), "section.dxf.file", {"truncated"});
+  expectRefused(drawn("text_after_eof"), "section.dxf.file", {"text after the end-of-file marker (group 0, EOF)"});
   expectRefused(drawn("huge_count"), "section.dxf.file",
                 {"group 90 of LWPOLYLINE gives a count of \"2147483647\": expected a whole number of at most 1000000"});
   expectRefused(drawn("no_such_drawing"), "section.dxf.file", {fixture("no_such_drawing.dxf"), "does not exist"});

@@ -123,10 +123,10 @@ void checkText(const std::string& text, const Refusal& refuse) {
     ++line;
     return true;
   };
-  std::string_view codeText, value, type, lastValue;
-  long code = 0, lastCode = -1;
-  bool begun = false;
-  while (nextLine(codeText)) {
+  std::string_view codeText, value, type;
+  long code = 0;
+  bool begun = false, ended = false;
+  while (!ended && nextLine(codeText)) {
     if (!integer(codeText, code))
       refuse("file", "not a DXF file: line " + std::to_string(line) + " should be a group code (an integer), found \"" +
                          std::string(stripped(codeText, true).substr(0, 40)) + "\"");
@@ -145,12 +145,13 @@ void checkText(const std::string& text, const Refusal& refuse) {
       refuse("file", "line " + std::to_string(line) + ": group " + std::to_string(code) + " of " + std::string(type) +
                          " gives a count of \"" + std::string(value.substr(0, 40)) +
                          "\": expected a whole number of at most " + std::to_string(kLargestCount));
-    lastCode = code;
-    lastValue = value;
+    ended = code == 0 && stripped(value, true) == "EOF";
   }
   if (!begun) refuse("file", "not a DXF file: it is empty or holds only comments");
-  if (lastCode != 0 || stripped(lastValue, true) != "EOF")
-    refuse("file", "the drawing ends before its end-of-file marker (group 0, EOF): truncated");
+  if (!ended) refuse("file", "the drawing ends before its end-of-file marker (group 0, EOF): truncated");
+  // dxflib would read on past the marker, unchecked; blank lines are all that may follow it.
+  if (text.find_first_not_of(" \t\r\n", at) != std::string::npos)
+    refuse("file", "text after the end-of-file marker (group 0, EOF) at line " + std::to_string(line));
 }
 
 // ---------------------------------------------------------------------------------------------
