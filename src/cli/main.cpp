@@ -191,6 +191,8 @@ int checkCommand(const std::string& casePath, const Overrides& o) {
   std::printf("  step limit %g m per step (g2·w0 = %g m%s), contact search distance %g m\n", sim.stepLimit(), g2w0,
               sim.stepLimit() < g2w0 ? ", held to a tenth of the thinnest block" : "", sim.searchDistance());
   std::printf("  %s\n", settingsLine(scene).c_str());
+  if (const std::string drawn = ddaslope::io::sectionDrawingSummary(casePath); !drawn.empty())
+    std::printf("  %s\n", drawn.c_str());
   printSeismicNote(scene);
   printKinkNotes(scene);
   if (ddaslope::io::hasProbabilitySection(casePath)) {
@@ -635,6 +637,8 @@ int cutCommand(const std::string& casePath, const std::string& outDir) {
   std::printf("%s: %zu blocks (%d free, %zu fixed), %zu contacts at t = 0\n  wrote %s and %s\n", casePath.c_str(),
               scene.blocks.size(), slide, scene.blocks.size() - slide, sim.contacts().contacts().size(), blocks.c_str(),
               picture.c_str());
+  if (const std::string drawn = ddaslope::io::sectionDrawingSummary(casePath); !drawn.empty())
+    std::printf("  %s\n", drawn.c_str());
   printKinkNotes(scene);
   return kExitOk;
 }

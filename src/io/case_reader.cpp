@@ -16,128 +16,16 @@
 #include "ddaslope/io/input_file.hpp"
 #include "ddaslope/model/input_limits.hpp"
 #include "ddaslope/model/presets.hpp"
-#include "ddaslope/model/section.hpp"
+#include "section_reader.hpp"
 
 namespace ddaslope::io {
 namespace {
 
 namespace limits = model::limits;
 
-using nlohmann::json;
-
-std::string typeName(const json& j) {
-  if (j.is_number()) return "a number";
-  if (j.is_string()) return "a string \"" + j.get<std::string>() + "\"";
-  if (j.is_boolean()) return "a boolean";
-  if (j.is_array()) return "an array of " + std::to_string(j.size());
-  if (j.is_object()) return "an object";
-  return "null";
-}
-
-/// Reads one JSON document with paths in every error message.
-class Reader {
- public:
-  explicit Reader(std::string file) : file_(std::move(file)) {}
-
-  [[noreturn]] void fail(const std::string& path, const std::string& msg) const {
-    throw InputError(file_, path, msg);
-  }
-  void object(const json& j, const std::string& path) const {
-    if (!j.is_object()) fail(path, "expected an object, found " + typeName(j));
-  }
-  void onlyKeys(const json& j, const std::string& path, const std::set<std::string>& allowed) const {
-    object(j, path);
-    for (const auto& [k, v] : j.items()) {
-      if (allowed.count(k)) continue;
-      std::string list;
-      for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
-      fail(join(path, k), "unknown key '" + k + "' (allowed here: " + list + ")");
-    }
-  }
-  static std::string join(const std::string& path, const std::string& key) {
-    return path.empty() ? key : path + "." + key;
-  }
-  static std::string index(const std::string& path, size_t i) {
-    return path + "[" + std::to_string(i) + "]";
-  }
-  const json& required(const json& j, const std::string& path, const std::string& key) const {
-    if (!j.contains(key)) fail(join(path, key), "required key is missing");
-    return j.at(key);
-  }
-  double number(const json& j, const std::string& path) const {
-    if (!j.is_number()) fail(path, "expected a number, found " + typeName(j));
-    const double v = j.get<double>();
-    if (!std::isfinite(v)) fail(path, "expected a finite number");
-    return v;
-  }
-  /// Number in [lo, hi] (open ends where the flags say so).
-  double numberIn(const json& j, const std::string& path, double lo, double hi, bool loOpen,
-                  bool hiOpen, const std::string& what) const {
-    const double v = number(j, path);
-    const bool ok = (loOpen ? v > lo : v >= lo) && (hiOpen ? v < hi : v <= hi);
-    if (!ok) {
-      std::ostringstream m;
-      m << "expected " << what << ", found " << v;
-      fail(path, m.str());
-    }
-    return v;
-  }
-  double optionalIn(const json& j, const std::string& path, const std::string& key, double def,
-                    double lo, double hi, bool loOpen, bool hiOpen, const std::string& what) const {
-    if (!j.contains(key)) return def;
-    return numberIn(j.at(key), join(path, key), lo, hi, loOpen, hiOpen, what);
-  }
-  int integerIn(const json& j, const std::string& path, const std::string& key, int def, int lo,
-                int hi) const {
-    if (!j.contains(key)) return def;
-    const json& v = j.at(key);
-    if (!v.is_number_integer()) fail(join(path, key), "expected an integer, found " + typeName(v));
-    const long long x = v.get<long long>();
-    if (x < lo || x > hi)
-      fail(join(path, key), "expected an integer in [" + std::to_string(lo) + ", " +
-                                std::to_string(hi) + "], found " + std::to_string(x));
-    return static_cast<int>(x);
-  }
-  bool boolean(const json& j, const std::string& path, const std::string& key, bool def) const {
-    if (!j.contains(key)) return def;
-    if (!j.at(key).is_boolean()) fail(join(path, key), "expected true or false, found " + typeName(j.at(key)));
-    return j.at(key).get<bool>();
-  }
-  std::string string(const json& j, const std::string& path) const {
-    if (!j.is_string()) fail(path, "expected a string, found " + typeName(j));
-    return j.get<std::string>();
-  }
-  std::string choice(const json& j, const std::string& path, const std::string& key,
-                     const std::string& def, const std::set<std::string>& options) const {
-    if (!j.contains(key)) return def;
-    const std::string v = string(j.at(key), join(path, key));
-    if (!options.count(v)) {
-      std::string list;
-      for (const auto& o : options) list += (list.empty() ? "" : ", ") + o;
-      fail(join(path, key), "expected one of " + list + ", found \"" + v + "\"");
-    }
-    return v;
-  }
-  /// A name that appears in output headers and file names (history.csv columns, summary.json):
-  /// letters, digits, '_', '-' and '.', 1 to 64 of them, so no output can be misread.
-  std::string identifier(const std::string& name, const std::string& path) const {
-    bool safe = !name.empty() && name.size() <= 64;
-    for (const char ch : name)
-      safe = safe && (std::isalnum(static_cast<unsigned char>(ch)) || ch == '_' || ch == '-' || ch == '.');
-    if (!safe)
-      fail(path, "expected a name of 1-64 letters, digits, '_', '-' or '.', found \"" + name.substr(0, 80) + "\"");
-    return name;
-  }
-  Vec2 point(const json& j, const std::string& path) const {
-    if (!j.is_array() || j.size() != 2) fail(path, "expected a point [x, y], found " + typeName(j));
-    return {number(j[0], index(path, 0)), number(j[1], index(path, 1))};
-  }
-
-  const std::string& file() const { return file_; }
-
- private:
-  std::string file_;
-};
+using case_json::json;
+using case_json::Reader;
+using case_json::typeName;
 
 void readMaterials(const Reader& r, const json& doc, model::Scene& s, std::map<std::string, int>& ids) {
   const json& mats = r.required(doc, "", "materials");
@@ -207,76 +95,6 @@ void readJoints(const Reader& r, const json& doc, model::Scene& s, std::map<std:
     s.defaultJoint = ids.at(name);
   } else if (s.joints.size() > 1) {
     r.fail("default_joint", "required key is missing (the case has several joints)");
-  }
-}
-
-/// Blocks cut from a slope section (docs/case-format.md, "section").
-void readSection(const Reader& r, const json& doc, model::Scene& s, const std::map<std::string, int>& materialIds,
-                 const std::map<std::string, int>& jointIds) {
-  if (!doc.contains("section")) return;
-  const std::string p = "section";
-  const json& j = doc.at(p);
-  r.onlyKeys(j, p, {"ground", "sliding_surface", "base_depth", "material", "base_material", "sliding_joint", "joints",
-                    "joint_sets", "kink_block_width"});
-  const auto polyline = [&](const char* key) {
-    const json& a = r.required(j, p, key);
-    if (!a.is_array()) r.fail(p + "." + key, "expected an array of points [x, y]");
-    std::vector<Vec2> pts;
-    for (size_t i = 0; i < a.size(); ++i) pts.push_back(r.point(a[i], Reader::index(p + "." + key, i)));
-    return pts;
-  };
-  model::SectionSpec spec;
-  spec.ground = polyline("ground");
-  spec.slidingSurface = polyline("sliding_surface");
-  spec.baseDepth = r.number(r.required(j, p, "base_depth"), p + ".base_depth");
-  if (j.contains("kink_block_width")) spec.kinkBlockWidth = r.number(j.at("kink_block_width"), p + ".kink_block_width");
-  if (j.contains("joints")) {
-    const json& js = j.at("joints");
-    if (!js.is_array()) r.fail(p + ".joints", "expected an array of joints [[x1, y1], [x2, y2]]");
-    for (size_t i = 0; i < js.size(); ++i) {
-      const std::string q = Reader::index(p + ".joints", i);
-      if (!js[i].is_array() || js[i].size() != 2) r.fail(q, "expected two points [[x1, y1], [x2, y2]]");
-      spec.joints.emplace_back(r.point(js[i][0], q + "[0]"), r.point(js[i][1], q + "[1]"));
-    }
-  }
-  if (j.contains("joint_sets")) {
-    const json& sets = j.at("joint_sets");
-    if (!sets.is_array()) r.fail(p + ".joint_sets", "expected an array");
-    for (size_t i = 0; i < sets.size(); ++i) {
-      const std::string q = Reader::index(p + ".joint_sets", i);
-      r.onlyKeys(sets[i], q, {"angle", "spacing", "origin"});
-      model::JointSet set;
-      set.angleDeg = r.number(r.required(sets[i], q, "angle"), q + ".angle");
-      set.spacing = r.number(r.required(sets[i], q, "spacing"), q + ".spacing");
-      set.origin = r.point(r.required(sets[i], q, "origin"), q + ".origin");
-      spec.jointSets.push_back(set);
-    }
-  }
-  const auto materialOf = [&](const char* key, const std::string& def) {
-    const std::string m = j.contains(key) ? r.string(j.at(key), p + "." + key) : def;
-    if (!materialIds.count(m)) r.fail(p + "." + key, "unknown material \"" + m + "\" (not in materials)");
-    return materialIds.at(m);
-  };
-  const int material = materialOf("material", "");
-  const std::string materialName = r.string(j.at("material"), p + ".material");
-  const int baseMaterial = materialOf("base_material", materialName);
-  model::SectionBlocks blocks;
-  try {
-    blocks = model::cutSection(spec);
-  } catch (const InputError& e) {
-    r.fail(p + "." + e.jsonPath(), e.message());
-  }
-  const int baseIndex = static_cast<int>(s.blocks.size());
-  blocks.base.material = baseMaterial;
-  s.blocks.push_back(blocks.base);
-  for (model::Block& b : blocks.slide) {
-    b.material = material;
-    s.blocks.push_back(b);
-  }
-  if (j.contains("sliding_joint")) {
-    const std::string jn = r.string(j.at("sliding_joint"), p + ".sliding_joint");
-    if (!jointIds.count(jn)) r.fail(p + ".sliding_joint", "unknown joint \"" + jn + "\" (not in joints)");
-    for (size_t k = 0; k < blocks.slide.size(); ++k) s.pairJoints[{baseIndex, baseIndex + 1 + static_cast<int>(k)}] = jointIds.at(jn);
   }
 }
 
@@ -448,11 +266,16 @@ void readJointPairs(const Reader& r, const json& doc, model::Scene& s, const std
 }
 
 void readWater(const Reader& r, const json& doc, model::Scene& s) {
+  const bool drawn = s.water.active();  // the section's drawing gave the water line
   if (!doc.contains("water")) return;
   const json& w = doc.at("water");
   r.onlyKeys(w, "water", {"level", "phreatic_line", "level_series", "unit_weight"});
   s.water.unitWeight = r.optionalIn(w, "water", "unit_weight", 9810, 10, 1e6, false, false, "a unit weight in [10, 1e6] N/m³");
   const int given = w.contains("level") + w.contains("phreatic_line") + w.contains("level_series");
+  if (drawn && given > 0)
+    r.fail("water", "the water line is drawn (section.dxf.layers.water_line): remove level, phreatic_line and "
+                    "level_series here, or the water_line layer from the section");
+  if (drawn) return;
   if (given != 1)
     r.fail("water", "expected exactly one of level (a horizontal water surface), phreatic_line or level_series");
   if (w.contains("level_series")) {
@@ -724,6 +547,13 @@ model::Scene readCase(const std::string& path, const std::vector<CaseOverride>& 
 std::string expandSection(const std::string& path) {
   const model::Scene scene = readCase(path);
   nlohmann::ordered_json doc = nlohmann::ordered_json::parse(readInputFile(path, kMaxJsonFileBytes));
+  // A water line drawn with the section stays with the blocks as the phreatic line it was.
+  const auto drawnWater = nlohmann::ordered_json::json_pointer("/section/dxf/layers/water_line");
+  if (doc.contains(drawnWater)) {
+    nlohmann::ordered_json line = nlohmann::ordered_json::array();
+    for (const Vec2& p : scene.water.line) line.push_back({p.x(), p.y()});
+    doc["water"]["phreatic_line"] = line;
+  }
   doc.erase("section");
   nlohmann::ordered_json blocks = nlohmann::ordered_json::array();
   for (const model::Block& b : scene.blocks) {

@@ -30,4 +30,8 @@ struct CaseOverride {
 /// Reads the case with overrides applied; a path that does not lead to a number is an InputError.
 model::Scene readCase(const std::string& path, const std::vector<CaseOverride>& overrides);
 
+/// For a case whose section is drawn (section.dxf): one line saying what the drawing gave (units,
+/// scale, points and entities per layer); empty for any other case.
+std::string sectionDrawingSummary(const std::string& path);
+
 }  // namespace ddaslope::io
