@@ -21,6 +21,10 @@ struct TrialRecord {
 struct SearchSettings {
   VerdictSettings verdict;
   int threads = 2;  ///< independent forward runs evaluated at once
+  /// Sees every trial's final state with the value it tried (k_h signed by its direction for the
+  /// seismic coefficient), from the trial's own thread (a search's --vtk). Not passed on to the
+  /// searches of criticalCurve.
+  std::function<void(double value, const solver::Simulation&, const TrialResult&)> finalStates;
 };
 
 struct CriticalResult {
