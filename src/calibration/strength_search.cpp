@@ -89,6 +89,12 @@ std::optional<solver::HeldEquilibrium> sharedEquilibrium(const model::Scene& sce
   return sim.holdEquilibrium();
 }
 
+/// The search's observer of final states, told the value tried; none if the search has none.
+TrialEndObserver endOf(const SearchSettings& s, double value) {
+  if (!s.finalStates) return {};
+  return [&s, value](const solver::Simulation& sim, const TrialResult& r) { s.finalStates(value, sim, r); };
+}
+
 template <class Result>
 void copyBracket(const BisectionResult& b, Result& r) {
   r.found = b.bracketed;
@@ -124,7 +130,7 @@ CriticalResult criticalCohesion(const model::Scene& scene, int joint, double fri
     model::Scene trial = scene;
     trial.joints[joint].cohesion = c;
     trial.joints[joint].frictionAngle = degToRad(frictionDeg);
-    return judgeStability(trial, s.verdict, held ? &*held : nullptr);
+    return judgeStability(trial, s.verdict, held ? &*held : nullptr, endOf(s, c));
   }, s, "c (Pa)", width};
   const std::function<bool(double)> f = std::ref(stableAt);
   CriticalResult r;
@@ -155,7 +161,7 @@ CriticalResult criticalFriction(const model::Scene& scene, int joint, double coh
     model::Scene trial = scene;
     trial.joints[joint].cohesion = cohesion;
     trial.joints[joint].frictionAngle = degToRad(phiDeg);
-    return judgeStability(trial, s.verdict, held ? &*held : nullptr);
+    return judgeStability(trial, s.verdict, held ? &*held : nullptr, endOf(s, phiDeg));
   }, s, "φ (°)", width};
   const BisectionResult b = bisect(std::ref(stableAt), 0.0, 89.9, width, s.threads);
   CriticalResult r;
@@ -179,7 +185,8 @@ CriticalResult criticalSeismicCoefficient(const model::Scene& scene, int directi
     model::Scene trial = scene;
     trial.seismic.kh = direction * k;
     trial.seismic.ground = {};  // k_y belongs to the slope, not to a record
-    return judgeStability(trial, s.verdict, nullptr);
+    // Told k_h as applied; k = 0 is one trial whatever the direction (not −0 and 0).
+    return judgeStability(trial, s.verdict, nullptr, endOf(s, k == 0 ? 0.0 : direction * k));
   }, s, "k_h (g)", width};
   const std::function<bool(double)> f = std::ref(stableAt);
   constexpr double kFirst = 0.05, kLargest = 2.0;
@@ -227,6 +234,7 @@ std::vector<CurvePoint> criticalCurve(const model::Scene& scene, int joint, doub
   single.threads = 1;  // parallel over points instead: a point's search is the same on any farm
   single.progress = nullptr;  // the curve reports points
   int finished = 0;
+  single.finalStates = {};
   std::unique_ptr<TaskFarm> own;
   if (!farm) own = makeThreadFarm(s.threads), farm = own.get();
   farm->run(
@@ -266,7 +274,7 @@ FactorOfSafetyResult factorOfSafety(const model::Scene& scene, const std::vector
   CountedVerdict stableAt{[&](double f) {
     model::Scene trial = scene;
     for (int j : reduced) trial.joints[j] = scene.joints[j].reducedBy(f);
-    return judgeStability(trial, s.verdict, held ? &*held : nullptr);
+    return judgeStability(trial, s.verdict, held ? &*held : nullptr, endOf(s, f));
   }, s, "F", width};
   FactorOfSafetyResult r;
   // Bracket from F = 1 by factors of 1.5 (stable: raise F; failing: lower it).

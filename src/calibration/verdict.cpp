@@ -128,7 +128,7 @@ WindowVerdict judgeWindows(const WindowMotion& m, bool* marginal) {
 }
 
 TrialResult judgeStability(const model::Scene& scene, const VerdictSettings& settings,
-                           const solver::HeldEquilibrium* shared) {
+                           const solver::HeldEquilibrium* shared, const TrialEndObserver& atEnd) {
   DDASLOPE_ASSERT(!scene.monitors.empty(), "a stability verdict needs at least one monitor");
   solver::Simulation sim(scene);
   // The call's settings first, then the case's (analysis.failure_displacement, resting_speed).
@@ -157,6 +157,7 @@ TrialResult judgeStability(const model::Scene& scene, const VerdictSettings& set
     r.steps = static_cast<int>(path.time.size()) - 1;
     for (size_t m = 0; m < monitors; ++m)
       r.finalSpeed = std::max(r.finalSpeed, sim.monitorVelocity(static_cast<int>(m)).norm());
+    if (atEnd) atEnd(sim, r);
     return r;
   };
   try {

@@ -6,10 +6,12 @@
 #include <cmath>
 #include <cstdio>
 #include <iomanip>
+#include <memory>
 #include <sstream>
 
 #include "ddaslope/core/errors.hpp"
 #include "ddaslope/core/task_farm.hpp"
+#include "ddaslope/io/scene_vtk.hpp"
 #include "ddaslope/io/ground_motion.hpp"
 #include "ddaslope/model/input_limits.hpp"
 
@@ -127,6 +129,19 @@ std::string settingsLine(const ddaslope::model::Scene& scene) {
     }
   }
   return line;
+}
+
+void recordTrialStates(calibration::SearchSettings& s, const std::string& dir, const model::Scene& scene) {
+  if (dir.empty() || processRank() != 0) return;
+  auto recorder = std::make_shared<io::VtkRecorder>(dir, scene);
+  s.finalStates = [recorder](double value, const solver::Simulation& sim, const calibration::TrialResult& r) {
+    char label[32];
+    std::snprintf(label, sizeof label, "%.12g", value);
+    recorder->write(sim, value, label,
+                    {{"trial_value", 1, {}, std::vector<double>{value}},
+                     {"stable", 1, {}, std::vector<std::int32_t>{r.stable ? 1 : 0}},
+                     {"verdict", 1, {}, std::vector<std::string>{calibration::name(r.rule)}}});
+  };
 }
 
 int jointIndex(const ddaslope::model::Scene& scene, const std::string& name, const std::string& casePath) {

@@ -8,6 +8,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "ddaslope/calibration/strength_search.hpp"
 #include "ddaslope/io/case_reader.hpp"
 #include "ddaslope/io/progress.hpp"
 #include "ddaslope/model/scene.hpp"
@@ -43,6 +44,11 @@ void applyOverrides(ddaslope::model::Scene& scene, const Overrides& o, const std
 
 /// The settings every forward run of a command uses, and where Δt came from.
 std::string settingsLine(const ddaslope::model::Scene& scene);
+
+/// A search's --vtk DIR: every trial's final state becomes a frame of the VTK series in `dir`
+/// (io/scene_vtk.hpp) at the value it tried, so ParaView's time slider steps through the trials
+/// by value; its verdict rides along as field data (stable, verdict). Written by the root process.
+void recordTrialStates(calibration::SearchSettings& s, const std::string& dir, const model::Scene& scene);
 
 int jointIndex(const ddaslope::model::Scene& scene, const std::string& name, const std::string& casePath);
 

@@ -36,6 +36,7 @@
 #include "ddaslope/solver/simulation.hpp"
 #include "cli_common.hpp"
 #include "probability_command.hpp"
+#include "run_command.hpp"
 
 namespace {
 
@@ -76,51 +77,6 @@ int compareContactsCommand(bool deformable, const std::string& csvPath) {
     if (!r.bracketed) return kExitNonConvergence;
   return kExitOk;
 }
-
-int runCommand(const std::string& casePath, const std::string& outDir, const Overrides& o, bool quiet,
-               bool verbose, const std::vector<double>& snapshots, int threads) {
-  ddaslope::model::Scene scene = loadCase(casePath, o);
-  applyOverrides(scene, o, casePath);
-  ddaslope::io::RunOptions opt;
-  opt.outputDir = outDir;
-  opt.casePath = casePath;
-  opt.progress = !quiet && !verbose && isatty(STDERR_FILENO);
-  opt.verbose = verbose;
-  opt.snapshotTimes = snapshots;
-  opt.threads = threads;
-  const ddaslope::io::RunOutcome r = ddaslope::io::runScene(scene, opt);
-  if (!r.completed) {
-    std::cerr << "ddaslope: " << casePath << (r.budgetStop ? ": budget exceeded: " : ": non-convergence: ") << r.failure << "\n"
-              << "  partial history: " << outDir << "/history.partial.csv\n";
-    return kExitNonConvergence;
-  }
-  const auto& st = r.statistics;
-  std::printf("%s: %d steps, %d Δt cuts, %ld open-close iterations, %.3f s wall\n", casePath.c_str(), st.steps,
-              st.cuts, st.iterations, r.wallTime);
-  for (const auto& e : r.expectations) std::printf("  %s\n", e.describe().c_str());
-  // The energy check a user should see: a correct run only dissipates (docs/case-format.md).
-  const auto& first = r.trace.energy.front();
-  const auto& last = r.trace.energy.back();
-  double stepTime = 0;
-  const double gain = r.trace.largestEnergyGain(), stepGain = r.trace.largestStepGain(&stepTime);
-  const double scale = r.trace.energyInPlay(), floor = 1e-12 * std::abs(first.mechanical());
-  std::printf("  energy: %.4g J/m released (potential and load work), %.4g J/m dissipated; largest rise %.3g J/m "
-              "since t = 0, %.3g J/m in one step\n",
-              first.potential - last.potential + last.loadWork, first.mechanical() - last.mechanical(), gain, stepGain);
-  // Since the start: 1e-4 of the energy in play. In one step: 1e-3 (issue #14's bar; the friction
-  // sources docs/accuracy.md lists stay below 2e-4 in the Vajont run-out's impacts at Δt 1-10 ms).
-  // A smaller Δt is not the cure.
-  if (gain > 1e-4 * scale + floor || stepGain > 1e-3 * scale + floor)
-    std::printf("  WARNING: the mechanical energy rose by %.3g of the energy in play (%.3g of it in one step, at t = "
-                "%.4g s): a spurious gain. Look at energy.png and the energy_gain column of history.csv, see "
-                "docs/accuracy.md (\"The energy budget\") for its known sources, and compare a run at half and at "
-                "twice the time step to see whether your result depends on it\n",
-                std::max(gain, stepGain) / std::max(scale, 1e-300), stepGain / std::max(scale, 1e-300), stepTime);
-  std::printf("  wrote %s/history.csv, summary.json, history.png%s and energy.png\n", outDir.c_str(),
-              scene.seismic.ground.active() ? ", ground_motion.png" : "");
-  return kExitOk;
-}
-
 
 /// A note per concave kink of the sliding surface with a block on it: there the block model leans on
 /// a corner that limit-equilibrium slices cannot, so their critical strengths differ.
@@ -218,6 +174,7 @@ struct CriticalOptions {
   std::string curve;       ///< "phiMin:phiMax:n"
   std::string outDir = "out";
   ProgressOptions progress;
+  std::string vtkDir;      ///< every trial's final state as a VTK series (recordTrialStates)
 };
 
 int curveCommand(const std::string& casePath, const ddaslope::model::Scene& scene, int joint, const CriticalOptions& opt) {
@@ -271,6 +228,13 @@ int curveCommand(const std::string& casePath, const ddaslope::model::Scene& scen
   return all ? kExitOk : kExitNonConvergence;
 }
 
+/// Where a search's --vtk went (text output).
+void printTrialStatesNote(const std::string& dir, int runs) {
+  if (!dir.empty())
+    std::printf("  wrote %s: blocks.pvd, contacts.pvd: the final state of each of the %d trials, at the value it tried\n",
+                dir.c_str(), runs);
+}
+
 /// Verdict warnings go to stderr, so a --json result on stdout stays clean.
 void warnAboutTrials(const std::string& casePath, const std::string& warning) {
   if (!warning.empty()) std::fprintf(stderr, "ddaslope: warning: %s: %s\n", casePath.c_str(), warning.c_str());
@@ -297,6 +261,7 @@ int seismicCoefficientCommand(const std::string& casePath, const ddaslope::model
   ddaslope::calibration::SearchSettings s;
   s.threads = opt.threads;
   s.progress = ddaslope::io::sinkOf(log.get());
+  recordTrialStates(s, opt.vtkDir, scene);
   std::vector<std::pair<std::string, ddaslope::calibration::CriticalResult>> results;
   for (const char* d : {"+x", "-x"})
     if (opt.direction == "auto" || opt.direction == d)
@@ -319,6 +284,7 @@ int seismicCoefficientCommand(const std::string& casePath, const ddaslope::model
     j.set("forward_runs", runs).set("wall_time_s", wall).set("message", r.message);
     j.set("settings", settingsLine(searched));
     ddaslope::calibration::appendTrials(j, r.trials, "k_h");
+    if (!opt.vtkDir.empty()) j.set("vtk", opt.vtkDir);
     std::printf("%s\n", j.dump().c_str());
   } else {
     for (const auto& [d, x] : results) {
@@ -333,6 +299,7 @@ int seismicCoefficientCommand(const std::string& casePath, const ddaslope::model
       std::printf("  (a force k_y·m·g along %s; a ground acceleration of k_y·g along %s)\n", direction.c_str(),
                   direction == "+x" ? "-x" : "+x");
     std::printf("%d forward runs, %.2f s wall; %s\n", runs, wall, settingsLine(searched).c_str());
+    printTrialStatesNote(opt.vtkDir, runs);
   }
   if (!r.found)
     std::fprintf(stderr, "ddaslope: %s: no yield seismic coefficient found after %d forward runs: %s\n", casePath.c_str(),
@@ -344,6 +311,8 @@ int seismicCoefficientCommand(const std::string& casePath, const ddaslope::model
 int criticalCommand(const std::string& casePath, const Overrides& o, const CriticalOptions& opt) {
   ddaslope::model::Scene scene = loadCase(casePath, o);
   applyOverrides(scene, o, casePath);
+  if (!opt.vtkDir.empty() && !opt.curve.empty())
+    throw ddaslope::InputError("--vtk", opt.vtkDir, "writes the trials of one search, not of a curve's searches (drop --curve)");
   if (opt.solve == "seismic-coefficient") return seismicCoefficientCommand(casePath, scene, opt);
   if (opt.joint.empty()) throw ddaslope::InputError("--joint", "", "expected the joint to search (--joint NAME)");
   const int joint = jointIndex(scene, opt.joint, casePath);
@@ -352,6 +321,7 @@ int criticalCommand(const std::string& casePath, const Overrides& o, const Criti
   ddaslope::calibration::SearchSettings s;
   s.threads = opt.threads;
   s.progress = ddaslope::io::sinkOf(log.get());
+  recordTrialStates(s, opt.vtkDir, scene);
   const bool cohesion = opt.solve == "cohesion";
   const ddaslope::model::JointProperties& jp = scene.joints[joint];
   const double phi = opt.friction >= 0 ? opt.friction : ddaslope::radToDeg(jp.frictionAngle);
@@ -369,6 +339,7 @@ int criticalCommand(const std::string& casePath, const Overrides& o, const Criti
     j.set("forward_runs", r.runs).set("wall_time_s", r.wallTime).set("message", r.message);
     j.set("settings", settingsLine(scene));
     ddaslope::calibration::appendTrials(j, r.trials, cohesion ? "cohesion_pa" : "friction_angle_deg");
+    if (!opt.vtkDir.empty()) j.set("vtk", opt.vtkDir);
     std::printf("%s\n", j.dump().c_str());
   } else if (r.found) {
     std::printf("critical %s of joint '%s' %s: %.6g %s (failing at %.6g, stable at %.6g)%s%s\n", opt.solve.c_str(),
@@ -376,6 +347,7 @@ int criticalCommand(const std::string& casePath, const Overrides& o, const Criti
                 (cohesion ? "at φ = " + std::to_string(phi) + "°" : "at c = " + std::to_string(c) + " Pa").c_str(),
                 r.critical, unit, r.failingEnd, r.stableEnd, r.message.empty() ? "" : ": ", r.message.c_str());
     std::printf("%d forward runs, %.2f s wall; %s\n", r.runs, r.wallTime, settingsLine(scene).c_str());
+    printTrialStatesNote(opt.vtkDir, r.runs);
   } else {
     std::fprintf(stderr, "ddaslope: %s: no critical %s found after %d forward runs: %s\n", casePath.c_str(),
                  opt.solve.c_str(), r.runs, r.message.c_str());
@@ -392,6 +364,7 @@ struct FosOptions {
   std::string sweep;  ///< "json.path=min:max:n"
   std::string outDir = "out/fos";
   ProgressOptions progress;
+  std::string vtkDir;  ///< every trial's final state as a VTK series (recordTrialStates)
 };
 
 ddaslope::calibration::FactorOfSafetyResult factorFor(const ddaslope::model::Scene& scene, const std::string& casePath,
@@ -401,6 +374,7 @@ ddaslope::calibration::FactorOfSafetyResult factorFor(const ddaslope::model::Sce
   ddaslope::calibration::SearchSettings s;
   s.threads = opt.threads;
   s.progress = std::move(progress);
+  recordTrialStates(s, opt.vtkDir, scene);
   return ddaslope::calibration::factorOfSafety(scene, joints, opt.width, s);
 }
 
@@ -484,6 +458,8 @@ int fosSweep(const std::string& casePath, const Overrides& o, const FosOptions& 
 }
 
 int fosCommand(const std::string& casePath, const Overrides& o, const FosOptions& opt) {
+  if (!opt.vtkDir.empty() && !opt.sweep.empty())
+    throw ddaslope::InputError("--vtk", opt.vtkDir, "writes the trials of one search, not of a sweep's searches (drop --sweep)");
   if (!opt.sweep.empty()) return fosSweep(casePath, o, opt);
   ddaslope::model::Scene scene = loadCase(casePath, o);
   applyOverrides(scene, o, casePath);
@@ -497,12 +473,14 @@ int fosCommand(const std::string& casePath, const Overrides& o, const FosOptions
     j.set("forward_runs", r.runs).set("rounds", r.rounds).set("wall_time_s", r.wallTime).set("message", r.message);
     j.set("settings", settingsLine(scene));
     ddaslope::calibration::appendTrials(j, r.trials, "factor");
+    if (!opt.vtkDir.empty()) j.set("vtk", opt.vtkDir);
     std::printf("%s\n", j.dump().c_str());
   } else if (r.found) {
     std::printf("factor of safety (strength reduction on %s): %.4f (stable at %.4f, failing at %.4f)\n",
                 opt.joints.empty() ? "all joints" : "the named joints", r.factor, r.stableEnd, r.failingEnd);
     std::printf("%d forward runs in %d rounds of %d, %.2f s wall; %s\n", r.runs, r.rounds, opt.threads, r.wallTime,
                 settingsLine(scene).c_str());
+    printTrialStatesNote(opt.vtkDir, r.runs);
   } else {
     std::fprintf(stderr, "ddaslope: %s: no factor of safety found after %d forward runs: %s\n", casePath.c_str(),
                  r.runs, r.message.c_str());
@@ -648,29 +626,12 @@ int runCommandLine(int argc, char** argv) {
                "slopes with Discontinuous Deformation Analysis"};
   app.require_subcommand(1);
   app.set_version_flag("--version", std::string("ddaslope ") + DDASLOPE_VERSION + ", " + ddaslope::processSupport());
-  std::string casePath, outDir = "out";
+  std::string casePath;
   Overrides overrides;
-  bool quiet = false, verbose = false;
 
   CLI::App* run = app.add_subcommand("run", "run a case and write history.csv and summary.json");
-  run->add_option("case", casePath, "case file (JSON)")->required();
-  run->add_option("--out", outDir, "output directory")->capture_default_str();
-  addModelOptions(run, overrides);
-  run->add_option("--duration", overrides.duration, "override analysis.duration (s)")
-      ->check(finiteIn(1e-9, ddaslope::model::limits::kMaxDuration, "a duration in (0, 1e6] s"));
-  run->add_flag("--quiet", quiet, "no progress on stderr");
-  run->add_flag("--verbose", verbose, "log equilibrium steps and time-step cuts on stderr");
-  std::vector<double> snapshots;
-  run->add_option("--snapshots", snapshots, "times (s) of PNG pictures snapshot_NN.png in --out, e.g. 0,0.5,1")
-      ->delimiter(',')
-      ->check(finiteIn(0, ddaslope::model::limits::kMaxDuration, "times in [0, 1e6] s"));
-  // One run's contact search and judgement may share the cores (the result does not change). One
-  // by default: measured on the 976- and 2047-brick walls, two threads did not make a step
-  // cheaper (README, Performance): a thread started per loop costs what the loop saves.
-  int runThreads = 1;
-  run->add_option("--threads", runThreads, "threads of the run's contact search and judgement (same result for any)")
-      ->capture_default_str()
-      ->check(CLI::Range(1, 256));
+  RunCommandOptions runOpt;
+  addRunOptions(run, casePath, overrides, runOpt);
 
   CLI::App* check = app.add_subcommand("check", "validate a case file without running it");
   check->add_option("case", casePath, "case file (JSON)")->required();
@@ -713,6 +674,7 @@ int runCommandLine(int argc, char** argv) {
   addProgressOptions(critical, crit.progress);
   critical->add_option("--curve", crit.curve, "φmin:φmax:n: the critical (c, φ) curve as CSV and PNG in --out");
   critical->add_option("--out", crit.outDir, "output directory for --curve")->capture_default_str();
+  critical->add_option("--vtk", crit.vtkDir, "write each trial's final state as a VTK series in this folder (ParaView)");
 
   FosOptions fosOpt;
   CLI::App* fos = app.add_subcommand("fos", "strength-reduction factor of safety: largest F with c/F, atan(tan φ/F) stable");
@@ -723,6 +685,7 @@ int runCommandLine(int argc, char** argv) {
   fos->add_option("--threads", fosOpt.threads, "trial factors per round, run at once")->capture_default_str()->check(CLI::Range(1, 256));
   fos->add_option("--sweep", fosOpt.sweep, "json.path=min:max:n: F at n values of one case number (CSV and PNG in --out)");
   fos->add_option("--out", fosOpt.outDir, "output directory for --sweep")->capture_default_str();
+  fos->add_option("--vtk", fosOpt.vtkDir, "write each trial's final state as a VTK series in this folder (ParaView)");
   addModelOptions(fos, overrides);
   fos->add_flag("--json", fosOpt.json, "print the result as JSON");
   addProgressOptions(fos, fosOpt.progress);
@@ -757,7 +720,7 @@ int runCommandLine(int argc, char** argv) {
     if (ddaslope::processCount() > 1 && !spreads)
       throw ddaslope::InputError("mpirun", "", "only probability, fos --sweep, critical --curve and backanalyse spread "
                                                "over MPI ranks; start this command without mpirun");
-    if (run->parsed()) return runCommand(casePath, outDir, overrides, quiet, verbose, snapshots, runThreads);
+    if (run->parsed()) return runCommand(casePath, overrides, runOpt);
     if (check->parsed()) return checkCommand(casePath, overrides);
     if (compare->parsed()) return compareContactsCommand(deformable, csvPath);
     if (critical->parsed()) return criticalCommand(casePath, overrides, crit);

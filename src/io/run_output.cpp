@@ -12,6 +12,7 @@
 #include "ddaslope/io/line_plot.hpp"
 #include "ddaslope/io/run_case.hpp"
 #include "ddaslope/io/scene_picture.hpp"
+#include "ddaslope/io/scene_vtk.hpp"
 
 namespace ddaslope::io {
 namespace {
@@ -255,6 +256,37 @@ void writeHistoryPlots(const fs::path& dir, const std::string& casePath, const T
   writePng(input, (dir / "ground_motion.png").string());
 }
 
+/// The run's VTK frames: t = 0, the first step at or after each multiple of `every`, the last state.
+class VtkFrames {
+ public:
+  VtkFrames(const std::string& dir, const model::Scene& scene, double every)
+      : recorder_(dir, scene), every_(every > 0 ? every : scene.settings.duration / 100) {}
+  void observe(const solver::Simulation& s, double time) {
+    // 1e-9 of the interval: a time reached by summing steps lands on either side of a multiple.
+    if (written_ == 0 || s.finished() || time >= next_ - 1e-9 * every_) write(s);
+  }
+  /// The state a run stopped in (non-convergence, budget), unless it is already written or
+  /// not finite (a diverged run: no NaN in a file).
+  void observeStop(const solver::Simulation& s) {
+    if ((written_ == 0 || s.time() != last_) && finiteState(s)) write(s);
+  }
+  int written() const { return written_; }
+
+ private:
+  void write(const solver::Simulation& s) {
+    char label[32];
+    std::snprintf(label, sizeof label, "%06d", written_);
+    recorder_.write(s, s.time(), label);
+    ++written_;
+    last_ = s.time();
+    next_ = (std::floor(s.time() / every_ + 1e-9) + 1) * every_;
+  }
+  VtkRecorder recorder_;
+  double every_;
+  double next_ = 0, last_ = 0;
+  int written_ = 0;
+};
+
 }  // namespace
 
 RunOutcome runScene(const model::Scene& scene, const RunOptions& opt) {
@@ -264,6 +296,9 @@ RunOutcome runScene(const model::Scene& scene, const RunOptions& opt) {
   const bool recordEnergy = opt.energy || opt.outputDir.has_value();
   std::optional<HistoryWriter> history;
   if (opt.outputDir) history.emplace(*opt.outputDir, o.trace.monitorIds, scene.seismic.ground);
+  std::optional<VtkFrames> vtk;
+  if (opt.outputDir && opt.vtk) vtk.emplace(*opt.outputDir + "/vtk", scene, opt.vtkEvery);
+  else if (opt.outputDir) removeVtkSeries(*opt.outputDir + "/vtk");
   solver::Simulation sim(scene);
   sim.setThreads(opt.threads);
   const PictureFrame frame = frameScene(scene);
@@ -284,6 +319,7 @@ RunOutcome runScene(const model::Scene& scene, const RunOptions& opt) {
       writeScenePicture(s, frame, *opt.outputDir + name, opt.casePath);
       ++nextSnapshot;
     }
+    if (vtk) vtk->observe(s, r.time);
     o.trace.steps.push_back(r);
     o.trace.samples.push_back(std::move(row));
     if (opt.progress && (r.time - lastShown >= duration / 100 || r.time >= duration)) {
@@ -303,7 +339,9 @@ RunOutcome runScene(const model::Scene& scene, const RunOptions& opt) {
     o.failure = e.what();
     o.budgetStop = dynamic_cast<const BudgetExceededError*>(&e) != nullptr;
     if (opt.progress) std::fprintf(stderr, "\n");
+    if (vtk) vtk->observeStop(sim);
   }
+  if (vtk) o.vtkFrames = vtk->written();
   o.statistics = sim.statistics();
   o.stepLimit = sim.stepLimit();
   o.searchDistance = sim.searchDistance();

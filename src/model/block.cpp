@@ -25,6 +25,7 @@ void Block::applyDisplacement(const Vec6& d) {
   const Vec2 c = moments.centroid;
   for (Vec2& v : vertices) v = displacedPoint(c, v, d);
   moments = geometry::computeMoments(vertices);
+  rotation += d[2];
 }
 
 double Block::maxVertexDisplacement(const Vec6& d) const {

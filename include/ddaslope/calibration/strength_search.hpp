@@ -25,6 +25,10 @@ struct SearchSettings {
   /// Told after every forward run: the runs so far, the bracket once there is one, and an
   /// estimate of the runs left (io/progress.hpp). Empty: silent.
   io::ProgressSink progress;
+  /// Sees every trial's final state with the value it tried (k_h signed by its direction for the
+  /// seismic coefficient), from the trial's own thread (a search's --vtk). Not passed on to the
+  /// searches of criticalCurve.
+  std::function<void(double value, const solver::Simulation&, const TrialResult&)> finalStates;
 };
 
 struct CriticalResult {

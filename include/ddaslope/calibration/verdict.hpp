@@ -1,5 +1,6 @@
 #pragma once
 // Stability verdict of one forward run: the function the bisection and back-analysis loops search.
+#include <functional>
 #include <string>
 
 #include "ddaslope/model/scene.hpp"
@@ -67,10 +68,13 @@ struct TrialResult {
   const char* reason = "";         ///< describe(rule)
 };
 
+/// Sees a trial's simulation as it ended, with its verdict (to write its final state out).
+using TrialEndObserver = std::function<void(const solver::Simulation&, const TrialResult&)>;
+
 /// Runs the scene (equilibrium first, from `shared` when given: see solver::HeldEquilibrium)
-/// until its duration or until rule (a) fires.
+/// until its duration or until rule (a) fires; then `atEnd`, if any, sees the final state.
 TrialResult judgeStability(const model::Scene& scene, const VerdictSettings& settings = {},
-                           const solver::HeldEquilibrium* shared = nullptr);
+                           const solver::HeldEquilibrium* shared = nullptr, const TrialEndObserver& atEnd = {});
 
 /// What a window judgement sees of one monitor: its net displacement over the last two windows
 /// and its noise floor. Pure, for tests.

@@ -49,6 +49,7 @@ struct RunOutcome {
   double wallTime = 0;
   double stepLimit = 0, searchDistance = 0;  ///< the run's effective values (m)
   std::vector<ExpectationResult> expectations;
+  int vtkFrames = 0;  ///< frames of the VTK series written (RunOptions::vtk)
 };
 
 struct RunOptions {
@@ -62,6 +63,10 @@ struct RunOptions {
   /// Times (s) at which to write snapshot_<k>.png pictures into outputDir (the first step at or
   /// after each time; t = 0 is the state after equilibrium).
   std::vector<double> snapshotTimes;
+  /// Write the VTK series (io/scene_vtk.hpp) into outputDir/vtk: t = 0, the first step at or
+  /// after every multiple of vtkEvery, and the last state reached, also by a run that stops.
+  bool vtk = false;
+  double vtkEvery = 0;  ///< s; ≤ 0: a hundredth of the duration
   /// Start the equilibrium's second stage from this state (see solver::HeldEquilibrium).
   const solver::HeldEquilibrium* sharedEquilibrium = nullptr;
   /// Threads of this one run (solver::Simulation::setThreads); the result does not depend on it.

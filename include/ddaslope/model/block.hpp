@@ -22,9 +22,12 @@ struct Block {
   geometry::PolygonMoments moments;     ///< current
   Vec6 velocity = Vec6::Zero();         ///< dD/dt at the end of the last step
   Vec3 stress = Vec3::Zero();           ///< σx, σy, τxy accumulated (Pa)
+  /// r0 summed over every displacement applied (rad, counter-clockwise): the rotation from the
+  /// case's geometry, which the vertices alone cannot tell past a half turn (outputs only).
+  double rotation = 0;
 
   Mat26 tAt(const Vec2& p) const { return displacementMatrix(moments.centroid, p); }
-  /// Moves the vertices by D (exact rotation) and recomputes the moments.
+  /// Moves the vertices by D (exact rotation), recomputes the moments and adds r0 to rotation.
   void applyDisplacement(const Vec6& d);
   /// Largest vertex displacement |T D| over the block's vertices (linearised).
   double maxVertexDisplacement(const Vec6& d) const;
