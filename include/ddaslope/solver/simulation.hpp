@@ -176,8 +176,9 @@ class Simulation {
   void assembleBlockTerms(double dt, Regime regime, std::vector<Mat6>& k, std::vector<Vec6>& f,
                           std::vector<Vec6>& loads, std::vector<Vec6>& magnitude,
                           std::vector<Vec6>* groundLoads = nullptr) const;
-  /// Accepts an attempt; `weakens`: its slip softens the joints (analysis steps only).
-  void commit(const Attempt& a, double dt, bool weakens);
+  /// Accepts an attempt (its contacts move into the contact set); `weakens`: its slip softens
+  /// the joints (analysis steps only).
+  void commit(Attempt& a, double dt, bool weakens);
   /// Solves K d = rhs (6 per active block); rigid blocks solve for their 3 unknowns.
   /// residualFloor: the residual below which the right-hand side is round-off (0: none).
   bool solveSystem(const SystemOperator& k, const Eigen::VectorXd& rhs, Eigen::VectorXd& d, double residualFloor);
