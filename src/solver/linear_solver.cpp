@@ -19,7 +19,8 @@ bool LinearSolver::conjugateGradients(const SystemOperator& k, const Eigen::Vect
   Eigen::VectorXd q;
   k.multiply(x, q);
   Eigen::VectorXd r = b - q;
-  if (r.norm() <= target) return true;
+  lastResidual_ = r.norm();
+  if (lastResidual_ <= target) return true;
   Eigen::VectorXd z, p;
   cholesky_.solve(r, z);
   p = z;
@@ -32,7 +33,8 @@ bool LinearSolver::conjugateGradients(const SystemOperator& k, const Eigen::Vect
     const double alpha = rz / pq;
     x += alpha * p;
     r -= alpha * q;
-    if (r.norm() <= target) return true;
+    lastResidual_ = r.norm();
+    if (lastResidual_ <= target) return true;
     cholesky_.solve(r, z);
     const double rzNext = r.dot(z);
     p = z + (rzNext / rz) * p;
@@ -44,6 +46,8 @@ bool LinearSolver::conjugateGradients(const SystemOperator& k, const Eigen::Vect
 bool LinearSolver::solve(const SystemOperator& k, const Eigen::VectorXd& b, Eigen::VectorXd& x,
                          double residualFloor) {
   ++stats_.solves;
+  lastResidual_ = 0;
+  lastRhsNorm_ = b.norm();
   if (b.squaredNorm() == 0) {
     x = Eigen::VectorXd::Zero(b.size());
     return true;
@@ -55,6 +59,7 @@ bool LinearSolver::solve(const SystemOperator& k, const Eigen::VectorXd& b, Eige
     }
     if (conjugateGradients(k, b, x, residualFloor)) return true;
   }
+  lastResidual_ = 0;
   if (!refactorise(k)) return false;
   cholesky_.solve(b, x);
   return true;

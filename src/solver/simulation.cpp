@@ -43,6 +43,10 @@ constexpr int kFactorFollowingMinUnknowns = 1000;
 constexpr size_t kMaxFactorModificationRank = 800;
 /// CG iterations with a stale factor before a large system refactorises (see tryStep).
 constexpr int kLargeSystemCgIterations = 4;
+// Relative residual to which a large system solves while its contact states change (tryStep):
+// one CG iteration with a factor that follows the states (1e-4 → 2e-9 in the 976-brick wall
+// under sudden gravity), against two for the full 1e-12.
+constexpr double kJudgingResidual = 1e-8;
 /// Stage 3's budget, in steps per analysis.equilibrium_max_steps (200 by default: 4000 steps).
 constexpr int kSettlingStepsPerEquilibriumStep = 20;
 
@@ -462,11 +466,16 @@ Simulation::Attempt Simulation::tryStep(double dt, Regime regime, bool freezeCyc
   for (const Contact& c : a.contacts) largestForce = std::max(largestForce, std::abs(c.normalForce));
   const contact::StateTolerance stateTolerance{std::max(penalty_ * noise, 1e-9 * largestForce), noise};
   bool stiffnessChanged = true;
+  bool solveStrictly = false;
   StateCycleDetector cycles;
   // A large system's factor follows the contact state changes by low-rank update/downdate
   // (solver/factor_springs.hpp) instead of being redone; small systems refactorise, which is
   // cheap there and keeps their results as they were.
   const bool followFactor = factorFollowing_ && matrix_.size() >= kFactorFollowingMinUnknowns;
+  // Nested dissection orders a large wall's factor with less fill (1.45 against AMD's 1.55
+  // million nonzeros at 2047 bricks) and a shallower tree, whose paths each update/downdate of a
+  // spring walks. Small systems keep AMD, and their round-off.
+  linearSolver_.setOrdering(followFactor ? FillOrdering::NestedDissection : FillOrdering::MinimumDegree);
   assembly::SystemTerms terms;
   TermsOnDemand lazySystem(terms, matrix_);
   const AssembledSystem assembledSystem(matrix_);
@@ -570,7 +579,12 @@ Simulation::Attempt Simulation::tryStep(double dt, Regime regime, bool freezeCyc
     if (residualAtRoundOff)
       for (int i = 0; i < nActive_; ++i) magnitudeNorm2 += magnitude.segment(6 * i, dof).squaredNorm();
     const double roundOff = 16 * std::numeric_limits<double>::epsilon() * std::sqrt(magnitudeNorm2);
-    const bool solved = nActive_ == 0 || solveSystem(system, rhs, a.d, roundOff);
+    // A large system solves only to kJudgingResidual while its contact states still change:
+    // those states are judged again on the next solution anyway. An iteration after one that
+    // changed no state solves to the full target, and only such a solution ends the iteration.
+    const double floor = followFactor && !solveStrictly ? std::max(roundOff, kJudgingResidual * rhs.norm()) : roundOff;
+    const bool solved = nActive_ == 0 || solveSystem(system, rhs, a.d, floor);
+    const bool solvedStrictly = nActive_ == 0 || linearSolver_.lastSolveWithin(roundOff);
     if (followFactor && linearSolver_.stats().factorisations > factorisationsBefore) {
       factorSprings_.reset(contactSprings());
       factorBlockTerms_ = blockTerms;
@@ -687,8 +701,9 @@ Simulation::Attempt Simulation::tryStep(double dt, Regime regime, bool freezeCyc
       return a;
     }
     stiffnessChanged = stateChanged;
+    solveStrictly = !stateChanged;
     const bool frictionSettled = frictionDrift <= scene_.settings.frictionTolerance * forceScale;
-    if (!stateChanged && !bondChanged && frictionSettled) {
+    if (!stateChanged && !bondChanged && frictionSettled && solvedStrictly) {
       a.converged = true;
       break;
     }

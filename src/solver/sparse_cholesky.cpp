@@ -19,6 +19,8 @@ struct SparseCholesky::Impl {
   std::vector<int> inversePerm;  ///< original row → row of the factor
   long patternVersion = -1;
   const void* patternOwner = nullptr;
+  FillOrdering ordering = FillOrdering::MinimumDegree;
+  int defaultFirstOrdering = 0;
 
   Impl() {
     cholmod_start(&common);
@@ -27,6 +29,18 @@ struct SparseCholesky::Impl {
     // Supernodal LLᵀ: a simplicial LDLᵀ would factorise an indefinite matrix silently, and a
     // lost positive definiteness is a failure the step control must see.
     common.supernodal = CHOLMOD_SUPERNODAL;
+    defaultFirstOrdering = common.method[0].ordering;
+  }
+  /// CHOLMOD's default choice (AMD, METIS only where AMD fills badly) for minimum degree; for
+  /// nested dissection NESDIS alone.
+  void chooseOrdering() {
+    if (ordering == FillOrdering::NestedDissection) {
+      common.nmethods = 1;
+      common.method[0].ordering = CHOLMOD_NESDIS;
+    } else {
+      common.nmethods = 0;
+      common.method[0].ordering = defaultFirstOrdering;
+    }
   }
   ~Impl() {
     if (modified) cholmod_free_factor(&modified, &common);
@@ -58,6 +72,7 @@ bool SparseCholesky::factorise(const assembly::BlockSparseMatrix& k) {
   cholmod_sparse a = Impl::view(k);
   if (!impl_->factor || impl_->patternVersion != k.patternVersion() || impl_->patternOwner != &k) {
     if (impl_->factor) cholmod_free_factor(&impl_->factor, &impl_->common);
+    impl_->chooseOrdering();
     impl_->factor = cholmod_analyze(&a, &impl_->common);
     DDASLOPE_ASSERT(impl_->factor != nullptr, "CHOLMOD symbolic analysis failed");
     impl_->patternVersion = k.patternVersion();
@@ -68,6 +83,12 @@ bool SparseCholesky::factorise(const assembly::BlockSparseMatrix& k) {
   impl_->inversePerm.clear();
   cholmod_factorize(&a, impl_->factor, &impl_->common);
   return impl_->common.status == CHOLMOD_OK && impl_->factor->minor == a.nrow;
+}
+
+void SparseCholesky::setOrdering(FillOrdering o) {
+  if (o == impl_->ordering) return;
+  impl_->ordering = o;
+  impl_->patternVersion = -1;  // analyse again at the next factorisation
 }
 
 void SparseCholesky::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {

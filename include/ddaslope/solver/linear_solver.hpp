@@ -4,6 +4,8 @@
 // changed, or K lost positive definiteness. Between steps K changes by geometry (small) and
 // within the open-close loop by a few contact springs (low rank): CG with the old factor then
 // converges in a handful of iterations, each far cheaper than a factorisation.
+#include <algorithm>
+
 #include <Eigen/Core>
 
 #include "ddaslope/assembly/block_sparse_matrix.hpp"
@@ -71,11 +73,18 @@ class LinearSolver {
   bool modifyFactor(const assembly::BlockSparseMatrix& k, const std::vector<SparseCholesky::Column>& added,
                     const std::vector<SparseCholesky::Column>& removed);
   bool hasFactor() const { return haveFactor_; }
+  /// Whether the last solution met the solver's own tolerance (or `residualFloor`) on b, where
+  /// it was asked for less. A solve with a factor of the current K counts as exact.
+  bool lastSolveWithin(double residualFloor) const {
+    return lastResidual_ <= std::max(settings_.tolerance * lastRhsNorm_, residualFloor);
+  }
   /// Drops the factor: the next solve refactorises (K's block terms changed in a way CG would
   /// absorb at a few iterations per step, for ever).
   void discardFactor() { haveFactor_ = false; }
   const LinearSolverStats& stats() const { return stats_; }
   int symbolicAnalyses() const { return cholesky_.symbolicAnalyses(); }
+  /// The factor's fill-reducing ordering from the next symbolic analysis on.
+  void setOrdering(FillOrdering o) { cholesky_.setOrdering(o); }
 
  private:
   bool refactorise(const SystemOperator& k);
@@ -88,6 +97,8 @@ class LinearSolver {
   bool haveFactor_ = false;
   bool factorCurrent_ = false;
   long patternVersion_ = -1;
+  double lastResidual_ = 0;  ///< ‖b − Kx‖ of the last solution checked against K (0 if exact)
+  double lastRhsNorm_ = 0;   ///< ‖b‖ of the last solve
   LinearSolverStats stats_;
 };
 

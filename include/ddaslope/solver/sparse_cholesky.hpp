@@ -10,6 +10,12 @@
 
 namespace ddaslope::solver {
 
+/// How the unknowns are ordered to limit the factor's fill.
+enum class FillOrdering {
+  MinimumDegree,     ///< AMD: cheap to compute, the default
+  NestedDissection,  ///< CHOLMOD's NESDIS (METIS separators): less fill on large 2-D meshes
+};
+
 class SparseCholesky {
  public:
   SparseCholesky();
@@ -34,6 +40,8 @@ class SparseCholesky {
   /// Returns false if the result is not positive definite (the factor must then be redone).
   bool modify(const std::vector<Column>& columns, bool add);
   int symbolicAnalyses() const { return analyses_; }
+  /// The ordering of the next symbolic analysis (a change forces one at the next factorisation).
+  void setOrdering(FillOrdering o);
 
  private:
   struct Impl;
