@@ -37,13 +37,19 @@ Vec6 minusTTransposeTimes(const Vec2& centroid, const Vec2& p, const Vec2& a) {
 
 ContactKinematics linearise(const model::Block& vb, const model::Block& eb,
                             const contact::Contact& c) {
+  ContactKinematics kin;
+  lineariseInto(vb, eb, c, kin);
+  return kin;
+}
+
+void lineariseInto(const model::Block& vb, const model::Block& eb, const contact::Contact& c,
+                   ContactKinematics& kin) {
   const contact::ContactKey& k = c.key();
   const int n = static_cast<int>(eb.vertices.size());
   const Vec2 p1 = vb.vertices[k.vertex];
   const Vec2 p2 = eb.vertices[k.edge];
   const Vec2 p3 = eb.vertices[(k.edge + 1) % n];
   const double len = (p3 - p2).norm();
-  ContactKinematics kin;
   kin.tangent = (p3 - p2) / len;
   // Penetration = Δ/l, Δ = cross(P2 − P1, P3 − P1) > 0 when P1 is inside the edge's block.
   kin.penetration0 = cross(p2 - p1, p3 - p1) / len + c.normalOffset;
@@ -63,7 +69,6 @@ ContactKinematics linearise(const model::Block& vb, const model::Block& eb,
   kin.shearLocked.tail<6>() = minusTTransposeTimes(ec, anchor, t);
   kin.shearStep.head<6>() = kin.shearLocked.head<6>();
   kin.shearStep.tail<6>() = minusTTransposeTimes(ec, start, t);
-  return kin;
 }
 
 }  // namespace ddaslope::assembly

@@ -215,8 +215,8 @@ void Simulation::detectContacts(bool initial) {
   kinematics_.resize(cs.size());
   parallelFor(static_cast<int>(cs.size()), threads_, [&](int q) {
     const Contact& c = cs[static_cast<size_t>(q)];
-    kinematics_[static_cast<size_t>(q)] =
-        assembly::linearise(scene_.blocks[c.key().vertexBlock], scene_.blocks[c.key().edgeBlock], c);
+    assembly::lineariseInto(scene_.blocks[c.key().vertexBlock], scene_.blocks[c.key().edgeBlock], c,
+                            kinematics_[static_cast<size_t>(q)]);
   });
   stats_.maxContacts = std::max(stats_.maxContacts, static_cast<int>(contacts_.contacts().size()));
   stats_.times.contacts += sw.lap();
