@@ -98,10 +98,11 @@ TEST(LinearSolver, RedoesAFactorThatNeedsMoreThanItsBudget) {
   }
 }
 
-// The fill-reducing ordering changes the factor, not the solution: a 2-D grid of coupled blocks
-// (the wall's pattern, where large systems order by nested dissection) solved with AMD and with
-// NESDIS gives the same x to round-off (both are exact Cholesky solves of one K), and switching
-// the ordering of a solver redoes its symbolic analysis.
+// The fill-reducing ordering and the factor's form change the factor, not the solution: a 2-D
+// grid of coupled blocks (the wall's pattern, where large systems order by nested dissection and
+// solve with a simplicial copy) solved with AMD, NESDIS and NESDIS simplicial gives the same x to
+// round-off (all are exact Cholesky solves of one K), and switching the ordering of a solver
+// redoes its symbolic analysis.
 TEST(SparseCholesky, EitherFillOrderingSolvesTheSameSystem) {
   constexpr int kSide = 14;  // 196 blocks, 1176 unknowns
   std::vector<std::pair<int, int>> couplings;
@@ -133,6 +134,16 @@ TEST(SparseCholesky, EitherFillOrderingSolvesTheSameSystem) {
   EXPECT_LE((b - k.multiply(xa)).norm(), 1e-13 * b.norm());
   EXPECT_LE((b - k.multiply(xn)).norm(), 1e-13 * b.norm());
   EXPECT_LE((xa - xn).norm(), 1e-13 * xa.norm());
+
+  // Large systems solve with a simplicial LDLᵀ copy of the supernodal factor: the same solution.
+  solver::SparseCholesky simplicial;
+  simplicial.setOrdering(solver::FillOrdering::NestedDissection);
+  simplicial.setSimplicialSolves(true);
+  ASSERT_TRUE(simplicial.factorise(k));
+  Eigen::VectorXd xs;
+  simplicial.solve(b, xs);
+  EXPECT_LE((b - k.multiply(xs)).norm(), 1e-13 * b.norm());
+  EXPECT_LE((xs - xn).norm(), 1e-13 * xn.norm());
 
   ASSERT_EQ(amd.symbolicAnalyses(), 1);
   amd.setOrdering(solver::FillOrdering::NestedDissection);

@@ -476,6 +476,7 @@ Simulation::Attempt Simulation::tryStep(double dt, Regime regime, bool freezeCyc
   // million nonzeros at 2047 bricks) and a shallower tree, whose paths each update/downdate of a
   // spring walks. Small systems keep AMD, and their round-off.
   linearSolver_.setOrdering(followFactor ? FillOrdering::NestedDissection : FillOrdering::MinimumDegree);
+  linearSolver_.setSimplicialSolves(followFactor);
   assembly::SystemTerms terms;
   TermsOnDemand lazySystem(terms, matrix_);
   const AssembledSystem assembledSystem(matrix_);

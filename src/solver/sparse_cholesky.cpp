@@ -42,6 +42,13 @@ struct SparseCholesky::Impl {
       common.method[0].ordering = defaultFirstOrdering;
     }
   }
+  /// `modified` := a simplicial LDLᵀ copy of `factor`, packed and monotonic: the form
+  /// update/downdate works on.
+  void copySimplicial() {
+    modified = cholmod_copy_factor(factor, &common);
+    DDASLOPE_ASSERT(modified != nullptr, "CHOLMOD could not copy the factor");
+    cholmod_change_factor(CHOLMOD_REAL, false, false, true, true, modified, &common);
+  }
   ~Impl() {
     if (modified) cholmod_free_factor(&modified, &common);
     if (factor) cholmod_free_factor(&factor, &common);
@@ -82,7 +89,9 @@ bool SparseCholesky::factorise(const assembly::BlockSparseMatrix& k) {
   if (impl_->modified) cholmod_free_factor(&impl_->modified, &impl_->common);
   impl_->inversePerm.clear();
   cholmod_factorize(&a, impl_->factor, &impl_->common);
-  return impl_->common.status == CHOLMOD_OK && impl_->factor->minor == a.nrow;
+  const bool ok = impl_->common.status == CHOLMOD_OK && impl_->factor->minor == a.nrow;
+  if (ok && simplicialSolves_) impl_->copySimplicial();
+  return ok;
 }
 
 void SparseCholesky::setOrdering(FillOrdering o) {
@@ -111,12 +120,7 @@ void SparseCholesky::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
 bool SparseCholesky::modify(const std::vector<Column>& columns, bool add) {
   if (columns.empty()) return true;
   Impl& m = *impl_;
-  if (!m.modified) {
-    m.modified = cholmod_copy_factor(m.factor, &m.common);
-    DDASLOPE_ASSERT(m.modified != nullptr, "CHOLMOD could not copy the factor");
-    // Simplicial LDLᵀ, packed and monotonic: the form update/downdate works on.
-    cholmod_change_factor(CHOLMOD_REAL, false, false, true, true, m.modified, &m.common);
-  }
+  if (!m.modified) m.copySimplicial();
   // The factor is of P K Pᵀ (fill-reducing order): C's rows go through the same permutation.
   const int* perm = static_cast<const int*>(m.modified->Perm);
   if (m.inversePerm.size() != m.modified->n) {

@@ -85,6 +85,8 @@ class LinearSolver {
   int symbolicAnalyses() const { return cholesky_.symbolicAnalyses(); }
   /// The factor's fill-reducing ordering from the next symbolic analysis on.
   void setOrdering(FillOrdering o) { cholesky_.setOrdering(o); }
+  /// Solves with a simplicial copy of each new factor (SparseCholesky::setSimplicialSolves).
+  void setSimplicialSolves(bool on) { cholesky_.setSimplicialSolves(on); }
 
  private:
   bool refactorise(const SystemOperator& k);

@@ -42,11 +42,16 @@ class SparseCholesky {
   int symbolicAnalyses() const { return analyses_; }
   /// The ordering of the next symbolic analysis (a change forces one at the next factorisation).
   void setOrdering(FillOrdering o);
+  /// Solve with a simplicial LDLᵀ copy of each new factor (the form update/downdate needs
+  /// anyway) instead of the supernodal factor: with Debian's reference BLAS its single
+  /// right-hand-side solve is a third faster (0.79 against 1.19 ms at 5856 unknowns).
+  void setSimplicialSolves(bool on) { simplicialSolves_ = on; }
 
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
   int analyses_ = 0;
+  bool simplicialSolves_ = false;
 };
 
 }  // namespace ddaslope::solver
