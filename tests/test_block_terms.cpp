@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <random>
 
 #include "ddaslope/assembly/block_terms.hpp"
 #include "ddaslope/model/block.hpp"
@@ -76,4 +77,35 @@ TEST(BlockTerms, LowestStrainFrequencyOfASquare) {
         rho * assembly::unitMassMatrix(m), assembly::elasticStiffness(m.area, assembly::elasticityMatrix(e, nu, plane)));
     EXPECT_NEAR(w1, expected, 1e-9 * expected);
   }
+}
+
+// The step limit's cheap bound (model/block.hpp) is never below the exact largest vertex
+// displacement |T(v) D| it stands in for (the triangle inequality on T D's components), and is
+// tight for a pure translation (every vertex moves by |(d0, d1)|): random polygons and D, with
+// displacements from 1e-12 to 10 m, including pure rotations and strains.
+TEST(BlockTerms, VertexDisplacementBoundIsNeverBelowTheExactValue) {
+  std::mt19937 rng(16);
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (int k = 0; k < 2000; ++k) {
+    model::Block b;
+    const int n = 3 + k % 5;
+    const Vec2 centre(100 * u(rng), 100 * u(rng));
+    for (int i = 0; i < n; ++i) {
+      const double angle = 2 * M_PI * i / n, radius = 0.5 + std::abs(u(rng)) * (1 + k % 7);
+      b.vertices.push_back(centre + radius * Vec2(std::cos(angle), std::sin(angle)));
+    }
+    b.moments = geometry::computeMoments(b.vertices);
+    Vec6 d;
+    for (int i = 0; i < 6; ++i) d[i] = u(rng) * std::pow(10.0, -12 + (k % 13));
+    if (k % 5 == 1) d.head<2>().setZero(), d.tail<3>().setZero();  // pure rotation
+    if (k % 5 == 2) d.head<3>().setZero();                         // pure strain
+    EXPECT_GE(b.vertexDisplacementBound(d), b.maxVertexDisplacement(d)) << "case " << k;
+  }
+  model::Block square;
+  square.vertices = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  square.moments = geometry::computeMoments(square.vertices);
+  Vec6 shift = Vec6::Zero();
+  shift[0] = 3e-3, shift[1] = -4e-3;
+  EXPECT_NEAR(square.vertexDisplacementBound(shift), 5e-3, 1e-12);
+  EXPECT_NEAR(square.maxVertexDisplacement(shift), 5e-3, 1e-15);
 }

@@ -1,5 +1,6 @@
 #include "ddaslope/model/block.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace ddaslope::model {
@@ -26,6 +27,18 @@ void Block::applyDisplacement(const Vec6& d) {
   for (Vec2& v : vertices) v = displacedPoint(c, v, d);
   moments = geometry::computeMoments(vertices);
   rotation += d[2];
+}
+
+double Block::vertexDisplacementBound(const Vec6& d) const {
+  const Vec2& c = moments.centroid;
+  double x = 0, y = 0;
+  for (const Vec2& v : vertices) x = std::max(x, std::abs(v.x() - c.x())), y = std::max(y, std::abs(v.y() - c.y()));
+  // T D = (d0 − y d2 + x d3 + y d5/2, d1 + x d2 + y d4 + x d5/2): each component is at most the
+  // sum of its terms' sizes. The factor 1 + 1e-10 covers the round-off of both computations
+  // (a few units of 1e-16 of those sums).
+  const double u = std::abs(d[0]) + y * std::abs(d[2]) + x * std::abs(d[3]) + 0.5 * y * std::abs(d[5]);
+  const double w = std::abs(d[1]) + x * std::abs(d[2]) + y * std::abs(d[4]) + 0.5 * x * std::abs(d[5]);
+  return (1 + 1e-10) * std::sqrt(u * u + w * w);
 }
 
 double Block::maxVertexDisplacement(const Vec6& d) const {

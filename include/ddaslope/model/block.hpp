@@ -31,6 +31,11 @@ struct Block {
   void applyDisplacement(const Vec6& d);
   /// Largest vertex displacement |T D| over the block's vertices (linearised).
   double maxVertexDisplacement(const Vec6& d) const;
+  /// A bound never below maxVertexDisplacement(d), its round-off included, from the vertices'
+  /// largest offsets from the centroid along x and y: a few operations per vertex instead of a
+  /// 2 × 6 product and a square root, so that a step limit is checked exactly only where the
+  /// bound does not clear it.
+  double vertexDisplacementBound(const Vec6& d) const;
 };
 
 }  // namespace ddaslope::model
