@@ -59,16 +59,22 @@ for f in summary.json pf_convergence.png samples_plane.png; do
 done
 echo "same: the study's summary.json and pictures, straight and resumed under mpirun"
 
-# An error in a task on any rank reaches the root and ends every rank with exit 2 (no hang).
-set +e
-timeout 60 "${mpi[@]}" "$cli" fos "$case_file" --sweep joints.sliding_plane.friction_angle=-20:30:6 \
-  --out "$work/bad" > /dev/null 2> "$work/bad.err"
-code=$?
-set -e
-if [ "$code" -ne 2 ] || ! grep -q "expected a friction angle" "$work/bad.err"; then
-  echo "FAIL: a bad sweep value under mpirun gave exit $code:"; cat "$work/bad.err"; exit 1
-fi
-echo "bad input under mpirun: exit 2 with the error"
+# An error in a task on any rank reaches the root and ends every rank with exit 2 (no hang),
+# reported once. Every rank rethrows it and finalises MPI: MPI_Abort here raced with the other
+# ranks' finalisation in Open MPI 4.1's mpirun, which crashed (exit 139) or hung now and then
+# under load; five tries.
+for try in 1 2 3 4 5; do
+  set +e
+  timeout 60 "${mpi[@]}" "$cli" fos "$case_file" --sweep joints.sliding_plane.friction_angle=-20:30:6 \
+    --out "$work/bad" > /dev/null 2> "$work/bad.err"
+  code=$?
+  set -e
+  reports=$(grep -c "expected a friction angle" "$work/bad.err" || true)
+  if [ "$code" -ne 2 ] || [ "$reports" -ne 1 ]; then
+    echo "FAIL: a bad sweep value under mpirun (try $try) gave exit $code and $reports reports:"; cat "$work/bad.err"; exit 1
+  fi
+done
+echo "bad input under mpirun: exit 2 with the error, reported once (5 tries)"
 
 # A command that does not spread over ranks is refused under mpirun (each rank would write the
 # same files), with exit 2.
@@ -76,7 +82,7 @@ set +e
 timeout 60 "${mpi[@]}" "$cli" run "$src/cases/sliding_block_40deg.json" --out "$work/run" > /dev/null 2> "$work/run.err"
 code=$?
 set -e
-if [ "$code" -ne 2 ] || ! grep -q "start this command without mpirun" "$work/run.err"; then
+if [ "$code" -ne 2 ] || [ "$(grep -c "start this command without mpirun" "$work/run.err" || true)" -ne 1 ]; then
   echo "FAIL: run under mpirun gave exit $code:"; cat "$work/run.err"; exit 1
 fi
-echo "run under mpirun: refused, exit 2"
+echo "run under mpirun: refused once, exit 2"

@@ -707,6 +707,10 @@ int runCommandLine(int argc, char** argv) {
   ddaslope::cli::addProbabilityOptions(probability, casePath, probOpt);
   addModelOptions(probability, overrides);
 
+  // An error that every MPI rank met in the same study is reported once, by the root.
+  const auto report = [](const char* kind, const char* what) {
+    if (ddaslope::processRank() == 0 || !ddaslope::errorSharedByAllProcesses()) std::cerr << kind << what << "\n";
+  };
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -717,9 +721,11 @@ int runCommandLine(int argc, char** argv) {
     // command would run once per rank, each writing the same files.
     const bool spreads = probability->parsed() || ba->parsed() || (fos->parsed() && !fosOpt.sweep.empty()) ||
                          (critical->parsed() && !crit.curve.empty());
-    if (ddaslope::processCount() > 1 && !spreads)
+    if (ddaslope::processCount() > 1 && !spreads) {
+      ddaslope::declareErrorShared();  // every rank refuses alike
       throw ddaslope::InputError("mpirun", "", "only probability, fos --sweep, critical --curve and backanalyse spread "
                                                "over MPI ranks; start this command without mpirun");
+    }
     if (run->parsed()) return runCommand(casePath, overrides, runOpt);
     if (check->parsed()) return checkCommand(casePath, overrides);
     if (compare->parsed()) return compareContactsCommand(deformable, csvPath);
@@ -729,17 +735,17 @@ int runCommandLine(int argc, char** argv) {
     if (fos->parsed()) return fosCommand(casePath, overrides, fosOpt);
     if (probability->parsed()) return ddaslope::cli::probabilityCommand(casePath, overrides, probOpt);
   } catch (const ddaslope::InputError& e) {
-    std::cerr << "ddaslope: error: " << e.what() << "\n";
+    report("ddaslope: error: ", e.what());
     return kExitBadInput;
   } catch (const ddaslope::NonConvergenceError& e) {
-    std::cerr << "ddaslope: non-convergence: " << e.what() << "\n";
+    report("ddaslope: non-convergence: ", e.what());
     return kExitNonConvergence;
   } catch (const std::filesystem::filesystem_error& e) {
     // An --out that is a file, or a place the user may not write to: their input, not our bug.
-    std::cerr << "ddaslope: error: cannot write the output: " << e.what() << "\n";
+    report("ddaslope: error: cannot write the output: ", e.what());
     return kExitBadInput;
   } catch (const std::exception& e) {
-    std::cerr << "ddaslope: internal error: " << e.what() << "\n";
+    report("ddaslope: internal error: ", e.what());
     return 1;
   }
   return kExitOk;
@@ -753,8 +759,11 @@ int main(int argc, char** argv) {
   ddaslope::startProcesses(argc, argv);
   if (ddaslope::processRank() != 0 && !std::freopen("/dev/null", "w", stdout)) return 1;
   const int code = runCommandLine(argc, argv);
-  // An error on one rank must not leave the others waiting for it.
-  if (ddaslope::processCount() > 1 && code != kExitOk && code != kExitNonConvergence) ddaslope::abortProcesses(code);
+  // An error on one rank must not leave the others waiting for it; one that every rank met in a
+  // study's task ends them all normally, with its code.
+  if (ddaslope::processCount() > 1 && code != kExitOk && code != kExitNonConvergence &&
+      !ddaslope::errorSharedByAllProcesses())
+    ddaslope::abortProcesses(code);
   ddaslope::stopProcesses();
   return code;
 }

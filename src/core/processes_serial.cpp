@@ -10,6 +10,8 @@ void stopProcesses() {}
 int processRank() { return 0; }
 int processCount() { return 1; }
 void abortProcesses(int code) { std::exit(code); }
+bool errorSharedByAllProcesses() { return false; }
+void declareErrorShared() {}
 std::string processSupport() { return "without MPI"; }
 std::unique_ptr<TaskFarm> makeTaskFarm(int threads) { return makeThreadFarm(threads); }
 

@@ -33,7 +33,9 @@ namespace {
 bool started = false;
 int worldRank = 0, worldSize = 1;
 
-enum Tag : int { kReady = 1, kResult = 2, kTask = 3 };
+enum Tag : int { kReady = 1, kResult = 2, kTask = 3, kEnding = 4 };
+/// Set when a farm run ended with a task's error on every rank (errorSharedByAllProcesses()).
+bool sharedError = false;
 constexpr int kStop = -1;
 /// How often an idle main thread looks for messages and finished tasks.
 constexpr auto kPoll = std::chrono::microseconds(500);
@@ -238,8 +240,21 @@ class MpiFarm final : public TaskFarm {
       }
       if (stopsOwed == 0 && localQueued == 0 && (stopping || next >= indices.size())) break;
     }
+    // Every worker learns how the run ended: a task's error ends every rank the same way (each
+    // rethrows it, and all finalise MPI and exit with its code). MPI_Abort for such an error
+    // raced with the workers' own finalisation in Open MPI 4.1's mpirun, which then crashed or
+    // hung now and then (the MPI test under load). An error of the root's own sink (its output)
+    // is not shared: the workers go on, and the root aborts them.
+    const bool shared = errorOutcome != kDone && !sinkError;
+    std::string ending(1, shared ? errorOutcome : static_cast<char>(kDone));
+    if (shared) ending.append(error);
+    for (int r = 1; r < worldSize; ++r)
+      MPI_Send(ending.data(), static_cast<int>(ending.size()), MPI_BYTE, r, kEnding, MPI_COMM_WORLD);
     if (sinkError) std::rethrow_exception(sinkError);
-    if (errorOutcome != kDone) rethrow(errorOutcome, error);
+    if (shared) {
+      sharedError = true;
+      rethrow(errorOutcome, error);
+    }
   }
 
   void runWorker(const Task& task) {
@@ -266,6 +281,16 @@ class MpiFarm final : public TaskFarm {
         }
       }
     }
+    MPI_Status status;
+    MPI_Probe(0, kEnding, MPI_COMM_WORLD, &status);
+    int count = 0;
+    MPI_Get_count(&status, MPI_BYTE, &count);
+    std::string ending(static_cast<size_t>(count), '\0');
+    MPI_Recv(ending.data(), count, MPI_BYTE, 0, kEnding, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+    if (!ending.empty() && ending[0] != kDone) {
+      sharedError = true;
+      rethrow(ending[0], ending.substr(1));
+    }
   }
 
   int threads_;
@@ -290,6 +315,9 @@ void stopProcesses() {
 
 int processRank() { return worldRank; }
 int processCount() { return worldSize; }
+
+bool errorSharedByAllProcesses() { return sharedError; }
+void declareErrorShared() { sharedError = true; }
 
 void abortProcesses(int code) {
   if (started && worldSize > 1) MPI_Abort(MPI_COMM_WORLD, code);

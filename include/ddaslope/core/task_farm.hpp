@@ -51,6 +51,12 @@ int processRank();   ///< 0 without MPI
 int processCount();  ///< 1 without MPI
 /// Ends every process with `code` (an error on one rank must not leave the others waiting).
 [[noreturn]] void abortProcesses(int code);
+/// True once a farm run ended with a task's error that every rank rethrew: each can then finish
+/// normally (stopProcesses) with that error's exit code, and only the root reports it.
+bool errorSharedByAllProcesses();
+/// The error about to be thrown is met by every rank alike (a decision on the command line that
+/// each rank takes the same way): errorSharedByAllProcesses() from now on.
+void declareErrorShared();
 /// "with MPI (Open MPI 4.1.4)" or "without MPI": for --version and reports.
 std::string processSupport();
 
