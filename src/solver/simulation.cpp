@@ -64,8 +64,6 @@ class Stopwatch {
 };
 
 
-/// K kept as its terms: products from the terms, entries assembled into `matrix` only when a
-/// factorisation asks for them (once per change of K).
 // The step's contact kinematics, edited in place by one attempt and restored when it ends. A
 // contact that locks within the attempt re-anchors its shear spring (its kinematics change); a
 // cut Δt retries from the step's own. A copy of them all per attempt moved 2 MB at 976 bricks
@@ -90,6 +88,8 @@ class AttemptKinematics {
   std::vector<std::pair<size_t, assembly::ContactKinematics>> saved_;
 };
 
+/// K kept as its terms: products from the terms, entries assembled into `matrix` only when a
+/// factorisation asks for them (once per change of K).
 class TermsOnDemand final : public SystemOperator {
  public:
   TermsOnDemand(const assembly::SystemTerms& terms, assembly::BlockSparseMatrix& matrix)
@@ -466,7 +466,7 @@ Simulation::Attempt Simulation::tryStep(double dt, Regime regime, bool freezeCyc
   for (const Contact& c : a.contacts) largestForce = std::max(largestForce, std::abs(c.normalForce));
   const contact::StateTolerance stateTolerance{std::max(penalty_ * noise, 1e-9 * largestForce), noise};
   bool stiffnessChanged = true;
-  bool solveStrictly = false;
+  bool nextSolveStrict = false;
   StateCycleDetector cycles;
   // A large system's factor follows the contact state changes by low-rank update/downdate
   // (solver/factor_springs.hpp) instead of being redone; small systems refactorise, which is
@@ -583,7 +583,7 @@ Simulation::Attempt Simulation::tryStep(double dt, Regime regime, bool freezeCyc
     // A large system solves only to kJudgingResidual while its contact states still change:
     // those states are judged again on the next solution anyway. An iteration after one that
     // changed no state solves to the full target, and only such a solution ends the iteration.
-    const double floor = followFactor && !solveStrictly ? std::max(roundOff, kJudgingResidual * rhs.norm()) : roundOff;
+    const double floor = followFactor && !nextSolveStrict ? std::max(roundOff, kJudgingResidual * rhs.norm()) : roundOff;
     const bool solved = nActive_ == 0 || solveSystem(system, rhs, a.d, floor);
     const bool solvedStrictly = nActive_ == 0 || linearSolver_.lastSolveWithin(roundOff);
     if (followFactor && linearSolver_.stats().factorisations > factorisationsBefore) {
@@ -702,7 +702,7 @@ Simulation::Attempt Simulation::tryStep(double dt, Regime regime, bool freezeCyc
       return a;
     }
     stiffnessChanged = stateChanged;
-    solveStrictly = !stateChanged;
+    nextSolveStrict = !stateChanged;
     const bool frictionSettled = frictionDrift <= scene_.settings.frictionTolerance * forceScale;
     if (!stateChanged && !bondChanged && frictionSettled && solvedStrictly) {
       a.converged = true;
