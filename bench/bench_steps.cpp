@@ -2,6 +2,8 @@
 // time by phase, open-close iterations and Δt cuts. Speed targets live here, not in tests.
 //   build/ddaslope_bench [--steps S] [--sizes 10,100,...] [--contact-treatment edge|vertex] [--blocks rigid|deformable]
 //                        [--compare-search]  (also time the narrow phase on every pair, on stderr)
+//                        [--no-pair-cache]  (search every block pair at every step, as before the
+//                        pair cache: contact/pair_cache.hpp; the run is the same, bit for bit)
 //   build/ddaslope_bench --anchor-rows 22,31,45 [--sudden] [--steps 100] [--blocks rigid|deformable]
 //       the wall timed side by side with Shi's DDA (../shared/ntdda, issue #16): rows 22, 31, 45, 71,
 //       100, 141 give 495, 976, 2047, 5076, 10050, 19951 bricks; --sudden starts it as ntdda does,
@@ -90,7 +92,7 @@ int main(int argc, char** argv) {
   model::ContactTreatment treatment = model::ContactTreatment::Edge;
   bool rigid = false;
   bool allPairs = false;
-  bool refactoriseOnly = false;
+  bool refactoriseOnly = false, pairCache = true;
   bool sudden = false;
   int threads = 1;
   std::vector<int> sizes{10, 50, 100, 200, 500, 1000, 2000};
@@ -109,6 +111,8 @@ int main(int argc, char** argv) {
       allPairs = true;
     else if (!std::strcmp(argv[i], "--refactorise-only"))
       refactoriseOnly = true;
+    else if (!std::strcmp(argv[i], "--no-pair-cache"))
+      pairCache = false;
     else if (!std::strcmp(argv[i], "--blocks") && i + 1 < argc)
       rigid = !std::strcmp(argv[++i], "rigid");
     else if (!std::strcmp(argv[i], "--sizes") && i + 1 < argc)
@@ -120,14 +124,14 @@ int main(int argc, char** argv) {
     else if (!std::strcmp(argv[i], "--threads") && i + 1 < argc)
       threads = std::atoi(argv[++i]);
     else {
-      std::fprintf(stderr, "usage: ddaslope_bench [--steps S] [--sizes 10,100,...] [--anchor-rows 22,31,... [--sudden]] [--threads T] [--contact-treatment edge|vertex] [--blocks rigid|deformable] [--compare-search] [--refactorise-only]\n");
+      std::fprintf(stderr, "usage: ddaslope_bench [--steps S] [--sizes 10,100,...] [--anchor-rows 22,31,... [--sudden]] [--threads T] [--contact-treatment edge|vertex] [--blocks rigid|deformable] [--compare-search] [--refactorise-only] [--no-pair-cache]\n");
       return 2;
     }
   }
   std::printf("blocks,contacts,unknowns,equilibrium_ms,step_ms,broad_phase_ms,contacts_ms,assembly_ms,"
               "factorisation_ms,solve_ms,state_checks_ms,update_ms,iterations_per_step,factorisations_per_step,"
               "cg_iterations_per_step,cuts,resident_mb,peak_resident_mb,simulated_s,wall_s,factor_update_ms,"
-              "factor_columns_per_step,stick_slip_changes_per_step,open_close_changes_per_step\n");
+              "factor_columns_per_step,stick_slip_changes_per_step,open_close_changes_per_step,pairs_reused_share\n");
   std::vector<std::pair<int, double>> perStep;
   // The anchor wall by rows, or the bench's own wall by bricks.
   const std::vector<int>& runs = anchorRows.empty() ? sizes : anchorRows;
@@ -139,6 +143,7 @@ int main(int argc, char** argv) {
     scene.settings.rigidBlocks = rigid;
     solver::Simulation sim(scene);
     sim.setFactorFollowing(!refactoriseOnly);
+    sim.setPairCache(pairCache);
     sim.setThreads(threads);
     if (std::getenv("DDASLOPE_BENCH_VERBOSE")) sim.setLog([](const std::string& l) { std::fprintf(stderr, "%s\n", l.c_str()); });
     if (allPairs) compareContactSearch(scene, sim.searchDistance());
@@ -160,7 +165,7 @@ int main(int argc, char** argv) {
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     const solver::RunStatistics& a = sim.statistics();
     const auto d = [&](double solver::PhaseTimes::*f) { return ms(a.times.*f - before.times.*f, accepted); };
-    std::printf("%d,%zu,%d,%.1f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.2f,%.2f,%.2f,%d,%.1f,%.1f,%.4f,%.3f,%.3f,%.1f,%.1f,%.1f\n", n,
+    std::printf("%d,%zu,%d,%.1f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.2f,%.2f,%.2f,%d,%.1f,%.1f,%.4f,%.3f,%.3f,%.1f,%.1f,%.1f,%.3f\n", n,
                 sim.contacts().contacts().size(), (rigid ? 3 : 6) * n, 1e3 * eq, ms(wall, accepted),
                 d(&solver::PhaseTimes::broadPhase), d(&solver::PhaseTimes::contacts),
                 d(&solver::PhaseTimes::assembly), d(&solver::PhaseTimes::factorisation),
@@ -171,7 +176,9 @@ int main(int argc, char** argv) {
                 a.cuts - before.cuts, statusMb("VmRSS"), peakReset ? statusMb("VmHWM") : NAN, sim.time(), wall,
                 d(&solver::PhaseTimes::factorUpdate), double(a.factorColumns - before.factorColumns) / accepted,
                 double(a.stickSlipChanges - before.stickSlipChanges) / accepted,
-                double(a.openCloseChanges - before.openCloseChanges) / accepted);
+                double(a.openCloseChanges - before.openCloseChanges) / accepted,
+                double(a.pairsReused - before.pairsReused) /
+                    std::max(1.0, double(a.pairsReused - before.pairsReused + a.pairsSearched - before.pairsSearched)));
     std::fflush(stdout);
     // The final state in two numbers, to see that two settings give the same run.
     double sum = 0, fastest = 0;

@@ -1,12 +1,19 @@
 #include "ddaslope/contact/contact_set.hpp"
 
 #include <algorithm>
+#include <atomic>
 
 #include "ddaslope/core/block_order.hpp"
 
 namespace ddaslope::contact {
 
 static bool keyLess(const Contact& c, const ContactKey& k) { return c.key() < k; }
+
+/// A number no version has had.
+static long newVersion() {
+  static std::atomic<long> versions{0};
+  return ++versions;
+}
 
 bool ContactSet::contains(const ContactKey& key) const {
   // Search only the contacts of the key's vertex block: a few, not all of them.
@@ -24,8 +31,26 @@ void ContactSet::indexBlocks() {
   for (size_t b = 1; b < firstOfBlock_.size(); ++b) firstOfBlock_[b] += firstOfBlock_[b - 1];
 }
 
+bool ContactSet::refreshGeometry(const std::vector<ContactCandidate>& candidates) {
+  if (candidates.size() != lastKeys_.size()) return false;
+  for (size_t i = 0; i < candidates.size(); ++i)
+    if (!(candidates[i].key == lastKeys_[i])) return false;
+  bool samePairing = true;
+  for (size_t i = 0; i < candidates.size(); ++i) {
+    if (placement_[i] < 0) continue;
+    ContactCandidate& g = contacts_[static_cast<size_t>(placement_[i])].geometry;
+    samePairing = samePairing && g.pairedEdge == candidates[i].pairedEdge;
+    g = candidates[i];
+  }
+  if (!samePairing) pairingVersion_ = newVersion();
+  return true;
+}
+
 void ContactSet::update(std::vector<ContactCandidate> candidates, const std::vector<int>& jointOfCandidate,
                         const std::vector<char>& bondedIfNew) {
+  // A scene at rest finds the same contacts step after step: the merge below would give each its
+  // candidate's geometry and nothing else (the keys of this set are last update's, unchanged).
+  if (refreshGeometry(candidates)) return;
   // Keys sorted with their candidate's index next to them, not reached through it. Candidates
   // of equal key (one contact found from both blocks) are equal, so the order among them
   // does not matter.
@@ -41,11 +66,15 @@ void ContactSet::update(std::vector<ContactCandidate> candidates, const std::vec
                         [](const Entry& x, const Entry& y) { return x.key < y.key; });
   std::vector<Contact> next;
   next.reserve(candidates.size());
+  placement_.assign(candidates.size(), -1);
+  lastKeys_.resize(candidates.size());
+  for (size_t i = 0; i < candidates.size(); ++i) lastKeys_[i] = candidates[i].key;
   // Both lists are sorted by key: last step's contacts are matched by one forward walk.
   auto previous = contacts_.begin();
   for (const auto& [key, idx] : order) {
     const ContactCandidate& cand = candidates[idx];
     if (!next.empty() && next.back().key() == cand.key) continue;  // found from both sides
+    placement_[idx] = static_cast<int>(next.size());
     while (previous != contacts_.end() && previous->key() < cand.key) ++previous;
     if (previous != contacts_.end() && previous->key() == cand.key) {
       next.push_back(*previous);
@@ -78,6 +107,8 @@ void ContactSet::update(std::vector<ContactCandidate> candidates, const std::vec
   }
   contacts_ = std::move(next);
   indexBlocks();
+  keyVersion_ = newVersion();
+  pairingVersion_ = newVersion();
 }
 
 }  // namespace ddaslope::contact

@@ -24,6 +24,88 @@ struct Poly {
   bool convex(int k) const { return cross(at(k) - at(k - 1), at(k + 1) - at(k)) > 0; }
 };
 
+/// Records how far each decision of one search is from changing (SearchMargin); inert without
+/// a margin, so that a search that certifies nothing pays for nothing.
+class Certifier {
+ public:
+  Certifier(SearchMargin* m, const Poly& A, const Poly& B) : m_(m) {
+    if (!m_) return;
+    double shortest = INFINITY;
+    for (const Poly* P : {&A, &B})
+      for (int k = 0; k < P->n(); ++k) shortest = std::min(shortest, (P->at(k + 1) - P->at(k)).norm());
+    unitRate = 5 / shortest;
+    cornerRate = 4 * 0.01 * shortest;
+    hold(0.01 * shortest);
+  }
+  bool on() const { return m_ != nullptr; }
+  /// A decision that must not change, `slack` (m of vertex motion) from changing.
+  void hold(double slack) {
+    if (m_) m_->slack = std::min(m_->slack, slack);
+  }
+  /// known(k), recorded.
+  bool ask(const std::function<bool(const ContactKey&)>& known, const ContactKey& k) {
+    const bool answer = known(k);
+    if (m_) {
+      if (m_->askedCount < static_cast<int>(m_->asked.size()))
+        m_->asked[static_cast<size_t>(m_->askedCount++)] = {k, answer};
+      else
+        m_->tooManyQuestions = true;
+    }
+    return answer;
+  }
+  /// Rate of change of a unit edge direction per metre of vertex motion (SearchMargin).
+  double unitRate = 0;
+  /// The second-order part of a corner's cross product: 4δ² with δ at most its cap.
+  double cornerRate = 0;
+
+ private:
+  SearchMargin* m_;
+};
+
+/// "Skip if T1 || T2 || …", tested in order. A skip holds while its first true test stays true;
+/// going on (to a contact) holds while every test stays false. A slack is computed only when
+/// the search certifies.
+class SkipChain {
+ public:
+  explicit SkipChain(Certifier& c) : c_(c) {}
+  template <class Slack>
+  bool skipIf(bool test, const Slack& slack) {
+    if (!c_.on()) return test;
+    if (test) {
+      c_.hold(slack());
+      return true;
+    }
+    pending_ = std::min(pending_, slack());
+    return false;
+  }
+  /// A contact came out of the tests: each must stay false.
+  void passed() { c_.hold(pending_); }
+
+ private:
+  Certifier& c_;
+  double pending_ = INFINITY;
+};
+
+/// The slack of "every d ≥ 0" (each d changing at `rate`): the smallest d if all are, else the
+/// largest shortfall (any negative d that stays negative keeps the answer).
+double allNonNegativeSlack(std::initializer_list<double> d, double rate) {
+  double smallest = INFINITY, shortfall = 0;
+  for (double x : d) {
+    smallest = std::min(smallest, x);
+    if (x < 0) shortfall = std::max(shortfall, -x);
+  }
+  return (smallest >= 0 ? smallest : shortfall) / rate;
+}
+
+/// The slack of V.convex(k): its cross product over the rate 2(|e1| + |e2|) + 4δ².
+double convexSlack(const Poly& V, int k, const Certifier& cert) {
+  const Vec2 e1 = V.at(k) - V.at(k - 1), e2 = V.at(k + 1) - V.at(k);
+  return std::abs(cross(e1, e2)) / (2 * (e1.norm() + e2.norm()) + cert.cornerRate);
+}
+
+/// How fast the gap of vertex p on the edge from a changes: 2 + |p − a| · the unit rate.
+double gapRate(const Vec2& p, const Vec2& a, const Certifier& cert) { return 2 + (p - a).norm() * cert.unitRate; }
+
 /// How well the line of edge e (of poly E) separates the corner at vertex v of poly V:
 /// the smallest outward component of the corner's two unit edge directions.
 double clearance(const Poly& V, int v, const Poly& E, int e) {
@@ -70,6 +152,16 @@ struct Region {
     return std::max(a.x(), b.x()) >= box.lo.x() && std::min(a.x(), b.x()) <= box.hi.x() &&
            std::max(a.y(), b.y()) >= box.lo.y() && std::min(a.y(), b.y()) <= box.hi.y();
   }
+  // The region's bounds and the points each move by at most δ: rate 2.
+  double containsSlack(const Vec2& p) const {
+    return allNonNegativeSlack({p.x() - box.lo.x(), box.hi.x() - p.x(), p.y() - box.lo.y(), box.hi.y() - p.y()}, 2);
+  }
+  double meetsSlack(const Vec2& a, const Vec2& b) const {
+    return allNonNegativeSlack({std::max(a.x(), b.x()) - box.lo.x(), box.hi.x() - std::min(a.x(), b.x()),
+                                std::max(a.y(), b.y()) - box.lo.y(), box.hi.y() - std::min(a.y(), b.y())},
+                               2);
+  }
+  double nonEmptySlack() const { return allNonNegativeSlack({box.hi.x() - box.lo.x(), box.hi.y() - box.lo.y()}, 2); }
 };
 
 Region contactRegion(const std::vector<Vec2>& pa, const std::vector<Vec2>& pb, double d) {
@@ -79,23 +171,37 @@ Region contactRegion(const std::vector<Vec2>& pa, const std::vector<Vec2>& pb, d
 }
 
 void vertexOnEdges(const Poly& V, const Poly& E, const Region& region, const NarrowPhaseSettings& s,
-                   std::vector<ContactCandidate>& out) {
+                   Certifier& cert, std::vector<ContactCandidate>& out) {
   const double minClearance = -s.sinParallelTolerance;
+  const double sd = s.searchDistance;
   for (int v = 0; v < V.n(); ++v) {
     const Vec2& p = V.at(v);
-    if (!region.contains(p) || !V.convex(v)) continue;  // a reflex vertex cannot touch an edge from outside
+    SkipChain vertex(cert);
+    if (vertex.skipIf(!region.contains(p), [&] { return region.containsSlack(p); })) continue;
+    // A reflex vertex cannot touch an edge from outside.
+    if (vertex.skipIf(!V.convex(v), [&] { return convexSlack(V, v, cert); })) continue;
     for (int e = 0; e < E.n(); ++e) {
       const Vec2 a = E.at(e), b = E.at(e + 1);
-      if (!region.meets(a, b)) continue;
+      SkipChain edge(cert);
+      if (edge.skipIf(!region.meets(a, b), [&] { return region.meetsSlack(a, b); })) continue;
       double t;
-      if (geometry::distanceToSegment(p, a, b, &t) > s.searchDistance) continue;
+      const double distance = geometry::distanceToSegment(p, a, b, &t);
+      if (edge.skipIf(distance > sd, [&] { return std::abs(distance - sd) / 2; })) continue;
       // Near an end of the edge: the vertex-to-vertex rule decides.
-      if ((p - a).norm() < s.searchDistance || (p - b).norm() < s.searchDistance) continue;
-      if (clearance(V, v, E, e) < minClearance) continue;
+      const double toA = (p - a).norm();
+      if (edge.skipIf(toA < sd, [&] { return std::abs(toA - sd) / 2; })) continue;
+      const double toB = (p - b).norm();
+      if (edge.skipIf(toB < sd, [&] { return std::abs(toB - sd) / 2; })) continue;
+      const double clear = clearance(V, v, E, e);
+      if (edge.skipIf(clear < minClearance, [&] { return std::abs(clear - minClearance) / (2 * cert.unitRate); }))
+        continue;
       ContactCandidate c = makeCandidate(V, v, E, e, s.sinParallelTolerance);
       // Deeper than a step can carry a vertex (0.4 of the search distance): behind the edge, not
       // this edge's contact.
-      if (c.gap < -0.5 * s.searchDistance) continue;
+      if (edge.skipIf(c.gap < -0.5 * sd, [&] { return std::abs(c.gap + 0.5 * sd) / gapRate(p, a, cert); }))
+        continue;
+      edge.passed();
+      vertex.passed();
       out.push_back(c);
     }
   }
@@ -131,31 +237,63 @@ int nearestVertex(const Vec2& p, const Poly& B) {
   return nearest;
 }
 
+/// The slack of nearestVertex's choice: the margin of every other vertex's distance over the
+/// nearest one's (each distance changes at rate 2).
+double nearestSlack(const Vec2& p, const Poly& B, int nearest) {
+  const double dn = (p - B.at(nearest)).norm();
+  double slack = INFINITY;
+  for (int q = 0; q < B.n(); ++q)
+    if (q != nearest) slack = std::min(slack, std::abs((p - B.at(q)).norm() - dn) / 4);
+  return slack;
+}
+
 void vertexToVertex(const Poly& A, const Poly& B, const Region& region, const NarrowPhaseSettings& s,
-                    const std::function<bool(const ContactKey&)>& known, std::vector<ContactCandidate>& out) {
+                    const std::function<bool(const ContactKey&)>& known, Certifier& cert,
+                    std::vector<ContactCandidate>& out) {
   const double minClearance = -s.sinParallelTolerance;
+  const double sd = s.searchDistance;
   const auto candidate = [&](const Option& o) {
     return makeCandidate(*o.vertexPoly, o.v, *o.edgePoly, o.e, s.sinParallelTolerance);
   };
+  const auto keyOf = [](const Option& o) { return ContactKey{o.vertexPoly->block, o.v, o.edgePoly->block, o.e}; };
+  const auto gapRateOf = [&](const Option& o) { return gapRate(o.vertexPoly->at(o.v), o.edgePoly->at(o.e), cert); };
+  // Rate of a clearance: two unit directions (the corner's edge and the entrance's normal).
+  const double clearanceRate = 2 * cert.unitRate;
   for (int p = 0; p < A.n(); ++p) {
-    if (!region.contains(A.at(p))) continue;
+    SkipChain corner(cert);
+    if (corner.skipIf(!region.contains(A.at(p)), [&] { return region.containsSlack(A.at(p)); })) continue;
     // Only the nearest vertex of B can be the corner P touches: with blocks not much larger than
     // the search distance, farther corners are within reach too and would give false contacts.
+    // (Skipped, the test holds on the distance alone, whichever vertex is nearest.)
     const int q = nearestVertex(A.at(p), B);
-    if ((A.at(p) - B.at(q)).norm() >= s.searchDistance) continue;
+    const double apart = (A.at(p) - B.at(q)).norm();
+    if (corner.skipIf(apart >= sd, [&] { return std::abs(apart - sd) / 2; })) continue;
+    // From here on every decision is held: the corner's nearest vertex, its convexity, the
+    // entrances allowed, the choice among them.
+    if (cert.on()) {
+      corner.passed();
+      cert.hold(nearestSlack(A.at(p), B, q));
+      cert.hold(convexSlack(A, p, cert));
+      cert.hold(convexSlack(B, q, cert));
+    }
     const bool pConvex = A.convex(p), qConvex = B.convex(q);
     if (!pConvex && !qConvex) continue;
     Options options;
+    const auto add = [&](const Option& o) {
+      if (cert.on()) cert.hold(std::abs(o.clearance - minClearance) / clearanceRate);
+      options.add(o, minClearance);
+    };
     if (pConvex)
-      for (int e : {q - 1, q}) options.add({&A, p, &B, B.wrap(e), clearance(A, p, B, B.wrap(e))}, minClearance);
+      for (int e : {q - 1, q}) add({&A, p, &B, B.wrap(e), clearance(A, p, B, B.wrap(e))});
     if (qConvex)
-      for (int e : {p - 1, p}) options.add({&B, q, &A, A.wrap(e), clearance(B, q, A, A.wrap(e))}, minClearance);
+      for (int e : {p - 1, p}) add({&B, q, &A, A.wrap(e), clearance(B, q, A, A.wrap(e))});
     if (options.count == 0) continue;
     if (!qConvex || !pConvex) {
       // A convex corner in a reflex corner touches both of its edges.
       for (const Option& o : options) {
         const ContactCandidate c = candidate(o);
-        if (c.gap >= -0.5 * s.searchDistance) out.push_back(c);
+        if (cert.on()) cert.hold(std::abs(c.gap + 0.5 * sd) / gapRateOf(o));
+        if (c.gap >= -0.5 * sd) out.push_back(c);
       }
       continue;
     }
@@ -164,13 +302,22 @@ void vertexToVertex(const Poly& A, const Poly& B, const Region& region, const Na
     const Option* best = options.begin();
     for (const Option& o : options)
       if (o.clearance > best->clearance) best = &o;
+    const Option* tied = nullptr;
     for (const Option& o : options) {
-      const ContactKey k{o.vertexPoly->block, o.v, o.edgePoly->block, o.e};
-      if (o.clearance >= best->clearance - 1e-3 && known(k)) {
-        best = &o;
+      // A search that certifies asks about every entrance, so that the answers it records cover
+      // whichever entrance a slightly moved corner would ask about.
+      if (cert.on()) {
+        cert.hold(std::abs(o.clearance - (best->clearance - 1e-3)) / (2 * clearanceRate));
+        if (cert.ask(known, keyOf(o)) && o.clearance >= best->clearance - 1e-3 && !tied) tied = &o;
+      } else if (o.clearance >= best->clearance - 1e-3 && known(keyOf(o))) {
+        tied = &o;
         break;
       }
     }
+    if (cert.on() && !tied)  // the best entrance itself decides
+      for (const Option& o : options)
+        if (&o != best) cert.hold(std::abs(o.clearance - best->clearance) / (2 * clearanceRate));
+    if (tied) best = tied;
     // A contact the corners start, or switch to, takes the entrance the corner has penetrated
     // least (Shi: of the two entrances, the shortest distance), unless the one chosen above is
     // as open up to a tie. Another entrance may measure the vertex against the extension of an
@@ -179,16 +326,23 @@ void vertexToVertex(const Poly& A, const Poly& B, const Region& region, const Na
     // run-out: 0.47 m, 4.4e10 J/m in one step). A contact kept from the last step goes on
     // with the spring it has.
     ContactCandidate chosen = candidate(*best);
-    if (!known(chosen.key)) {
+    const Option* chosenOption = best;
+    if (!cert.ask(known, chosen.key)) {
       ContactCandidate open = chosen;
+      const Option* openOption = best;
       for (const Option& o : options) {
         // The chosen entrance's candidate is the one just made (makeCandidate is pure).
         const ContactCandidate c = &o == best ? chosen : candidate(o);
-        if (c.gap > open.gap) open = c;
+        if (cert.on()) cert.hold(std::abs(c.gap - open.gap) / (gapRateOf(o) + gapRateOf(*openOption)));
+        if (c.gap > open.gap) open = c, openOption = &o;
       }
-      if (open.gap > chosen.gap + kGapTieFraction * s.searchDistance) chosen = open;
+      const double tie = kGapTieFraction * sd;
+      if (cert.on())
+        cert.hold(std::abs(open.gap - (chosen.gap + tie)) / (gapRateOf(*openOption) + gapRateOf(*best)));
+      if (open.gap > chosen.gap + tie) chosen = open, chosenOption = openOption;
     }
-    if (chosen.gap >= -0.5 * s.searchDistance) out.push_back(chosen);
+    if (cert.on()) cert.hold(std::abs(chosen.gap + 0.5 * sd) / gapRateOf(*chosenOption));
+    if (chosen.gap >= -0.5 * sd) out.push_back(chosen);
   }
 }
 
@@ -196,13 +350,21 @@ void vertexToVertex(const Poly& A, const Poly& B, const Region& region, const Na
 
 void findContacts(int a, const std::vector<Vec2>& pa, int b, const std::vector<Vec2>& pb,
                   const NarrowPhaseSettings& s, const std::function<bool(const ContactKey&)>& known,
-                  std::vector<ContactCandidate>& out) {
+                  std::vector<ContactCandidate>& out, SearchMargin* margin) {
   const Poly A{a, pa}, B{b, pb};
+  Certifier cert(margin, A, B);
   const Region region = contactRegion(pa, pb, s.searchDistance);
-  if (region.box.lo.x() > region.box.hi.x() || region.box.lo.y() > region.box.hi.y()) return;
-  vertexOnEdges(A, B, region, s, out);
-  vertexOnEdges(B, A, region, s, out);
-  vertexToVertex(A, B, region, s, known, out);
+  const bool empty = region.box.lo.x() > region.box.hi.x() || region.box.lo.y() > region.box.hi.y();
+  if (cert.on()) cert.hold(region.nonEmptySlack());
+  if (empty) return;
+  vertexOnEdges(A, B, region, s, cert, out);
+  vertexOnEdges(B, A, region, s, cert, out);
+  vertexToVertex(A, B, region, s, known, cert, out);
+}
+
+ContactCandidate contactCandidate(int a, const std::vector<Vec2>& pa, int v, int b, const std::vector<Vec2>& pb,
+                                  int e, const NarrowPhaseSettings& s) {
+  return makeCandidate(Poly{a, pa}, v, Poly{b, pb}, e, s.sinParallelTolerance);
 }
 
 }  // namespace ddaslope::contact

@@ -176,14 +176,29 @@ void Simulation::detectContacts(bool initial) {
   const contact::NarrowPhaseSettings nps{searchDistance_,
                                          degToRad(scene_.settings.edgeParallelToleranceDeg)};
   const auto known = [this](const contact::ContactKey& k) { return contacts_.contains(k); };
+  // The pair cache reuses the decisions of pairs whose blocks have barely moved; the candidates
+  // are those a search of every pair gives, bit for bit.
+  contact::PairCache::Polygons polygons;
+  if (pairCacheOn_) {
+    polygons.reserve(scene_.blocks.size());
+    for (const model::Block& b : scene_.blocks) polygons.push_back(&b.vertices);
+    pairCache_.prepare(polygons, pairs, nps, contacts_.keyVersion());
+    stats_.pairsReused += pairCache_.reused();
+    stats_.pairsSearched += pairCache_.searched();
+  } else {
+    stats_.pairsSearched += static_cast<long>(pairs.size());
+  }
   // Each thread searches a contiguous run of the pairs; joined in order, the candidates are the
   // serial loop's.
   std::vector<std::vector<contact::ContactCandidate>> found(static_cast<size_t>(threads_));
   const int chunks = parallelChunks(static_cast<int>(pairs.size()), threads_, [&](int begin, int end, int chunk) {
     for (int k = begin; k < end; ++k) {
       const contact::BlockPair& p = pairs[static_cast<size_t>(k)];
-      contact::findContacts(p.a, scene_.blocks[p.a].vertices, p.b, scene_.blocks[p.b].vertices, nps, known,
-                            found[static_cast<size_t>(chunk)]);
+      if (pairCacheOn_)
+        pairCache_.find(k, polygons, nps, known, found[static_cast<size_t>(chunk)]);
+      else
+        contact::findContacts(p.a, scene_.blocks[p.a].vertices, p.b, scene_.blocks[p.b].vertices, nps, known,
+                              found[static_cast<size_t>(chunk)]);
     }
   });
   std::vector<contact::ContactCandidate> candidates = std::move(found[0]);
@@ -197,6 +212,7 @@ void Simulation::detectContacts(bool initial) {
     bondedIfNew.push_back(scene_.joints[joints.back()].bond == model::BondPolicy::Always);
   }
   contacts_.update(std::move(candidates), joints, bondedIfNew);
+  if (pairCacheOn_) pairCache_.finish(contacts_.keyVersion());
 
   if (initial) {
     // Contacts touching at the start are closed and intact (bonded); the spring's zero is at
@@ -210,7 +226,11 @@ void Simulation::detectContacts(bool initial) {
       c.normalOffset = c.geometry.gap >= -tol ? c.geometry.gap : 0.0;
     }
   }
-  pairEdgeHalves();
+  // The halves pair up as they did while the keys and their paired edges stand.
+  if (contacts_.pairingVersion() != partnerVersion_) {
+    pairEdgeHalves();
+    partnerVersion_ = contacts_.pairingVersion();
+  }
   const auto& cs = contacts_.contacts();
   kinematics_.resize(cs.size());
   parallelFor(static_cast<int>(cs.size()), threads_, [&](int q) {

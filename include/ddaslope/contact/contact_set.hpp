@@ -15,15 +15,28 @@ class ContactSet {
   void update(std::vector<ContactCandidate> candidates, const std::vector<int>& jointOfCandidate,
               const std::vector<char>& bondedIfNew);
   bool contains(const ContactKey& key) const;
+  /// Identify the set's keys, and its keys with each contact's paired edge (the edge-to-edge
+  /// pairing): an update() that changes them gives a number no set has had before. A copy keeps
+  /// them, so a set restored from a copy is told apart from the latest one.
+  long keyVersion() const { return keyVersion_; }
+  long pairingVersion() const { return pairingVersion_; }
   /// Callers may change contacts' state, never their keys (the lookup index relies on them).
   std::vector<Contact>& contacts() { return contacts_; }
   const std::vector<Contact>& contacts() const { return contacts_; }
 
  private:
   void indexBlocks();
+  /// The same candidate keys in the same order as the last update: each candidate's geometry
+  /// goes to the contact it went to then (no sort, no merge); false if the keys differ.
+  bool refreshGeometry(const std::vector<ContactCandidate>& candidates);
 
   std::vector<Contact> contacts_;  ///< sorted by key
   std::vector<int> firstOfBlock_;  ///< contacts_[firstOfBlock_[b], firstOfBlock_[b + 1]): vertex block b
+  long keyVersion_ = 0, pairingVersion_ = 0;
+  /// The last update's candidate keys, in their order, and where each went in contacts_ (−1: a
+  /// duplicate, found from both blocks). They travel with contacts_ when the set is copied.
+  std::vector<ContactKey> lastKeys_;
+  std::vector<int> placement_;
 };
 
 }  // namespace ddaslope::contact

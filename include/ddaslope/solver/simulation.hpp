@@ -17,6 +17,7 @@
 #include "ddaslope/contact/contact_set.hpp"
 #include "ddaslope/model/scene.hpp"
 #include "ddaslope/solver/energy.hpp"
+#include "ddaslope/contact/pair_cache.hpp"
 #include "ddaslope/solver/factor_springs.hpp"
 #include "ddaslope/solver/linear_solver.hpp"
 #include "ddaslope/solver/time_step.hpp"
@@ -60,6 +61,9 @@ struct RunStatistics {
   /// between locked and sliding, and between open and closed (locked or sliding).
   long stickSlipChanges = 0;
   long openCloseChanges = 0;
+  /// Block pairs whose contacts the narrow phase reused from an earlier search, and pairs it
+  /// searched (contact/pair_cache.hpp), summed over the detections.
+  long pairsReused = 0, pairsSearched = 0;
   int maxContacts = 0;
   double maxPenetration = 0;       ///< largest penetration of a closed contact (m)
   PhaseTimes times;
@@ -126,6 +130,9 @@ class Simulation {
   /// Off: every contact state change of a large system refactorises, as before the factor
   /// followed them by update/downdate (for comparisons: the bench, the tests).
   void setFactorFollowing(bool on) { factorFollowing_ = on; }
+  /// Off: every block pair's contacts are searched at every detection, as before the pair cache
+  /// (contact/pair_cache.hpp) reused them (for comparisons: the bench, the tests).
+  void setPairCache(bool on) { pairCacheOn_ = on; }
   /// Threads this run's contact search, linearisation and contact judgement may use (1 by
   /// default: a search runs its forward runs side by side instead). The result does not depend
   /// on it (core/parallel.hpp).
@@ -225,6 +232,7 @@ class Simulation {
   contact::ContactSet contacts_;
   std::vector<assembly::ContactKinematics> kinematics_;
   std::vector<int> partner_;  ///< other half of the same edge-to-edge contact, or −1
+  long partnerVersion_ = -1;  ///< the contacts' pairingVersion() partner_ was made for
   std::vector<int> sweepOrder_;  ///< the broad phase's order of the blocks, kept between steps
   std::vector<Vec2> heldMonitors_;  ///< see monitorsAfterHeldEquilibrium()
   assembly::BlockSparseMatrix matrix_;
@@ -232,6 +240,8 @@ class Simulation {
   LinearSolver linearSolver_;
   FactorSprings factorSprings_;  ///< the contact springs the factor holds (large systems only)
   bool factorFollowing_ = true;
+  contact::PairCache pairCache_;
+  bool pairCacheOn_ = true;
   int threads_ = 1;
   StepSizeController stepSize_;
   std::vector<Eigen::Matrix3d> elasticity_;

@@ -1,0 +1,218 @@
+// The reuse of narrow-phase decisions between steps (contact/pair_cache.hpp): a search certifies
+// how far the vertices may move before any of its decisions could change, and the runs with and
+// without the reuse must be the same bit for bit.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <set>
+
+#include "ddaslope/contact/contact_set.hpp"
+#include "ddaslope/contact/narrow_phase.hpp"
+#include "ddaslope/io/case_reader.hpp"
+#include "ddaslope/model/wall_scene.hpp"
+#include "ddaslope/solver/simulation.hpp"
+
+using namespace ddaslope;
+
+namespace {
+
+std::vector<Vec2> rectangle(Vec2 lo, double w, double h, double turn) {
+  const Vec2 c = lo + Vec2(w / 2, h / 2);
+  std::vector<Vec2> v = {lo, lo + Vec2(w, 0), lo + Vec2(w, h), lo + Vec2(0, h)};
+  const double cs = std::cos(turn), sn = std::sin(turn);
+  for (Vec2& p : v) {
+    const Vec2 d = p - c;
+    p = c + Vec2(cs * d.x() - sn * d.y(), sn * d.x() + cs * d.y());
+  }
+  return v;
+}
+
+std::vector<contact::ContactKey> keys(const std::vector<contact::ContactCandidate>& cs) {
+  std::vector<contact::ContactKey> k;
+  for (const auto& c : cs) k.push_back(c.key);
+  return k;
+}
+
+}  // namespace
+
+// The certificate's claim (narrow_phase.hpp, SearchMargin), tested where its decisions are close
+// calls: pairs of blocks as a wall and a slope put them (edge on edge with an offset, corner on
+// corner, side by side), turned and shifted at random by up to a few search distances, and a
+// slope's triangle and hexagon corners. Every vertex of both blocks is then moved at random by less
+// than the certified slack, in the worst direction of the Lipschitz bounds as often as chance gives
+// it, and a new search, asked the same questions, must return the same contacts in the same order.
+// Half the searches must certify something (the test would pass vacuously if the slack were always
+// 0), moving by three times the slack must change a decision somewhere (the bounds are close),
+// and a brick resting on another must certify at least 1e-5 m: the reuse would be worthless below
+// what a slope at rest creeps in a step.
+TEST(PairCache, CertifiedDecisionsHoldWithinTheSlack) {
+  std::mt19937 rng(20261124);
+  std::uniform_real_distribution<double> unit(0, 1), sym(-1, 1);
+  const contact::NarrowPhaseSettings s{0.0625, 1.0 * M_PI / 180};
+  int certified = 0, trials = 0, moves = 0, changedBeyond = 0;
+  for (int t = 0; t < 3000; ++t) {
+    const int shape = t % 4;
+    std::vector<Vec2> a, b;
+    const double jitter = s.searchDistance * (t % 3 == 0 ? 2 * sym(rng) : 1e-3 * sym(rng));
+    const double turn = (t % 5 == 0 ? 0.05 : 1e-4) * sym(rng);
+    if (shape == 0) {  // running bond: a brick on two, offset by half
+      a = rectangle({0, 0}, 1, 0.5, 0);
+      b = rectangle({0.5 + jitter, 0.5 + 0.3 * jitter}, 1, 0.5, turn);
+    } else if (shape == 1) {  // corner on corner: stacked bricks
+      a = rectangle({0, 0}, 1, 0.5, 0);
+      b = rectangle({jitter, 0.5 + 0.2 * jitter * sym(rng)}, 1, 0.5, turn);
+    } else if (shape == 2) {  // side by side
+      a = rectangle({0, 0}, 1, 0.5, 0);
+      b = rectangle({1 + 0.3 * jitter, jitter}, 1, 0.5, turn);
+    } else {  // a triangle's corner near a hexagon's corner and edge
+      for (int k = 0; k < 6; ++k) a.push_back(Vec2(std::cos(k * M_PI / 3), std::sin(k * M_PI / 3)));
+      const Vec2 tip = a[1] + Vec2(jitter, 0.5 * jitter * sym(rng));
+      b = {tip, tip + Vec2(0.8, 0.9 + turn), tip + Vec2(-0.3, 1.0)};
+    }
+    // Last step's contacts: the keys of a first search, so that the ties it keeps are exercised.
+    std::vector<contact::ContactCandidate> first;
+    const auto none = [](const contact::ContactKey &) { return false; };
+    contact::findContacts(0, a, 1, b, s, none, first);
+    std::set<contact::ContactKey> last;
+    for (const auto& c : first) last.insert(c.key);
+    const auto known = [&](const contact::ContactKey& k) { return last.count(k) > 0; };
+    std::vector<contact::ContactCandidate> found;
+    contact::SearchMargin margin;
+    contact::findContacts(0, a, 1, b, s, known, found, &margin);
+    ++trials;
+    if (shape == 0 && std::abs(jitter) < 1e-3 * s.searchDistance && std::abs(turn) < 1e-3) {
+      EXPECT_GE(margin.slack, 1e-5) << "a brick at rest on two others, trial " << t;
+    }
+    if (!(margin.slack > 0) || margin.tooManyQuestions) continue;
+    ++certified;
+    for (int m = 0; m < 20; ++m) {
+      std::vector<Vec2> a2 = a, b2 = b;
+      for (auto* poly : {&a2, &b2})
+        for (Vec2& p : *poly) {
+          const double angle = 2 * M_PI * unit(rng);
+          // Up to the whole slack (the cache uses half); often right at it.
+          const double r = margin.slack * (m % 2 == 0 ? 0.999 : unit(rng));
+          p += r * Vec2(std::cos(angle), std::sin(angle));
+        }
+      std::vector<contact::ContactCandidate> moved;
+      contact::findContacts(0, a2, 1, b2, s, known, moved);
+      ASSERT_EQ(keys(moved), keys(found)) << "trial " << t << ", move " << m << ", slack " << margin.slack;
+      ++moves;
+    }
+    // The bounds are close: three times the slack, in some trials, changes a decision.
+    std::vector<Vec2> a3 = a, b3 = b;
+    for (auto* poly : {&a3, &b3})
+      for (Vec2& p : *poly) {
+        const double angle = 2 * M_PI * unit(rng);
+        p += 3 * margin.slack * Vec2(std::cos(angle), std::sin(angle));
+      }
+    std::vector<contact::ContactCandidate> far;
+    contact::findContacts(0, a3, 1, b3, s, known, far);
+    changedBeyond += keys(far) != keys(found);
+  }
+  EXPECT_GE(certified, trials / 2);
+  EXPECT_GT(moves, 0);
+  EXPECT_GT(changedBeyond, 0) << "no decision changed at three times the slack: the bounds are loose";
+}
+
+namespace {
+
+/// Vertices, velocities and contact states and forces after a run: every number that a change of
+/// the contacts found would move.
+std::vector<double> stateAfter(solver::Simulation& sim) {
+  std::vector<double> state;
+  for (const auto& b : sim.scene().blocks) {
+    for (const Vec2& v : b.vertices) state.insert(state.end(), {v.x(), v.y()});
+    for (int i = 0; i < 6; ++i) state.push_back(b.velocity[i]);
+  }
+  for (const auto& c : sim.contacts().contacts())
+    state.insert(state.end(), {double(c.state), c.normalForce, c.shearForce, double(c.key().vertex)});
+  return state;
+}
+
+void expectSameRun(const std::vector<double>& with, const std::vector<double>& without) {
+  ASSERT_EQ(with.size(), without.size());
+  size_t differing = 0;
+  for (size_t i = 0; i < with.size(); ++i) differing += with[i] != without[i];
+  EXPECT_EQ(differing, 0u) << "values that differ with and without the pair cache";
+}
+
+}  // namespace
+
+// The reuse changes nothing but the time: runs with and without it are the same bit for bit. A wall
+// at rest (most pairs reused), the same wall started with full gravity at step 1 (every block
+// moving: pairs searched, certificates running out and anchors renewed), and the toppling slope,
+// whose columns rotate corner over corner through the vertex-to-vertex rules and its ties.
+TEST(PairCache, RunsAreTheSameWithAndWithoutIt) {
+  for (const bool sudden : {false, true}) {
+    SCOPED_TRACE(sudden ? "sudden gravity" : "wall at rest");
+    std::vector<std::vector<double>> finals;
+    std::vector<long> reused;
+    for (const bool cache : {true, false}) {
+      solver::Simulation sim(model::makeAnchorWall(10, sudden));
+      sim.setPairCache(cache);
+      sim.bringToEquilibrium();
+      for (int k = 0; k < 30; ++k) sim.advance();
+      finals.push_back(stateAfter(sim));
+      reused.push_back(sim.statistics().pairsReused);
+    }
+    expectSameRun(finals[0], finals[1]);
+    EXPECT_EQ(reused[1], 0);
+    if (!sudden) {
+      EXPECT_GT(reused[0], 0) << "a wall at rest reuses its pairs";
+    }
+  }
+  std::vector<std::vector<double>> finals;
+  for (const bool cache : {true, false}) {
+    solver::Simulation sim(io::readCase(DDASLOPE_SOURCE_DIR "/cases/toppling_slope.json"));
+    sim.setPairCache(cache);
+    sim.bringToEquilibrium();
+    for (int k = 0; k < 300; ++k) sim.advance();
+    finals.push_back(stateAfter(sim));
+  }
+  expectSameRun(finals[0], finals[1]);
+}
+
+// The contact set's update when a scene at rest finds the same contacts again (the keys in the same
+// order): each contact takes its candidate's geometry and keeps its state, as the merge would give;
+// the key version stands while the keys do, the pairing version moves when a paired edge does, and
+// a set restored from a copy keeps the versions it had (so that the pair cache and the edge-to-edge
+// pairing see it is not the latest).
+TEST(ContactSet, SameContactsRefreshTheirGeometryOnly) {
+  const auto candidate = [](contact::ContactKey k, double gap, int paired) {
+    contact::ContactCandidate c;
+    c.key = k, c.gap = gap, c.pairedEdge = paired;
+    return c;
+  };
+  const contact::ContactKey k1{0, 1, 1, 2}, k2{1, 3, 0, 0};
+  contact::ContactSet set;
+  // k2 found from both blocks: one contact.
+  set.update({candidate(k2, 0.1, 1), candidate(k1, 0.2, -1), candidate(k2, 0.1, 1)}, {0, 0, 0}, {0, 0, 0});
+  ASSERT_EQ(set.contacts().size(), 2u);
+  set.contacts()[0].state = contact::ContactState::Locked;  // k1 (sorted first)
+  const long keys = set.keyVersion(), pairing = set.pairingVersion();
+  const contact::ContactSet saved = set;
+
+  set.update({candidate(k2, 0.3, 1), candidate(k1, 0.4, -1), candidate(k2, 0.3, 1)}, {0, 0, 0}, {0, 0, 0});
+  ASSERT_EQ(set.contacts().size(), 2u);
+  EXPECT_EQ(set.contacts()[0].key(), k1);
+  EXPECT_EQ(set.contacts()[0].geometry.gap, 0.4);
+  EXPECT_EQ(set.contacts()[0].state, contact::ContactState::Locked);
+  EXPECT_EQ(set.contacts()[1].geometry.gap, 0.3);
+  EXPECT_EQ(set.keyVersion(), keys);
+  EXPECT_EQ(set.pairingVersion(), pairing);
+
+  set.update({candidate(k2, 0.3, -1), candidate(k1, 0.4, -1), candidate(k2, 0.3, -1)}, {0, 0, 0}, {0, 0, 0});
+  EXPECT_EQ(set.keyVersion(), keys);
+  EXPECT_NE(set.pairingVersion(), pairing) << "k2's paired edge changed";
+
+  set.update({candidate(k1, 0.4, -1)}, {0}, {0});
+  ASSERT_EQ(set.contacts().size(), 1u);
+  EXPECT_EQ(set.contacts()[0].state, contact::ContactState::Locked);
+  EXPECT_NE(set.keyVersion(), keys);
+  set = saved;
+  EXPECT_EQ(set.keyVersion(), keys);
+  EXPECT_EQ(set.pairingVersion(), pairing);
+  EXPECT_EQ(set.contacts().size(), 2u);
+}
