@@ -114,6 +114,18 @@ TEST(PairCache, CertifiedDecisionsHoldWithinTheSlack) {
   EXPECT_GE(certified, trials / 2);
   EXPECT_GT(moves, 0);
   EXPECT_GT(changedBeyond, 0) << "no decision changed at three times the slack: the bounds are loose";
+
+  // A block with a vertex that is not finite certifies nothing, and neither do blocks far from the
+  // origin whose decisions are within the round-off of their coordinates (64 ulps of 1e12 m).
+  const auto none = [](const contact::ContactKey&) { return false; };
+  for (const Vec2& shift : {Vec2(0, 0), Vec2(1e12, 0)}) {
+    std::vector<Vec2> a = rectangle(shift, 1, 0.5, 0), b = rectangle(shift + Vec2(0.5, 0.5), 1, 0.5, 0);
+    if (shift.x() == 0) b[2].x() = NAN;
+    std::vector<contact::ContactCandidate> out;
+    contact::SearchMargin margin;
+    contact::findContacts(0, a, 1, b, s, none, out, &margin);
+    EXPECT_EQ(margin.slack, 0) << "shift " << shift.x();
+  }
 }
 
 namespace {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 
 #include "ddaslope/geometry/polygon.hpp"
 
@@ -30,12 +31,24 @@ class Certifier {
  public:
   Certifier(SearchMargin* m, const Poly& A, const Poly& B) : m_(m) {
     if (!m_) return;
-    double shortest = INFINITY;
+    double shortest = INFINITY, extent = 0;
+    bool finite = true;
     for (const Poly* P : {&A, &B})
-      for (int k = 0; k < P->n(); ++k) shortest = std::min(shortest, (P->at(k + 1) - P->at(k)).norm());
+      for (int k = 0; k < P->n(); ++k) {
+        shortest = std::min(shortest, (P->at(k + 1) - P->at(k)).norm());
+        extent = std::max(extent, P->at(k).cwiseAbs().maxCoeff());
+        finite = finite && std::isfinite(P->at(k).x()) && std::isfinite(P->at(k).y());
+      }
     unitRate = 5 / shortest;
     cornerRate = 4 * 0.01 * shortest;
-    hold(0.01 * shortest);
+    // Every quantity is computed from coordinates as large as `extent`, so it is known only to a
+    // few units of round-off of them: a decision closer than that to its threshold is a tie.
+    noise_ = 64 * std::numeric_limits<double>::epsilon() * extent;
+    hold(finite && shortest > 0 ? 0.01 * shortest : 0);
+  }
+  /// The slack the search certifies: none if a decision was within round-off of changing.
+  ~Certifier() {
+    if (m_ && !(m_->slack > noise_)) m_->slack = 0;
   }
   bool on() const { return m_ != nullptr; }
   /// A decision that must not change, `slack` (m of vertex motion) from changing.
@@ -60,6 +73,7 @@ class Certifier {
 
  private:
   SearchMargin* m_;
+  double noise_ = 0;
 };
 
 /// "Skip if T1 || T2 || …", tested in order. A skip holds while its first true test stays true;

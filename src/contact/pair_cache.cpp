@@ -1,6 +1,7 @@
 #include "ddaslope/contact/pair_cache.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 namespace ddaslope::contact {
 
@@ -48,8 +49,11 @@ void PairCache::prepare(const Polygons& blocks, const std::vector<BlockPair>& pa
       continue;
     }
     double drift = 0;
-    for (size_t k = 0; k < v.size(); ++k) drift = std::max(drift, (v[k] - an.vertices[k]).norm());
-    an.drift = drift == drift ? drift : INFINITY;  // a vertex that is not finite: never reused
+    for (size_t k = 0; k < v.size(); ++k) {
+      const double d = (v[k] - an.vertices[k]).norm();
+      drift = std::isfinite(d) ? std::max(drift, d) : INFINITY;  // a vertex not finite: never reused
+    }
+    an.drift = drift;
   }
   // Match this detection's pairs with the last one's (both sorted). A pair whose certificate has
   // run out anchors its blocks anew: searched on the new anchors, its next certificate starts from
