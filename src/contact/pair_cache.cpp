@@ -14,12 +14,6 @@ bool pairLess(const BlockPair& x, const BlockPair& y) { return x.a != y.a ? x.a 
 
 }  // namespace
 
-void PairCache::clear() {
-  entries_.clear();
-  anchors_.clear();
-  expectedVersion_ = -1;
-}
-
 bool PairCache::holds(const Entry& e) const {
   // Every vertex has moved from where the search saw it by at most its drift then plus its drift
   // now (both from the same anchor). Half the slack: a margin for the round-off of the drifts and

@@ -35,8 +35,6 @@ class PairCache {
             std::vector<ContactCandidate>& out);
   /// Ends the detection: `knownVersion` identifies the keys it produced.
   void finish(long knownVersion);
-  /// Forgets every pair (the next detection searches all).
-  void clear();
   /// Pairs reused and searched in the last detection.
   long reused() const { return reused_; }
   long searched() const { return searched_; }
