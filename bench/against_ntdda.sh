@@ -53,7 +53,7 @@ for r in $rows; do
     step_ms "$r" --blocks rigid >> "$work/rig"
   done
   n=$(min < "$work/nt") d=$(min < "$work/def") g=$(min < "$work/rig")
-  line=$("$bench" --anchor-rows "$r" --steps 5 2> /dev/null | grep -E '^[0-9]+,')
+  line=$("$bench" --anchor-rows "$r" --steps 20 2> /dev/null | grep -E '^[0-9]+,')
   awk -v r="$r" -v b="$(echo "$line" | cut -d, -f1)" -v n="$n" -v d="$d" -v g="$g" -v p="$(echo "$line" | cut -d, -f18)" \
     'BEGIN { printf "%s,%s,%.1f,%.2f,%.1f,%.2f,%.1f,%s\n", r, b, n, d, n / d, g, n / g, p }'
 done

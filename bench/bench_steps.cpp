@@ -4,6 +4,11 @@
 //                        [--compare-search]  (also time the narrow phase on every pair, on stderr)
 //                        [--no-pair-cache]  (search every block pair at every step, as before the
 //                        pair cache: contact/pair_cache.hpp; the run is the same, bit for bit)
+//                        [--double-factor-only]  (large systems solve with the double-precision
+//                        factor only, as before its single-precision panels: solver/panel_factor.hpp)
+//                        [--probe-solve-cache]  (time each timed step's first substitution, then
+//                        the same substitution repeated at once with the factor in cache; on stderr;
+//                        the repeats lengthen the steps, so time steps without it)
 //   build/ddaslope_bench --anchor-rows 22,31,45 [--sudden] [--steps 100] [--blocks rigid|deformable]
 //       the wall timed side by side with Shi's DDA (../shared/ntdda, issue #16): rows 22, 31, 45, 71,
 //       100, 141 give 495, 976, 2047, 5076, 10050, 19951 bricks; --sudden starts it as ntdda does,
@@ -92,7 +97,7 @@ int main(int argc, char** argv) {
   model::ContactTreatment treatment = model::ContactTreatment::Edge;
   bool rigid = false;
   bool allPairs = false;
-  bool refactoriseOnly = false, pairCache = true;
+  bool refactoriseOnly = false, pairCache = true, probeSolveCache = false, panels = true;
   bool sudden = false;
   int threads = 1;
   std::vector<int> sizes{10, 50, 100, 200, 500, 1000, 2000};
@@ -111,6 +116,10 @@ int main(int argc, char** argv) {
       allPairs = true;
     else if (!std::strcmp(argv[i], "--refactorise-only"))
       refactoriseOnly = true;
+    else if (!std::strcmp(argv[i], "--probe-solve-cache"))
+      probeSolveCache = true;
+    else if (!std::strcmp(argv[i], "--double-factor-only"))
+      panels = false;
     else if (!std::strcmp(argv[i], "--no-pair-cache"))
       pairCache = false;
     else if (!std::strcmp(argv[i], "--blocks") && i + 1 < argc)
@@ -124,7 +133,7 @@ int main(int argc, char** argv) {
     else if (!std::strcmp(argv[i], "--threads") && i + 1 < argc)
       threads = std::atoi(argv[++i]);
     else {
-      std::fprintf(stderr, "usage: ddaslope_bench [--steps S] [--sizes 10,100,...] [--anchor-rows 22,31,... [--sudden]] [--threads T] [--contact-treatment edge|vertex] [--blocks rigid|deformable] [--compare-search] [--refactorise-only] [--no-pair-cache]\n");
+      std::fprintf(stderr, "usage: ddaslope_bench [--steps S] [--sizes 10,100,...] [--anchor-rows 22,31,... [--sudden]] [--threads T] [--contact-treatment edge|vertex] [--blocks rigid|deformable] [--compare-search] [--refactorise-only] [--no-pair-cache] [--probe-solve-cache] [--double-factor-only]\n");
       return 2;
     }
   }
@@ -144,6 +153,7 @@ int main(int argc, char** argv) {
     solver::Simulation sim(scene);
     sim.setFactorFollowing(!refactoriseOnly);
     sim.setPairCache(pairCache);
+    sim.setPanelSolves(panels);
     sim.setThreads(threads);
     if (std::getenv("DDASLOPE_BENCH_VERBOSE")) sim.setLog([](const std::string& l) { std::fprintf(stderr, "%s\n", l.c_str()); });
     if (allPairs) compareContactSearch(scene, sim.searchDistance());
@@ -157,6 +167,7 @@ int main(int argc, char** argv) {
                  "state checks %.2f s; %ld factorisations, %ld factor updates, %ld CG iterations, %d steps\n",
                  n, eq, e.contacts + e.broadPhase, e.assembly, e.factorisation, e.solve, e.stateChecks, before.factorisations,
                  before.factorUpdates, before.cgIterations, before.equilibriumSteps);
+    sim.setSolveCacheProbe(probeSolveCache);
     t0 = std::chrono::steady_clock::now();
     // Simulated time, not a step count: steps whose Δt was cut take several (sudden loading).
     const double simulated = steps * scene.settings.timeStep;
@@ -186,6 +197,18 @@ int main(int argc, char** argv) {
       sum += b.moments.centroid.x() + 3 * b.moments.centroid.y();
       fastest = std::max(fastest, b.velocity.head<2>().norm());
     }
+    if (probeSolveCache) {
+      const long probed = a.probedSubstitutions - before.probedSubstitutions;
+      std::fprintf(stderr,
+                   "%d blocks: factor of %.3g entries (%.1f MB with their row indices); %ld substitutions probed: "
+                   "%.3f ms each as they ran, %.3f ms repeated at once\n",
+                   n, a.factorEntries, 12e-6 * a.factorEntries, probed,
+                   ms(a.probeFirstSeconds - before.probeFirstSeconds, static_cast<int>(std::max(1L, probed))),
+                   ms(a.probeRepeatSeconds - before.probeRepeatSeconds, static_cast<int>(std::max(1L, probed))));
+    }
+    if (a.panelSubstitutions > before.panelSubstitutions)
+      std::fprintf(stderr, "%d blocks: %ld substitutions with the factor's single-precision panels (%.1f MB)\n", n,
+                   a.panelSubstitutions - before.panelSubstitutions, 1e-6 * a.panelBytes);
     std::fprintf(stderr, "%d blocks: state checksum %.12g, fastest block %.6g m/s\n", n, sum, fastest);
     perStep.emplace_back(n, wall / accepted);
   }

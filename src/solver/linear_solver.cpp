@@ -1,6 +1,7 @@
 #include "ddaslope/solver/linear_solver.hpp"
 
 #include <algorithm>
+#include <chrono>
 
 namespace ddaslope::solver {
 
@@ -12,10 +13,27 @@ bool LinearSolver::refactorise(const SystemOperator& k) {
   return haveFactor_;
 }
 
+void LinearSolver::firstSubstitution(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
+  if (!probe_) {
+    cholesky_.solve(b, x);
+    return;
+  }
+  using Clock = std::chrono::steady_clock;
+  const auto t0 = Clock::now();
+  cholesky_.solve(b, x);
+  const auto t1 = Clock::now();
+  Eigen::VectorXd repeat;
+  cholesky_.solve(b, repeat);
+  const auto t2 = Clock::now();
+  ++stats_.probedSubstitutions;
+  stats_.probeFirstSeconds += std::chrono::duration<double>(t1 - t0).count();
+  stats_.probeRepeatSeconds += std::chrono::duration<double>(t2 - t1).count();
+}
+
 bool LinearSolver::conjugateGradients(const SystemOperator& k, const Eigen::VectorXd& b,
                                       Eigen::VectorXd& x, double residualFloor) {
   const double target = std::max(settings_.tolerance * b.norm(), residualFloor);
-  cholesky_.solve(b, x);
+  firstSubstitution(b, x);
   Eigen::VectorXd q;
   k.multiply(x, q);
   Eigen::VectorXd r = b - q;
@@ -53,8 +71,9 @@ bool LinearSolver::solve(const SystemOperator& k, const Eigen::VectorXd& b, Eige
     return true;
   }
   if (haveFactor_ && patternVersion_ == k.patternVersion()) {
-    if (factorCurrent_) {
-      cholesky_.solve(b, x);
+    // A factor of this very K solves exactly, unless through its single-precision panels.
+    if (factorCurrent_ && !cholesky_.solvingWithPanels()) {
+      firstSubstitution(b, x);
       return true;
     }
     if (conjugateGradients(k, b, x, residualFloor)) return true;

@@ -497,6 +497,7 @@ Simulation::Attempt Simulation::tryStep(double dt, Regime regime, bool freezeCyc
   // spring walks. Small systems keep AMD, and their round-off.
   linearSolver_.setOrdering(followFactor ? FillOrdering::NestedDissection : FillOrdering::MinimumDegree);
   linearSolver_.setSimplicialSolves(followFactor);
+  linearSolver_.setPanelSolves(followFactor && panelSolves_);
   assembly::SystemTerms terms;
   TermsOnDemand lazySystem(terms, matrix_);
   const AssembledSystem assembledSystem(matrix_);
@@ -809,6 +810,12 @@ void Simulation::commit(Attempt& a, double dt, bool weakens) {
   stats_.factorUpdates = linearSolver_.stats().factorModifications;
   stats_.linearSolves = linearSolver_.stats().solves;
   stats_.cgIterations = linearSolver_.stats().cgIterations;
+  stats_.probedSubstitutions = linearSolver_.stats().probedSubstitutions;
+  stats_.probeFirstSeconds = linearSolver_.stats().probeFirstSeconds;
+  stats_.probeRepeatSeconds = linearSolver_.stats().probeRepeatSeconds;
+  stats_.factorEntries = linearSolver_.factorEntries();
+  stats_.panelSubstitutions = linearSolver_.panelSubstitutions();
+  stats_.panelBytes = linearSolver_.panelBytes();
   stats_.times.update += sw.lap();
 }
 

@@ -8,6 +8,7 @@
 #include <cstring>
 
 #include "ddaslope/core/errors.hpp"
+#include "ddaslope/solver/panel_factor.hpp"
 
 namespace ddaslope::solver {
 
@@ -21,6 +22,38 @@ struct SparseCholesky::Impl {
   const void* patternOwner = nullptr;
   FillOrdering ordering = FillOrdering::MinimumDegree;
   int defaultFirstOrdering = 0;
+  /// The factor as it is now (a new factorisation or a modification makes a new generation), and
+  /// the panels of one of its generations.
+  long generation = 0;
+  int substitutionsWithGeneration = 0;
+  PanelFactor panels;
+  long panelGeneration = -1;
+  long unpanelledGeneration = -1;  ///< a generation whose panels could not be built
+  double lnz = 0;                  ///< entries of L, from the last symbolic analysis
+  void changed() {
+    ++generation;
+    substitutionsWithGeneration = 0;
+  }
+  /// Panels of `modified` for this generation, if it has earned them and they can be built.
+  bool panelsReady() {
+    if (panelGeneration == generation) return true;
+    if (!modified || lnz < SparseCholesky::kPanelMinEntries || unpanelledGeneration == generation ||
+        substitutionsWithGeneration < SparseCholesky::kSubstitutionsBeforePanels)
+      return false;
+    SimplicialFactorView view;
+    view.n = static_cast<int>(modified->n);
+    view.perm = static_cast<const int*>(modified->Perm);
+    view.colStart = static_cast<const int*>(modified->p);
+    view.colCount = static_cast<const int*>(modified->nz);
+    view.rows = static_cast<const int*>(modified->i);
+    view.values = static_cast<const double*>(modified->x);
+    if (modified->is_super || modified->is_ll || !panels.build(view)) {
+      unpanelledGeneration = generation;
+      return false;
+    }
+    panelGeneration = generation;
+    return true;
+  }
 
   Impl() {
     cholmod_start(&common);
@@ -85,9 +118,12 @@ bool SparseCholesky::factorise(const assembly::BlockSparseMatrix& k) {
     impl_->patternVersion = k.patternVersion();
     impl_->patternOwner = &k;
     ++analyses_;
+    factorEntries_ = impl_->common.lnz;
+    impl_->lnz = factorEntries_;
   }
   if (impl_->modified) cholmod_free_factor(&impl_->modified, &impl_->common);
   impl_->inversePerm.clear();
+  impl_->changed();
   cholmod_factorize(&a, impl_->factor, &impl_->common);
   const bool ok = impl_->common.status == CHOLMOD_OK && impl_->factor->minor == a.nrow;
   if (ok && simplicialSolves_) impl_->copySimplicial();
@@ -100,7 +136,22 @@ void SparseCholesky::setOrdering(FillOrdering o) {
   impl_->patternVersion = -1;  // analyse again at the next factorisation
 }
 
+bool SparseCholesky::solvingWithPanels() const {
+  const Impl& m = *impl_;
+  return panelSolves_ && m.modified && m.lnz >= kPanelMinEntries &&
+         (m.panelGeneration == m.generation ||
+          (m.unpanelledGeneration != m.generation && m.substitutionsWithGeneration >= kSubstitutionsBeforePanels));
+}
+
+double SparseCholesky::panelBytes() const { return impl_->panels.bytes(); }
+
 void SparseCholesky::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
+  if (panelSolves_ && impl_->panelsReady()) {
+    impl_->panels.solve(b, x);
+    ++panelSubstitutions_;
+    return;
+  }
+  ++impl_->substitutionsWithGeneration;
   cholmod_dense rhs{};
   rhs.nrow = static_cast<size_t>(b.size());
   rhs.ncol = 1;
@@ -121,6 +172,7 @@ bool SparseCholesky::modify(const std::vector<Column>& columns, bool add) {
   if (columns.empty()) return true;
   Impl& m = *impl_;
   if (!m.modified) m.copySimplicial();
+  m.changed();
   // The factor is of P K Pᵀ (fill-reducing order): C's rows go through the same permutation.
   const int* perm = static_cast<const int*>(m.modified->Perm);
   if (m.inversePerm.size() != m.modified->n) {

@@ -25,6 +25,10 @@ struct LinearSolverStats {
   long solves = 0;
   long cgIterations = 0;
   long factorModifications = 0;  ///< low-rank updates/downdates applied instead of refactorising
+  /// The cache probe (LinearSolver::setCacheProbe): first substitutions timed, their seconds,
+  /// and the seconds of the same substitution repeated at once, with the factor still in cache.
+  long probedSubstitutions = 0;
+  double probeFirstSeconds = 0, probeRepeatSeconds = 0;
 };
 
 /// K as the solver uses it: products with K for conjugate gradients, and K's entries when a
@@ -56,6 +60,10 @@ class LinearSolver {
   explicit LinearSolver(LinearSolverSettings s = {}) : settings_(s) {}
   /// CG iterations tried with a stale factor before refactorising (settings' maxIterations).
   void setMaxIterations(int n) { settings_.maxIterations = n; }
+  /// Diagnostics (the bench's --probe-solve-cache): times the first substitution of each solve,
+  /// then repeats it at once into a scratch vector and times that too. The difference is what
+  /// reading the factor from memory instead of the cache costs. Results are unchanged.
+  void setCacheProbe(bool on) { probe_ = on; }
   /// K changed since the last call (values; the pattern is tracked by its version).
   void matrixChanged() { factorCurrent_ = false; }
   /// Returns false if K is not positive definite. CG stops at a residual of tolerance·‖b‖ or
@@ -83,13 +91,21 @@ class LinearSolver {
   void discardFactor() { haveFactor_ = false; }
   const LinearSolverStats& stats() const { return stats_; }
   int symbolicAnalyses() const { return cholesky_.symbolicAnalyses(); }
+  double factorEntries() const { return cholesky_.factorEntries(); }
   /// The factor's fill-reducing ordering from the next symbolic analysis on.
   void setOrdering(FillOrdering o) { cholesky_.setOrdering(o); }
   /// Solves with a simplicial copy of each new factor (SparseCholesky::setSimplicialSolves).
   void setSimplicialSolves(bool on) { cholesky_.setSimplicialSolves(on); }
+  /// Substitutions with single-precision panels of a factor in long use
+  /// (SparseCholesky::setPanelSolves); every solution is then checked against K by CG.
+  void setPanelSolves(bool on) { cholesky_.setPanelSolves(on); }
+  long panelSubstitutions() const { return cholesky_.panelSubstitutions(); }
+  double panelBytes() const { return cholesky_.panelBytes(); }
 
  private:
   bool refactorise(const SystemOperator& k);
+  /// x := K⁻¹ b with the factor, probed if asked (setCacheProbe).
+  void firstSubstitution(const Eigen::VectorXd& b, Eigen::VectorXd& x);
   /// Preconditioned CG from the factor's solution; false if it did not reach the tolerance.
   bool conjugateGradients(const SystemOperator& k, const Eigen::VectorXd& b, Eigen::VectorXd& x,
                           double residualFloor);
@@ -98,6 +114,7 @@ class LinearSolver {
   SparseCholesky cholesky_;
   bool haveFactor_ = false;
   bool factorCurrent_ = false;
+  bool probe_ = false;
   long patternVersion_ = -1;
   double lastResidual_ = 0;  ///< ‖b − Kx‖ of the last solution checked against K (0 if exact)
   double lastRhsNorm_ = 0;   ///< ‖b‖ of the last solve

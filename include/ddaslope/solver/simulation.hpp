@@ -57,6 +57,13 @@ struct RunStatistics {
   long factorColumns = 0;          ///< rank-one terms (springs switched on or off) they applied
   long linearSolves = 0;           ///< systems solved (one per open-close iteration)
   long cgIterations = 0;           ///< conjugate-gradient iterations on a reused factor
+  /// Substitutions timed by the cache probe (setSolveCacheProbe), and their seconds: as they
+  /// ran, and repeated at once with the factor in cache.
+  long probedSubstitutions = 0;
+  double probeFirstSeconds = 0, probeRepeatSeconds = 0;
+  double factorEntries = 0;        ///< entries of the Cholesky factor's L, last analysis
+  long panelSubstitutions = 0;     ///< substitutions with the factor's single-precision panels
+  double panelBytes = 0;           ///< bytes of the last panels built
   /// Contact state changes between open-close iterates (issue #16's profile of sudden loading):
   /// between locked and sliding, and between open and closed (locked or sliding).
   long stickSlipChanges = 0;
@@ -133,6 +140,12 @@ class Simulation {
   /// Off: every block pair's contacts are searched at every detection, as before the pair cache
   /// (contact/pair_cache.hpp) reused them (for comparisons: the bench, the tests).
   void setPairCache(bool on) { pairCacheOn_ = on; }
+  /// Diagnostics: each solve's first substitution also repeated at once and both timed
+  /// (LinearSolver::setCacheProbe; RunStatistics::probe*). The run is unchanged.
+  void setSolveCacheProbe(bool on) { linearSolver_.setCacheProbe(on); }
+  /// Off: large systems solve with the double-precision factor only, as before its
+  /// single-precision panels (solver/panel_factor.hpp; for comparisons: the bench, the tests).
+  void setPanelSolves(bool on) { panelSolves_ = on; }
   /// Threads this run's contact search, linearisation and contact judgement may use (1 by
   /// default: a search runs its forward runs side by side instead). The result does not depend
   /// on it (core/parallel.hpp).
@@ -237,6 +250,7 @@ class Simulation {
   std::vector<Vec2> heldMonitors_;  ///< see monitorsAfterHeldEquilibrium()
   assembly::BlockSparseMatrix matrix_;
   std::vector<std::pair<int, int>> lastCouplings_;  ///< block pairs of the contacts matrix_'s pattern was made for
+  bool panelSolves_ = true;
   LinearSolver linearSolver_;
   FactorSprings factorSprings_;  ///< the contact springs the factor holds (large systems only)
   bool factorFollowing_ = true;

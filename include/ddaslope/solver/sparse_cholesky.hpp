@@ -40,18 +40,44 @@ class SparseCholesky {
   /// Returns false if the result is not positive definite (the factor must then be redone).
   bool modify(const std::vector<Column>& columns, bool add);
   int symbolicAnalyses() const { return analyses_; }
+  /// Entries of L (CHOLMOD's count for the last symbolic analysis; 0 before it).
+  double factorEntries() const { return factorEntries_; }
   /// The ordering of the next symbolic analysis (a change forces one at the next factorisation).
   void setOrdering(FillOrdering o);
   /// Solve with a simplicial LDLᵀ copy of each new factor (the form update/downdate needs
   /// anyway) instead of the supernodal factor: with Debian's reference BLAS its single
   /// right-hand-side solve is a third faster (0.79 against 1.19 ms at 5856 unknowns).
   void setSimplicialSolves(bool on) { simplicialSolves_ = on; }
+  /// With simplicial solves and a factor of at least kPanelMinEntries entries: once the factor
+  /// (as last modified) has served kSubstitutionsBeforePanels substitutions, solve with its
+  /// single-precision panels
+  /// (solver/panel_factor.hpp) instead: a preconditioner within about 1e-7 of it that streams a
+  /// third of the bytes. Only for callers that check each solution against K (conjugate gradients).
+  void setPanelSolves(bool on) { panelSolves_ = on; }
+  /// Whether the next substitution will use the panels (for the solver's tolerance logic).
+  bool solvingWithPanels() const;
+  /// Substitutions made with the panels, and the bytes they hold (for the bench).
+  long panelSubstitutions() const { return panelSubstitutions_; }
+  double panelBytes() const;
+  /// A factor's uses before its panels are built: a run whose factor changes at every contact
+  /// state change (sudden loading) keeps the double factor and never pays for a regrouping
+  /// (about one and a half substitutions' worth) that it would use once.
+  static constexpr int kSubstitutionsBeforePanels = 8;
+  /// Smaller factors stay in the cache from one step to the next, where the double factor is
+  /// solved as fast and needs no conjugate-gradient iteration: `ddaslope_bench --anchor-rows 31`
+  /// (0.58 million entries, 6.9 MB) took 1.26 ms per quiet step without panels, 1.75 with them
+  /// (one CG iteration per step); `--blocks rigid` at 2047 bricks (0.36 million) 2.48 against
+  /// 2.77 ms. From 1.1 million entries (13 MB; rigid, 5076 bricks) the panels win.
+  static constexpr double kPanelMinEntries = 1e6;
 
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
   int analyses_ = 0;
+  double factorEntries_ = 0;
   bool simplicialSolves_ = false;
+  bool panelSolves_ = false;
+  long panelSubstitutions_ = 0;
 };
 
 }  // namespace ddaslope::solver

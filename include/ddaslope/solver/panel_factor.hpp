@@ -1,0 +1,70 @@
+#pragma once
+// A simplicial LDLᵀ factor regrouped into panels of single-precision entries, for the many
+// solves a large quiet run makes with one factor.
+//
+// Why: a large system's step is one forward and back substitution, which streams the whole
+// factor, and the factor of the 2047-brick wall (1.45 million entries, 17.4 MB with CHOLMOD's row
+// indices) no longer stays in the cache between steps. The bench's --probe-solve-cache measures
+// it: each substitution takes 2.4–3.1 ms as the steps run, 1.5–2.0 ms repeated at once, while the
+// 976-brick factor (6.9 MB) takes 0.34 and 0.29. A panel stores one row pattern for a run of
+// columns that share it (a block's unknowns are coupled to the same blocks) and the run's
+// entries in single precision: 4 bytes per entry instead of 12, so the 2047-brick factor takes
+// 5.8 MB. The solve accumulates in double precision; D stays in double. The factor is then that of
+// a matrix within about 1e-7 of K, which makes it a preconditioner, not a solver: conjugate
+// gradients (linear_solver.hpp) check every solution against K itself and iterate to the same
+// tolerance as before (one iteration per quiet step where the double factor needed none).
+#include <vector>
+
+#include <Eigen/Core>
+
+namespace ddaslope::solver {
+
+/// The arrays of a simplicial LDLᵀ factor of P A Pᵀ in CHOLMOD's layout (int indices): column
+/// j starts at colStart[j] and holds colCount[j] entries, D(j,j) first, then the unit lower L
+/// below the diagonal, rows ascending.
+struct SimplicialFactorView {
+  int n = 0;
+  const int* perm = nullptr;  ///< perm[k]: the row of A at row k of the factor
+  const int* colStart = nullptr;
+  const int* colCount = nullptr;
+  const int* rows = nullptr;
+  const double* values = nullptr;
+};
+
+class PanelFactor {
+ public:
+  /// Regroups and rounds the factor (a copy: the view may change afterwards). Returns false, and
+  /// leaves the panels empty, if the view is not a factor of that layout (a column not led by its
+  /// diagonal or not sorted, a D(j,j) not positive) or an entry does not fit single precision.
+  bool build(const SimplicialFactorView& f);
+  bool empty() const { return panels_.empty(); }
+  /// Panels: runs of columns that share their rows below (fewer than the columns where any do).
+  int panelCount() const { return static_cast<int>(panels_.size()); }
+  void clear();
+  /// x := A⁻¹ b for A = Pᵀ L D Lᵀ P with L's entries as rounded to single precision.
+  void solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) const;
+  /// Bytes the panels hold (entries, row patterns, D), for the bench.
+  double bytes() const;
+
+ private:
+  /// Columns first … first + width − 1 share the rows rows_[rowStart …] below them. Entries of
+  /// L(first + r, first + c), r > c, are at values_[valueStart + r(r − 1)/2 + c]; then the rows
+  /// below, row by row, width entries each.
+  struct Panel {
+    int first = 0;
+    int width = 0;
+    int rowStart = 0;
+    int rowCount = 0;
+    long valueStart = 0;
+  };
+  std::vector<Panel> panels_;
+  std::vector<int> rows_;
+  std::vector<float> values_;
+  std::vector<double> diagonal_;
+  std::vector<int> perm_;
+  int widest_ = 0;
+  mutable Eigen::VectorXd y_;
+  mutable std::vector<double> local_;
+};
+
+}  // namespace ddaslope::solver

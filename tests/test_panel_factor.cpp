@@ -1,0 +1,160 @@
+// Single-precision panels of a simplicial LDLᵀ factor (solver/panel_factor.hpp): they solve the
+// factor they hold exactly (to double round-off), refuse what is not such a factor, and, used by
+// the linear solver as a preconditioner, leave every solution within the solver's tolerance.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <numeric>
+#include <random>
+
+#include <Eigen/Sparse>
+#include <Eigen/SparseCholesky>
+
+#include "ddaslope/assembly/block_sparse_matrix.hpp"
+#include "ddaslope/solver/linear_solver.hpp"
+#include "ddaslope/solver/panel_factor.hpp"
+#include "ddaslope/solver/sparse_cholesky.hpp"
+
+using namespace ddaslope;
+
+namespace {
+
+/// A factor in CHOLMOD's simplicial layout: column j holds D(j,j), then L's rows below.
+struct OwnedFactor {
+  std::vector<int> perm, start, count, rows;
+  std::vector<double> values;
+  solver::SimplicialFactorView view() const {
+    return {static_cast<int>(start.size()), perm.data(), start.data(), count.data(), rows.data(), values.data()};
+  }
+};
+
+}  // namespace
+
+// Exact algebra: L's entries are rounded to single precision before the factor is handed over,
+// so the panels hold it without loss, and solving P^T L D L^T P x = b must return x up to double
+// round-off. The matrix is a chain of 6×6 blocks with couplings two blocks ahead (so each
+// block's six columns share their rows below: panels), ordered by a random permutation.
+TEST(PanelFactor, SolvesTheFactorItHoldsToDoubleRoundOff) {
+  constexpr int kBlocks = 40, n = 6 * kBlocks;
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::vector<Eigen::Triplet<double>> t;
+  for (int b = 0; b < kBlocks; ++b)
+    for (int e = 0; e < 6; ++e) {
+      t.emplace_back(6 * b + e, 6 * b + e, 40.0 + u(rng));
+      for (int f = 0; f < e; ++f) t.emplace_back(6 * b + e, 6 * b + f, u(rng));
+      for (int ahead = 1; ahead <= 2; ++ahead)
+        if (b + ahead < kBlocks)
+          for (int f = 0; f < 6; ++f) t.emplace_back(6 * (b + ahead) + f, 6 * b + e, u(rng));
+    }
+  Eigen::SparseMatrix<double> lowerA(n, n);
+  lowerA.setFromTriplets(t.begin(), t.end());
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::NaturalOrdering<int>> ldlt(lowerA);
+  ASSERT_EQ(ldlt.info(), Eigen::Success);
+  // L with entries rounded to single precision; D as computed.
+  Eigen::SparseMatrix<double> l = ldlt.matrixL();
+  for (int k = 0; k < l.outerSize(); ++k)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(l, k); it; ++it)
+      if (it.row() != it.col()) it.valueRef() = static_cast<double>(static_cast<float>(it.value()));
+  const Eigen::VectorXd d = ldlt.vectorD();
+
+  OwnedFactor f;
+  for (int j = 0; j < n; ++j) {
+    f.start.push_back(static_cast<int>(f.rows.size()));
+    f.rows.push_back(j);
+    f.values.push_back(d[j]);
+    for (Eigen::SparseMatrix<double>::InnerIterator it(l, j); it; ++it)
+      if (it.row() > j) f.rows.push_back(static_cast<int>(it.row())), f.values.push_back(it.value());
+    f.count.push_back(static_cast<int>(f.rows.size()) - f.start.back());
+  }
+  f.perm.resize(n);
+  std::iota(f.perm.begin(), f.perm.end(), 0);
+  std::shuffle(f.perm.begin(), f.perm.end(), rng);
+
+  solver::PanelFactor panels;
+  ASSERT_TRUE(panels.build(f.view()));
+  EXPECT_LE(panels.panelCount(), n / 3) << "a block's columns share their rows below: they make one panel";
+
+  // b = Pᵀ (L D Lᵀ) P x for a known x: y = P x in the factor's order, c = L D Lᵀ y, b = Pᵀ c.
+  const Eigen::VectorXd x = Eigen::VectorXd::LinSpaced(n, -3, 4);
+  Eigen::VectorXd y(n), b(n);
+  for (int k = 0; k < n; ++k) y[k] = x[f.perm[k]];
+  const Eigen::VectorXd c = l * (d.asDiagonal() * (l.transpose() * y));
+  for (int k = 0; k < n; ++k) b[f.perm[k]] = c[k];
+  Eigen::VectorXd solved;
+  panels.solve(b, solved);
+  // Diagonally dominant blocks: the condition number is small, so round-off stays near 1e-15.
+  EXPECT_LE((solved - x).norm(), 1e-12 * x.norm());
+}
+
+// What is not a simplicial LDLᵀ factor with D > 0 is refused, not solved wrongly.
+TEST(PanelFactor, RefusesWhatIsNotSuchAFactor) {
+  // 2 × 2: column 0 = [D0; L10], column 1 = [D1].
+  OwnedFactor f{{0, 1}, {0, 2}, {2, 1}, {0, 1, 1}, {2.0, 0.5, 3.0}};
+  solver::PanelFactor panels;
+  ASSERT_TRUE(panels.build(f.view()));
+  OwnedFactor negative = f;
+  negative.values[2] = -3.0;  // D1 < 0: not positive definite
+  EXPECT_FALSE(panels.build(negative.view()));
+  EXPECT_TRUE(panels.empty());
+  OwnedFactor notLed = f;
+  notLed.rows[0] = 1;  // column 0 not led by its diagonal
+  EXPECT_FALSE(panels.build(notLed.view()));
+  OwnedFactor huge = f;
+  huge.values[1] = 1e300;  // beyond single precision
+  EXPECT_FALSE(panels.build(huge.view()));
+}
+
+// In the linear solver (large systems: nested dissection, simplicial copy, panels), a factor in
+// long use is solved through its panels, and conjugate gradients still bring every solution to
+// the solver's tolerance on K itself: 1e-12 of ‖b‖, as with the double factor alone, whose
+// solutions the panels' then match to that tolerance over K's condition.
+TEST(LinearSolver, PanelsLeaveEverySolutionWithinTheTolerance) {
+  constexpr int kSide = 46;  // 2116 blocks coupled to their eight neighbours, 12 696 unknowns
+  std::vector<std::pair<int, int>> couplings;
+  for (int r = 0; r < kSide; ++r)
+    for (int c = 0; c < kSide; ++c) {
+      const int b = r * kSide + c;
+      if (c + 1 < kSide) couplings.emplace_back(b, b + 1);
+      if (r + 1 < kSide) couplings.emplace_back(b, b + kSide);
+      if (r + 1 < kSide && c + 1 < kSide) couplings.emplace_back(b, b + kSide + 1);
+      if (r + 1 < kSide && c > 0) couplings.emplace_back(b, b + kSide - 1);
+    }
+  assembly::BlockSparseMatrix k;
+  k.setPattern(kSide * kSide, assembly::BlockSparseMatrix::normalise(couplings));
+  const auto fill = [&](double drift) {
+    k.setZero();
+    for (int b = 0; b < kSide * kSide; ++b) {
+      Mat6 d = Mat6::Identity() * (60.0 + 0.01 * b) * (1 + drift * (b % 5));
+      for (int e = 0; e < 6; ++e) d(e, (e + 2) % 6) = d((e + 2) % 6, e) = 1.0;
+      k.addDiagonal(b, d);
+    }
+    for (const auto& [i, j] : couplings) k.addCoupling(i, j, Mat6::Constant(-0.5));
+  };
+  fill(0);
+  solver::LinearSolver withPanels, doubleOnly;
+  for (solver::LinearSolver* s : {&withPanels, &doubleOnly}) {
+    s->setOrdering(solver::FillOrdering::NestedDissection);
+    s->setSimplicialSolves(true);
+  }
+  withPanels.setPanelSolves(true);
+  const Eigen::VectorXd b0 = Eigen::VectorXd::LinSpaced(k.size(), -2, 7);
+  Eigen::VectorXd xp, xd;
+  ASSERT_TRUE(withPanels.solve(k, b0, xp));
+  ASSERT_TRUE(doubleOnly.solve(k, b0, xd));
+  ASSERT_GE(withPanels.factorEntries(), solver::SparseCholesky::kPanelMinEntries) << "the panels' size class";
+  fill(1e-6);  // a change of K the factor has not seen, as a step's geometry makes
+  withPanels.matrixChanged();
+  doubleOnly.matrixChanged();
+  for (int s = 0; s < 2 * solver::SparseCholesky::kSubstitutionsBeforePanels; ++s) {
+    const Eigen::VectorXd b = b0 + 0.1 * s * Eigen::VectorXd::Ones(k.size());
+    ASSERT_TRUE(withPanels.solve(k, b, xp));
+    ASSERT_TRUE(doubleOnly.solve(k, b, xd));
+    EXPECT_LE((b - k.multiply(xp)).norm(), 1e-12 * b.norm()) << "solve " << s;
+    // K is diagonally dominant (condition below 10): two solutions within 1e-12 of b agree to 1e-11.
+    EXPECT_LE((xp - xd).norm(), 1e-11 * xd.norm()) << "solve " << s;
+  }
+  EXPECT_GT(withPanels.panelSubstitutions(), 0) << "the panels must have been used";
+  EXPECT_EQ(doubleOnly.panelSubstitutions(), 0);
+  EXPECT_EQ(withPanels.stats().factorisations, 1) << "CG with the panels converged within its budget";
+}
