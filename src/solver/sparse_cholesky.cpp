@@ -34,12 +34,17 @@ struct SparseCholesky::Impl {
     ++generation;
     substitutionsWithGeneration = 0;
   }
+  /// Whether this generation solves through panels (built, or to be built at its next solve):
+  /// a factor large enough, in use long enough, whose panels did not fail to build.
+  bool panelsEarned() const {
+    return panelGeneration == generation ||
+           (modified && lnz >= SparseCholesky::kPanelMinEntries && unpanelledGeneration != generation &&
+            substitutionsWithGeneration >= SparseCholesky::kSubstitutionsBeforePanels);
+  }
   /// Panels of `modified` for this generation, if it has earned them and they can be built.
   bool panelsReady() {
     if (panelGeneration == generation) return true;
-    if (!modified || lnz < SparseCholesky::kPanelMinEntries || unpanelledGeneration == generation ||
-        substitutionsWithGeneration < SparseCholesky::kSubstitutionsBeforePanels)
-      return false;
+    if (!panelsEarned()) return false;
     SimplicialFactorView view;
     view.n = static_cast<int>(modified->n);
     view.perm = static_cast<const int*>(modified->Perm);
@@ -137,10 +142,7 @@ void SparseCholesky::setOrdering(FillOrdering o) {
 }
 
 bool SparseCholesky::solvingWithPanels() const {
-  const Impl& m = *impl_;
-  return panelSolves_ && m.modified && m.lnz >= kPanelMinEntries &&
-         (m.panelGeneration == m.generation ||
-          (m.unpanelledGeneration != m.generation && m.substitutionsWithGeneration >= kSubstitutionsBeforePanels));
+  return panelSolves_ && impl_->panelsEarned();
 }
 
 double SparseCholesky::panelBytes() const { return impl_->panels.bytes(); }
