@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <limits>
 #include <numeric>
 #include <random>
 
@@ -103,26 +104,41 @@ TEST(PanelFactor, RefusesWhatIsNotSuchAFactor) {
   OwnedFactor huge = f;
   huge.values[1] = 1e300;  // beyond single precision
   EXPECT_FALSE(panels.build(huge.view()));
+  for (const double bad : {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()}) {
+    OwnedFactor d = f;
+    d.values[0] = bad;  // D0 not a finite positive number
+    EXPECT_FALSE(panels.build(d.view()));
+  }
+  // 3 × 3 with column 0's rows below out of order.
+  OwnedFactor unsorted{{0, 1, 2}, {0, 3, 4}, {3, 1, 1}, {0, 2, 1, 1, 2}, {2.0, 0.1, 0.2, 3.0, 4.0}};
+  ASSERT_TRUE(solver::PanelFactor().build(OwnedFactor{{0, 1, 2}, {0, 3, 4}, {3, 1, 1}, {0, 1, 2, 1, 2},
+                                                      {2.0, 0.1, 0.2, 3.0, 4.0}}.view()));
+  EXPECT_FALSE(panels.build(unsorted.view()));
 }
 
-// In the linear solver (large systems: nested dissection, simplicial copy, panels), a factor in
-// long use is solved through its panels, and conjugate gradients still bring every solution to
-// the solver's tolerance on K itself: 1e-12 of ‖b‖, as with the double factor alone, whose
-// solutions the panels' then match to that tolerance over K's condition.
-TEST(LinearSolver, PanelsLeaveEverySolutionWithinTheTolerance) {
-  constexpr int kSide = 46;  // 2116 blocks coupled to their eight neighbours, 12 696 unknowns
+namespace {
+
+/// A 2-D grid of 6×6 blocks coupled to their eight neighbours (2116 blocks, 12 696 unknowns):
+/// the wall's pattern, large enough for panels (about 1.6 million entries of L under nested
+/// dissection), and diagonally dominant (Gershgorin: condition below 3.2).
+struct Grid {
+  static constexpr int kSide = 46;
   std::vector<std::pair<int, int>> couplings;
-  for (int r = 0; r < kSide; ++r)
-    for (int c = 0; c < kSide; ++c) {
-      const int b = r * kSide + c;
-      if (c + 1 < kSide) couplings.emplace_back(b, b + 1);
-      if (r + 1 < kSide) couplings.emplace_back(b, b + kSide);
-      if (r + 1 < kSide && c + 1 < kSide) couplings.emplace_back(b, b + kSide + 1);
-      if (r + 1 < kSide && c > 0) couplings.emplace_back(b, b + kSide - 1);
-    }
   assembly::BlockSparseMatrix k;
-  k.setPattern(kSide * kSide, assembly::BlockSparseMatrix::normalise(couplings));
-  const auto fill = [&](double drift) {
+  Grid() {
+    for (int r = 0; r < kSide; ++r)
+      for (int c = 0; c < kSide; ++c) {
+        const int b = r * kSide + c;
+        if (c + 1 < kSide) couplings.emplace_back(b, b + 1);
+        if (r + 1 < kSide) couplings.emplace_back(b, b + kSide);
+        if (r + 1 < kSide && c + 1 < kSide) couplings.emplace_back(b, b + kSide + 1);
+        if (r + 1 < kSide && c > 0) couplings.emplace_back(b, b + kSide - 1);
+      }
+    k.setPattern(kSide * kSide, assembly::BlockSparseMatrix::normalise(couplings));
+    fill(0);
+  }
+  /// `drift` scales the diagonal blocks: a change of K a factor has not seen, as a step makes.
+  void fill(double drift) {
     k.setZero();
     for (int b = 0; b < kSide * kSide; ++b) {
       Mat6 d = Mat6::Identity() * (60.0 + 0.01 * b) * (1 + drift * (b % 5));
@@ -130,31 +146,102 @@ TEST(LinearSolver, PanelsLeaveEverySolutionWithinTheTolerance) {
       k.addDiagonal(b, d);
     }
     for (const auto& [i, j] : couplings) k.addCoupling(i, j, Mat6::Constant(-0.5));
-  };
-  fill(0);
-  solver::LinearSolver withPanels, doubleOnly;
-  for (solver::LinearSolver* s : {&withPanels, &doubleOnly}) {
-    s->setOrdering(solver::FillOrdering::NestedDissection);
-    s->setSimplicialSolves(true);
   }
-  withPanels.setPanelSolves(true);
-  const Eigen::VectorXd b0 = Eigen::VectorXd::LinSpaced(k.size(), -2, 7);
+};
+
+/// Large-system settings: nested dissection, simplicial copy, and the panels if asked.
+void largeSystem(solver::LinearSolver& s, bool panels) {
+  s.setOrdering(solver::FillOrdering::NestedDissection);
+  s.setSimplicialSolves(true);
+  s.setPanelSolves(panels);
+}
+
+}  // namespace
+
+// In the linear solver, a factor in long use is solved through its panels, and conjugate
+// gradients still bring every solution to the solver's tolerance on K itself: 1e-12 of ‖b‖, as
+// with the double factor alone, whose solutions the panels' then match to that tolerance over
+// K's condition (below 3.2: 1e-11).
+TEST(LinearSolver, PanelsLeaveEverySolutionWithinTheTolerance) {
+  Grid g;
+  solver::LinearSolver withPanels, doubleOnly;
+  largeSystem(withPanels, true);
+  largeSystem(doubleOnly, false);
+  const Eigen::VectorXd b0 = Eigen::VectorXd::LinSpaced(g.k.size(), -2, 7);
   Eigen::VectorXd xp, xd;
-  ASSERT_TRUE(withPanels.solve(k, b0, xp));
-  ASSERT_TRUE(doubleOnly.solve(k, b0, xd));
+  ASSERT_TRUE(withPanels.solve(g.k, b0, xp));
+  ASSERT_TRUE(doubleOnly.solve(g.k, b0, xd));
   ASSERT_GE(withPanels.factorEntries(), solver::SparseCholesky::kPanelMinEntries) << "the panels' size class";
-  fill(1e-6);  // a change of K the factor has not seen, as a step's geometry makes
+  g.fill(1e-6);
   withPanels.matrixChanged();
   doubleOnly.matrixChanged();
-  for (int s = 0; s < 2 * solver::SparseCholesky::kSubstitutionsBeforePanels; ++s) {
-    const Eigen::VectorXd b = b0 + 0.1 * s * Eigen::VectorXd::Ones(k.size());
-    ASSERT_TRUE(withPanels.solve(k, b, xp));
-    ASSERT_TRUE(doubleOnly.solve(k, b, xd));
-    EXPECT_LE((b - k.multiply(xp)).norm(), 1e-12 * b.norm()) << "solve " << s;
-    // K is diagonally dominant (condition below 10): two solutions within 1e-12 of b agree to 1e-11.
+  for (int s = 0; s < 2 * solver::SparseCholesky::kSolvesBeforePanels; ++s) {
+    const Eigen::VectorXd b = b0 + 0.1 * s * Eigen::VectorXd::Ones(g.k.size());
+    ASSERT_TRUE(withPanels.solve(g.k, b, xp));
+    ASSERT_TRUE(doubleOnly.solve(g.k, b, xd));
+    EXPECT_LE((b - g.k.multiply(xp)).norm(), 1e-12 * b.norm()) << "solve " << s;
     EXPECT_LE((xp - xd).norm(), 1e-11 * xd.norm()) << "solve " << s;
   }
   EXPECT_GT(withPanels.panelSubstitutions(), 0) << "the panels must have been used";
   EXPECT_EQ(doubleOnly.panelSubstitutions(), 0);
   EXPECT_EQ(withPanels.stats().factorisations, 1) << "CG with the panels converged within its budget";
+}
+
+// A factor of K itself solves K exactly in double precision, without CG; through its panels it
+// no longer does, so those solutions too must go through CG to the tolerance.
+TEST(LinearSolver, PanelsOfAFactorOfKItselfAreCheckedToo) {
+  Grid g;
+  solver::LinearSolver s;
+  largeSystem(s, true);
+  Eigen::VectorXd x;
+  for (int n = 0; n < 2 * solver::SparseCholesky::kSolvesBeforePanels; ++n) {
+    const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(g.k.size(), -2 - n, 7);
+    ASSERT_TRUE(s.solve(g.k, b, x));  // K unchanged: its own factor throughout
+    EXPECT_LE((b - g.k.multiply(x)).norm(), 1e-12 * b.norm()) << "solve " << n;
+  }
+  EXPECT_GT(s.panelSubstitutions(), 0);
+  EXPECT_EQ(s.stats().factorisations, 1);
+}
+
+// The panels are rebuilt from the factor as CHOLMOD's update/downdate leaves it (columns it may
+// have grown and moved): after rank-one changes, a solve through them agrees with the double
+// factor's to the rounding of L's entries to single precision (about 6e-8 relative) times K's
+// condition (below 3.2) and the factor's growth: within 1e-5.
+TEST(SparseCholesky, PanelsFollowTheFactorThroughUpdates) {
+  Grid g;
+  solver::SparseCholesky panelled, exact;
+  for (solver::SparseCholesky* c : {&panelled, &exact}) {
+    c->setOrdering(solver::FillOrdering::NestedDissection);
+    c->setSimplicialSolves(true);
+    ASSERT_TRUE(c->factorise(g.k));
+  }
+  panelled.setPanelSolves(true);
+  std::mt19937 rng(11);
+  std::uniform_int_distribution<int> block(0, Grid::kSide * Grid::kSide - 1);
+  std::uniform_real_distribution<double> u(-0.3, 0.3);
+  const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(g.k.size(), -1, 3);
+  for (int round = 0; round < 3; ++round) {
+    // Springs between distant blocks: long paths through the factor's tree, columns that grow.
+    std::vector<solver::SparseCholesky::Column> added;
+    for (int q = 0; q < 40; ++q) {
+      solver::SparseCholesky::Column c;
+      const int i = block(rng), j = block(rng);
+      if (i == j) continue;
+      for (const int blk : {std::min(i, j), std::max(i, j)})
+        for (int e = 0; e < 6; ++e) {
+          c.rows[c.count] = 6 * blk + e;
+          c.values[c.count++] = u(rng);
+        }
+      added.push_back(c);
+    }
+    ASSERT_TRUE(panelled.modify(added, true));
+    ASSERT_TRUE(exact.modify(added, true));
+    for (int s = 0; s <= solver::SparseCholesky::kSolvesBeforePanels; ++s) panelled.beginSolve();
+    ASSERT_TRUE(panelled.solvingWithPanels()) << "round " << round;
+    Eigen::VectorXd xp, xd;
+    panelled.solve(b, xp);
+    exact.solve(b, xd);
+    EXPECT_LE((xp - xd).norm(), 1e-5 * xd.norm()) << "round " << round;
+    EXPECT_GT((xp - xd).norm(), 0.0) << "the panels, not the double factor, solved it";
+  }
 }

@@ -71,12 +71,24 @@ bool LinearSolver::solve(const SystemOperator& k, const Eigen::VectorXd& b, Eige
     return true;
   }
   if (haveFactor_ && patternVersion_ == k.patternVersion()) {
+    cholesky_.beginSolve();
     // A factor of this very K solves exactly, unless through its single-precision panels.
     if (factorCurrent_ && !cholesky_.solvingWithPanels()) {
       firstSubstitution(b, x);
       return true;
     }
     if (conjugateGradients(k, b, x, residualFloor)) return true;
+    if (cholesky_.solvingWithPanels()) {
+      // The panels' rounding, not the factor's age, may have cost the budget: the double factor
+      // gets its own chance (and exact, if it is K's) before a factorisation.
+      cholesky_.dropPanels();
+      lastResidual_ = 0;
+      if (factorCurrent_) {
+        firstSubstitution(b, x);
+        return true;
+      }
+      if (conjugateGradients(k, b, x, residualFloor)) return true;
+    }
   }
   lastResidual_ = 0;
   if (!refactorise(k)) return false;

@@ -1,5 +1,6 @@
 #include "ddaslope/solver/panel_factor.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -31,11 +32,18 @@ bool PanelFactor::build(const SimplicialFactorView& f) {
   constexpr double kLargest = 1e30;
   diagonal_.resize(static_cast<size_t>(n));
   perm_.assign(f.perm, f.perm + n);
+  // Column k + 1 continues column k's panel when it is k's parent (k's first row below the
+  // diagonal) and has k's rows below it. In a Cholesky pattern, one entry fewer implies it; the
+  // rows are compared anyway (O(entries)), so that a factor whose pattern was pruned (CHOLMOD's
+  // resymbol) or edited can only make narrower panels, never wrong ones.
+  const auto sharesRows = [&](int k) {
+    const long p = start(k), q = start(k + 1);
+    return f.colCount[k] == f.colCount[k + 1] + 1 && f.rows[p + 1] == k + 1 &&
+           std::equal(f.rows + p + 2, f.rows + p + f.colCount[k], f.rows + q + 1);
+  };
   for (int j = 0; j < n;) {
-    // Column j + w joins the panel when it is column j + w − 1's parent (its first row below the
-    // diagonal) and holds one entry fewer: then both share every row below j + w.
     int w = 1;
-    while (j + w < n && f.colCount[j + w - 1] == f.colCount[j + w] + 1 && f.rows[start(j + w - 1) + 1] == j + w) ++w;
+    while (j + w < n && sharesRows(j + w - 1)) ++w;
     Panel panel{j, w, static_cast<int>(rows_.size()), f.colCount[j] - w, static_cast<long>(values_.size())};
     const long below = start(j) + w;
     rows_.insert(rows_.end(), f.rows + below, f.rows + below + panel.rowCount);

@@ -25,21 +25,23 @@ struct SparseCholesky::Impl {
   /// The factor as it is now (a new factorisation or a modification makes a new generation), and
   /// the panels of one of its generations.
   long generation = 0;
-  int substitutionsWithGeneration = 0;
+  int solvesWithGeneration = 0;
+  bool usePanels = false;  ///< this solve's choice (beginSolve)
   PanelFactor panels;
   long panelGeneration = -1;
-  long unpanelledGeneration = -1;  ///< a generation whose panels could not be built
+  long unpanelledGeneration = -1;  ///< a generation whose panels failed to build or to converge
   double lnz = 0;                  ///< entries of L, from the last symbolic analysis
   void changed() {
     ++generation;
-    substitutionsWithGeneration = 0;
+    solvesWithGeneration = 0;
+    usePanels = false;
   }
-  /// Whether this generation solves through panels (built, or to be built at its next solve):
-  /// a factor large enough, in use long enough, whose panels did not fail to build.
+  /// Whether this generation substitutes through panels (built, or to be built for its next
+  /// solve): a factor large enough, in use long enough, whose panels did not fail or fall short.
   bool panelsEarned() const {
     return panelGeneration == generation ||
            (modified && lnz >= SparseCholesky::kPanelMinEntries && unpanelledGeneration != generation &&
-            substitutionsWithGeneration >= SparseCholesky::kSubstitutionsBeforePanels);
+            solvesWithGeneration >= SparseCholesky::kSolvesBeforePanels);
   }
   /// Panels of `modified` for this generation, if it has earned them and they can be built.
   bool panelsReady() {
@@ -141,19 +143,26 @@ void SparseCholesky::setOrdering(FillOrdering o) {
   impl_->patternVersion = -1;  // analyse again at the next factorisation
 }
 
-bool SparseCholesky::solvingWithPanels() const {
-  return panelSolves_ && impl_->panelsEarned();
+void SparseCholesky::beginSolve() {
+  impl_->usePanels = panelSolves_ && impl_->panelsReady();
+  ++impl_->solvesWithGeneration;
+}
+
+bool SparseCholesky::solvingWithPanels() const { return impl_->usePanels; }
+
+void SparseCholesky::dropPanels() {
+  impl_->usePanels = false;
+  impl_->unpanelledGeneration = impl_->generation;
 }
 
 double SparseCholesky::panelBytes() const { return impl_->panels.bytes(); }
 
 void SparseCholesky::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
-  if (panelSolves_ && impl_->panelsReady()) {
+  if (impl_->usePanels) {
     impl_->panels.solve(b, x);
     ++panelSubstitutions_;
     return;
   }
-  ++impl_->substitutionsWithGeneration;
   cholmod_dense rhs{};
   rhs.nrow = static_cast<size_t>(b.size());
   rhs.ncol = 1;

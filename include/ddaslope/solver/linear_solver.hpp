@@ -97,7 +97,8 @@ class LinearSolver {
   /// Solves with a simplicial copy of each new factor (SparseCholesky::setSimplicialSolves).
   void setSimplicialSolves(bool on) { cholesky_.setSimplicialSolves(on); }
   /// Substitutions with single-precision panels of a factor in long use
-  /// (SparseCholesky::setPanelSolves); every solution is then checked against K by CG.
+  /// (SparseCholesky::setPanelSolves); every solution is then checked against K by CG, and a CG
+  /// run that misses its budget through them is tried again with the double factor.
   void setPanelSolves(bool on) { cholesky_.setPanelSolves(on); }
   long panelSubstitutions() const { return cholesky_.panelSubstitutions(); }
   double panelBytes() const { return cholesky_.panelBytes(); }

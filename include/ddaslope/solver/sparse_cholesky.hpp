@@ -49,20 +49,26 @@ class SparseCholesky {
   /// right-hand-side solve is a third faster (0.79 against 1.19 ms at 5856 unknowns).
   void setSimplicialSolves(bool on) { simplicialSolves_ = on; }
   /// With simplicial solves and a factor of at least kPanelMinEntries entries: once the factor
-  /// (as last modified) has served kSubstitutionsBeforePanels substitutions, solve with its
-  /// single-precision panels
-  /// (solver/panel_factor.hpp) instead: a preconditioner within about 1e-7 of it that streams a
-  /// third of the bytes. Only for callers that check each solution against K (conjugate gradients).
+  /// (as last modified) has served kSolvesBeforePanels solves, substitute with its
+  /// single-precision panels (solver/panel_factor.hpp) instead: a preconditioner within about
+  /// 1e-7 of it that streams a third of the bytes. Only for callers that check each solution
+  /// against K (conjugate gradients) and announce each system solve with beginSolve().
   void setPanelSolves(bool on) { panelSolves_ = on; }
-  /// Whether the next substitution will use the panels (for the solver's tolerance logic).
+  /// A new system solve begins: it counts towards the factor's panels and fixes whether its
+  /// substitutions use them (one preconditioner for a whole CG run). Without it, none do.
+  void beginSolve();
+  /// Whether this solve's substitutions use the panels (for the solver's tolerance logic).
   bool solvingWithPanels() const;
+  /// The rest of this solve, and this factor, substitute in double precision: CG through the
+  /// panels missed its budget (their rounding, about 6e-8 · κ(K), can, where K is stiff).
+  void dropPanels();
   /// Substitutions made with the panels, and the bytes they hold (for the bench).
   long panelSubstitutions() const { return panelSubstitutions_; }
   double panelBytes() const;
-  /// A factor's uses before its panels are built: a run whose factor changes at every contact
-  /// state change (sudden loading) keeps the double factor and never pays for a regrouping
-  /// (about one and a half substitutions' worth) that it would use once.
-  static constexpr int kSubstitutionsBeforePanels = 8;
+  /// A factor's solves before its panels are built: a run whose factor changes at nearly every
+  /// contact state change (sudden loading) keeps the double factor and seldom pays for a
+  /// regrouping (about one and a half substitutions' worth) that it would use once.
+  static constexpr int kSolvesBeforePanels = 8;
   /// Smaller factors stay in the cache from one step to the next, where the double factor is
   /// solved as fast and needs no conjugate-gradient iteration: `ddaslope_bench --anchor-rows 31`
   /// (0.58 million entries, 6.9 MB) took 1.26 ms per quiet step without panels, 1.75 with them
