@@ -70,10 +70,11 @@ class SparseCholesky {
   /// regrouping (about one and a half substitutions' worth) that it would use once.
   static constexpr int kSolvesBeforePanels = 8;
   /// Smaller factors stay in the cache from one step to the next, where the double factor is
-  /// solved as fast and needs no conjugate-gradient iteration: `ddaslope_bench --anchor-rows 31`
-  /// (0.58 million entries, 6.9 MB) took 1.26 ms per quiet step without panels, 1.75 with them
-  /// (one CG iteration per step); `--blocks rigid` at 2047 bricks (0.36 million) 2.48 against
-  /// 2.77 ms. From 1.1 million entries (13 MB; rigid, 5076 bricks) the panels win.
+  /// solved as fast and needs no conjugate-gradient iteration. In a build that used panels at
+  /// every size, the 976-brick quiet wall (`ddaslope_bench --anchor-rows 31`, 0.58 million
+  /// entries, 6.9 MB) took 1.75 ms per step with them against 1.26 without (one CG iteration per
+  /// step), and the 2047-brick rigid wall (0.36 million) 2.77 against 2.48 ms. From 1.1 million
+  /// entries (13 MB; rigid, 5076 bricks) the panels win (README, *Performance*).
   static constexpr double kPanelMinEntries = 1e6;
 
  private:
