@@ -125,8 +125,7 @@ bool SparseCholesky::factorise(const assembly::BlockSparseMatrix& k) {
     impl_->patternVersion = k.patternVersion();
     impl_->patternOwner = &k;
     ++analyses_;
-    factorEntries_ = impl_->common.lnz;
-    impl_->lnz = factorEntries_;
+    impl_->lnz = impl_->common.lnz;
   }
   if (impl_->modified) cholmod_free_factor(&impl_->modified, &impl_->common);
   impl_->inversePerm.clear();
@@ -156,6 +155,8 @@ void SparseCholesky::dropPanels() {
 }
 
 double SparseCholesky::panelBytes() const { return impl_->panels.bytes(); }
+
+double SparseCholesky::factorEntries() const { return impl_->lnz; }
 
 void SparseCholesky::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
   if (impl_->usePanels) {

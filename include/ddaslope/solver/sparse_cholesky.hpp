@@ -41,7 +41,7 @@ class SparseCholesky {
   bool modify(const std::vector<Column>& columns, bool add);
   int symbolicAnalyses() const { return analyses_; }
   /// Entries of L (CHOLMOD's count for the last symbolic analysis; 0 before it).
-  double factorEntries() const { return factorEntries_; }
+  double factorEntries() const;
   /// The ordering of the next symbolic analysis (a change forces one at the next factorisation).
   void setOrdering(FillOrdering o);
   /// Solve with a simplicial LDLᵀ copy of each new factor (the form update/downdate needs
@@ -81,7 +81,6 @@ class SparseCholesky {
   struct Impl;
   std::unique_ptr<Impl> impl_;
   int analyses_ = 0;
-  double factorEntries_ = 0;
   bool simplicialSolves_ = false;
   bool panelSolves_ = false;
   long panelSubstitutions_ = 0;
