@@ -186,7 +186,11 @@ class Simulation {
   /// `restAcceleration`: the analysis will start at rest.
   bool confirmedAtRest(const Attempt& last, double restAcceleration);
   /// Largest vertex displacement of an attempt's solution over the active blocks (m).
+  /// A system of the size whose factor follows the contacts (≥ 1000 unknowns; the shipped cases
+  /// have at most 27 blocks): its static steps and factorisations are what a step costs.
+  bool largeSystem() const;
   double largestVertexDisplacement(const Attempt& a) const;
+  std::string fastestBlockNote(const Attempt& a) const;  ///< the block that moved most, for logs
   /// `freezeCycling`: a contact that keeps changing state within the step keeps its state
   /// whatever its law says; `holdSmallViolations`: only while that breaks its law by a small
   /// fraction of the largest contact force (tryStep).
