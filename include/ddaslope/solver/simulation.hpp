@@ -189,6 +189,11 @@ class Simulation {
   /// A system of the size whose factor follows the contacts (≥ 1000 unknowns; the shipped cases
   /// have at most 27 blocks): its static steps and factorisations are what a step costs.
   bool largeSystem() const;
+  /// After stage 3 of a large system: one static step to the static equilibrium of the settled
+  /// contact states, kept if it converges cleanly and moves less than a rest allows.
+  void polishRest(double staticDt);
+  /// The linear solver's counters into stats_ (after each committed step, and after a check).
+  void recordSolverStatistics();
   double largestVertexDisplacement(const Attempt& a) const;
   std::string fastestBlockNote(const Attempt& a) const;  ///< the block that moved most, for logs
   /// `freezeCycling`: a contact that keeps changing state within the step keeps its state
