@@ -61,17 +61,19 @@ INSTANTIATE_TEST_SUITE_P(Extremes, ExtremeCase, ::testing::ValuesIn(io::extremeI
 
 }  // namespace
 
-// 2000 blocks (issue #6 extremes): a 2000-brick wall with rigid blocks (the deformable one takes
-// 24 s to reach equilibrium; the benchmark measures it). Closed form: a wall standing on a fixed
-// base does not move, so after the equilibrium no brick moves more than a micrometre in 20 steps,
-// every number stays finite, and the mechanical energy does not rise beyond round-off (1e-12 of
-// the total).
+// 2000 blocks (issue #6 extremes): a 2000-brick wall with rigid blocks (the deformable one is
+// slower to settle; the benchmark measures it). Closed form: a wall standing on a fixed base
+// does not move, so its equilibrium ends at rest, after which no brick moves more than a
+// micrometre in 20 steps, every number stays finite, and the mechanical energy does not rise
+// beyond round-off (1e-12 of the total). A large system: it settles dynamically from its held
+// state (the test above).
 TEST(Extremes, TwoThousandBlockWallStandsStill) {
   model::Scene scene = model::makeBrickWall(2000);
   scene.settings.rigidBlocks = true;
   solver::Simulation sim(scene);
   sim.bringToEquilibrium();
   ASSERT_TRUE(sim.statistics().equilibriumConverged);
+  ASSERT_TRUE(sim.statistics().startedAtRest);
   std::vector<Vec2> start;
   for (const auto& b : sim.scene().blocks) start.push_back(b.moments.centroid);
   const double e0 = sim.energy().mechanical();
@@ -90,19 +92,21 @@ TEST(Extremes, TwoThousandBlockWallStandsStill) {
   EXPECT_LE(rise, 1e-12 * std::abs(e0));
 }
 
-// A large system settles dynamically straight from the state with every contact held (issue #16:
-// the static relaxation of a 20 000-brick wall crept for an hour instead). Closed form: a wall on
-// a fixed base is at rest, so the equilibrium must end confirmed at rest (a step from rest
-// implying less than 1e-6 g), after which no brick moves more than a micrometre in 20 steps,
-// no step cuts Δt, and the mechanical energy does not rise beyond round-off (1e-12 of the total).
-// The 495-brick side-by-side wall (2970 unknowns) is a large system, and deformable.
+// A large system settles dynamically straight from the state with every contact held, then
+// steps once statically to the equilibrium of its settled contact states (issue #16: the static
+// relaxation of a 20 000-brick wall crept for an hour instead). Closed form: a wall on a fixed
+// base is at rest, so the equilibrium must end confirmed at rest (a step from rest implying less
+// than 1e-6 g). A residual acceleration a below that moves a brick at most a t²/2 = 2e-9 m in the
+// 20 steps (t = 20 ms) that follow: no brick may move 1e-8 m. No step may cut Δt, and the
+// mechanical energy may not rise beyond round-off (1e-12 of the total). Measured: 1e-14 m, and
+// 8e-12 m without the static step. The 495-brick side-by-side wall (2970 unknowns) is a large
+// system, and deformable.
 TEST(Extremes, LargeDeformableWallSettlesFromItsHeldStateAndStandsStill) {
   solver::Simulation sim(model::makeAnchorWall(22, false));
   ASSERT_FALSE(sim.scene().settings.rigidBlocks);
   sim.bringToEquilibrium();
   ASSERT_TRUE(sim.statistics().startedAtRest);
   EXPECT_GT(sim.statistics().settlingSteps, 0);
-  EXPECT_LT(sim.statistics().equilibriumResidual, 1e-6);
   std::vector<Vec2> start;
   for (const auto& b : sim.scene().blocks) start.push_back(b.moments.centroid);
   const double e0 = sim.energy().mechanical();
@@ -118,7 +122,7 @@ TEST(Extremes, LargeDeformableWallSettlesFromItsHeldStateAndStandsStill) {
     ASSERT_TRUE(blk.velocity.allFinite() && blk.moments.centroid.allFinite()) << blk.id;
     moved = std::max(moved, (blk.moments.centroid - start[b]).norm());
   }
-  EXPECT_LT(moved, 1e-6);
+  EXPECT_LT(moved, 1e-8);
   EXPECT_EQ(cuts, 0);
   EXPECT_LE(rise, 1e-12 * std::abs(e0));
 }

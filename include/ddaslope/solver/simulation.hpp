@@ -185,15 +185,16 @@ class Simulation {
   /// Δt, every contact judged by its real law, converges with an implied acceleration below
   /// `restAcceleration`: the analysis will start at rest.
   bool confirmedAtRest(const Attempt& last, double restAcceleration);
-  /// Largest vertex displacement of an attempt's solution over the active blocks (m).
   /// A system of the size whose factor follows the contacts (≥ 1000 unknowns; the shipped cases
-  /// have at most 27 blocks): its static steps and factorisations are what a step costs.
+  /// have at most 28 blocks): its static steps and factorisations are what a step costs.
   bool largeSystem() const;
   /// After stage 3 of a large system: one static step to the static equilibrium of the settled
-  /// contact states, kept if it converges cleanly and moves less than a rest allows.
+  /// contact states, kept if it converges with no contact frozen, implies less than 1e-6 g, and a
+  /// step from rest at the analysis Δt confirms it (the rest test of stage 3).
   void polishRest(double staticDt);
   /// The linear solver's counters into stats_ (after each committed step, and after a check).
   void recordSolverStatistics();
+  /// Largest vertex displacement of an attempt's solution over the active blocks (m).
   double largestVertexDisplacement(const Attempt& a) const;
   std::string fastestBlockNote(const Attempt& a) const;  ///< the block that moved most, for logs
   /// `freezeCycling`: a contact that keeps changing state within the step keeps its state
