@@ -914,9 +914,9 @@ bool Simulation::settleDynamically() {
   // held cut Δt 88 times in its first 62 steps, down to 9e-5 s. A large system holds a contact
   // whose cycling breaks its law by little, as its analysis steps do (tryStep, kHeldViolation):
   // the same wall then settles in 143 steps without a cut. A step that held one never confirms
-  // rest. Small systems keep the strict rule: holding there moved the planar multi-block slide's
-  // critical cohesion by 2 %.
-  const bool holdSmallViolations = largeSystem();
+  // rest. Small systems and static analyses keep the strict rule: in a throwaway trial, holding
+  // moved the planar multi-block slide's critical cohesion from 116.8 to 118.4 kPa.
+  const bool holdSmallViolations = largeSystem() && dynamic;
   // The travel of stage 2 counts: the two stages together may not move like a failing scene.
   double travel = relaxationTravel_, lastKinetic = 0;
   // Static steps leave no meaningful velocity (commit() sums 2D/Δt over them): start from rest.
