@@ -1012,25 +1012,25 @@ bool Simulation::largeSystem() const {
   return (scene_.settings.rigidBlocks ? 3 : 6) * nActive_ >= kFactorFollowingMinUnknowns;
 }
 
-double Simulation::largestVertexDisplacement(const Attempt& a) const {
+std::pair<double, int> Simulation::fastestBlock(const Attempt& a) const {
   double worst = 0;
+  int which = -1;
   for (size_t b = 0; b < scene_.blocks.size(); ++b)
-    if (active_[b] >= 0) worst = std::max(worst, scene_.blocks[b].maxVertexDisplacement(a.d.segment<6>(6 * active_[b])));
-  return worst;
+    if (active_[b] >= 0) {
+      const double d = scene_.blocks[b].maxVertexDisplacement(a.d.segment<6>(6 * active_[b]));
+      if (which < 0 || d > worst) worst = d, which = static_cast<int>(b);
+    }
+  return {worst, which};
 }
+
+double Simulation::largestVertexDisplacement(const Attempt& a) const { return fastestBlock(a).first; }
 
 std::string Simulation::fastestBlockNote(const Attempt& a) const {
   // Diagnostics: which block moved most, and where it is, so a log shows what keeps a scene
   // from settling.
-  double worst = -1;
-  size_t which = 0;
-  for (size_t b = 0; b < scene_.blocks.size(); ++b)
-    if (active_[b] >= 0) {
-      const double d = scene_.blocks[b].maxVertexDisplacement(a.d.segment<6>(6 * active_[b]));
-      if (d > worst) worst = d, which = b;
-    }
-  if (worst < 0) return "";
-  const model::Block& blk = scene_.blocks[which];
+  const auto [worst, which] = fastestBlock(a);
+  if (which < 0) return "";
+  const model::Block& blk = scene_.blocks[static_cast<size_t>(which)];
   std::ostringstream m;
   m << "; most: block \"" << blk.id << "\" at (" << blk.moments.centroid.x() << ", " << blk.moments.centroid.y()
     << ") by " << worst << " m";

@@ -9,6 +9,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "ddaslope/assembly/block_sparse_matrix.hpp"
@@ -194,8 +195,10 @@ class Simulation {
   void polishRest(double staticDt);
   /// The linear solver's counters into stats_ (after each committed step, and after a check).
   void recordSolverStatistics();
-  /// Largest vertex displacement of an attempt's solution over the active blocks (m).
-  double largestVertexDisplacement(const Attempt& a) const;
+  /// Largest vertex displacement of an attempt's solution over the active blocks (m), and the
+  /// block that has it (-1 if none is active).
+  std::pair<double, int> fastestBlock(const Attempt& a) const;
+  double largestVertexDisplacement(const Attempt& a) const;  ///< fastestBlock(a).first
   std::string fastestBlockNote(const Attempt& a) const;  ///< the block that moved most, for logs
   /// `freezeCycling`: a contact that keeps changing state within the step keeps its state
   /// whatever its law says; `holdSmallViolations`: only while that breaks its law by a small
