@@ -30,9 +30,16 @@ void sortByKey(std::vector<ContactSprings>& v) {
 
 }  // namespace
 
+void FactorSprings::record(std::vector<ContactSprings> springs) {
+  recorded_ = std::move(springs);
+  switched_.resize(recorded_.size());
+  for (size_t r = 0; r < recorded_.size(); ++r)
+    switched_[r] = {recorded_[r].key, recorded_[r].normalK > 0, recorded_[r].shearK > 0};
+}
+
 void FactorSprings::reset(std::vector<ContactSprings> inFactor) {
   sortByKey(inFactor);
-  recorded_ = std::move(inFactor);
+  record(std::move(inFactor));
   valid_ = true;
 }
 
@@ -40,12 +47,12 @@ bool FactorSprings::holdsSame(const std::vector<contact::Contact>& contacts) con
   size_t r = 0;
   for (const contact::Contact& c : contacts) {
     if (!c.closed()) continue;
-    if (r == recorded_.size() || !(recorded_[r].key == c.key()) || !(recorded_[r].normalK > 0) ||
-        (recorded_[r].shearK > 0) != (c.state == contact::ContactState::Locked))
+    if (r == switched_.size() || !(switched_[r].key == c.key()) || !switched_[r].normal ||
+        switched_[r].shear != (c.state == contact::ContactState::Locked))
       return false;
     ++r;
   }
-  return r == recorded_.size();
+  return r == switched_.size();
 }
 
 void FactorSprings::changes(std::vector<ContactSprings> now, int dof, std::vector<SparseCholesky::Column>& added,
@@ -72,7 +79,7 @@ void FactorSprings::changes(std::vector<ContactSprings> now, int dof, std::vecto
     if (shearWas && c.shearK > 0) c.shear = old->shear, c.shearK = old->shearK;
   }
   while (r < recorded_.size()) leave(recorded_[r++]);
-  recorded_ = std::move(now);
+  record(std::move(now));
 }
 
 }  // namespace ddaslope::solver
