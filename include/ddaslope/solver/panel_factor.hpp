@@ -16,13 +16,17 @@
 // quiet step at 2047 bricks, one where the smaller 976-brick factor is used: hence the size
 // threshold, SparseCholesky::kPanelMinEntries).
 //
-// The substitutions run two entries per SSE2 instruction, with several sums in flight: four rows
-// at a time forward, sixteen columns per pass over a panel's rows backward, four triangle rows
-// per update. A sum split into lanes rounds differently from one summed in order, but the split is
-// fixed, so the solve is deterministic; its round-off stays that of double precision (tests/
-// test_panel_factor.cpp). The bench's --probe-solve-cache, substitutions repeated at once:
-// 6.0 → 3.5–3.7 ms at 5076 bricks, 1.21–1.34 → 0.93–0.94 ms at 2047 (as the steps run, where
-// the factor comes partly from memory: 6.0 → 4.5 and 1.40–1.61 → 1.35–1.39 ms).
+// The substitutions (src/solver/panel_kernels.inc) sum in four double-precision lanes with
+// several sums in flight: four rows at a time forward, sixteen columns per pass over a panel's
+// rows backward, four triangle rows per update. A sum split into lanes rounds differently from one
+// summed in order, but the split is fixed, so the solve is deterministic. The kernels are compiled
+// twice, for SSE2 (every x86-64 processor) and for AVX (chosen where the processor has it, without
+// FMA): both split the same way and return the same bits (tests/test_panel_factor.cpp). The
+// bench's --probe-solve-cache, one substitution as the steps run (repeated at once):
+//   2047 bricks: 1.40–1.61 (1.21–1.34) ms in order, 1.15–1.25 (0.83–0.88) SSE2, 0.75–0.92 (0.52–0.63) AVX
+//   5076 bricks: 6.0 (6.0) ms in order, 3.7–5.0 (3.0–4.7) SSE2, 3.2–3.9 (2.7–3.6) AVX
+// The rest is waiting for memory: rows strided by the panel's width, panels read back to front.
+
 #include <vector>
 
 #include <Eigen/Core>
@@ -41,6 +45,28 @@ struct SimplicialFactorView {
   const double* values = nullptr;
 };
 
+namespace detail {
+/// The arrays one substitution reads (src/solver/panel_kernels.inc).
+struct PanelArrays {
+  /// Columns first … first + width − 1 share the rows rows[rowStart …] below them. Entries of
+  /// L(first + r, first + c), r > c, are at values[valueStart + r(r − 1)/2 + c]; then the rows
+  /// below, row by row, width entries each.
+  struct Panel {
+    int first = 0;
+    int width = 0;
+    int rowStart = 0;
+    int rowCount = 0;
+    long valueStart = 0;
+  };
+  int n = 0;
+  const Panel* panels = nullptr;
+  int panelCount = 0;
+  const int* rows = nullptr;
+  const float* values = nullptr;
+  const double* diagonal = nullptr;
+};
+}  // namespace detail
+
 class PanelFactor {
  public:
   /// Regroups and rounds the factor (a copy: the view may change afterwards). Returns false, and
@@ -55,24 +81,22 @@ class PanelFactor {
   void solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) const;
   /// Bytes the panels hold (entries, row patterns, D), for the bench.
   double bytes() const;
+  /// The substitutions' instructions: AVX where the processor has it (Best, the default), or
+  /// the portable kernel (SSE2 on x86-64). Both return the same bits.
+  enum class Kernel { Best, Portable };
+  void setKernel(Kernel k) { kernel_ = k; }
+  /// Whether Best means AVX here (GCC on x86-64, a processor with AVX).
+  static bool avxAvailable();
 
  private:
-  /// Columns first … first + width − 1 share the rows rows_[rowStart …] below them. Entries of
-  /// L(first + r, first + c), r > c, are at values_[valueStart + r(r − 1)/2 + c]; then the rows
-  /// below, row by row, width entries each.
-  struct Panel {
-    int first = 0;
-    int width = 0;
-    int rowStart = 0;
-    int rowCount = 0;
-    long valueStart = 0;
-  };
+  using Panel = detail::PanelArrays::Panel;
   std::vector<Panel> panels_;
   std::vector<int> rows_;
   std::vector<float> values_;
   std::vector<double> diagonal_;
   std::vector<int> perm_;
   int widest_ = 0;
+  Kernel kernel_ = Kernel::Best;
   int mostRows_ = 0;  ///< the most rows below any panel
   mutable Eigen::VectorXd y_;
   mutable std::vector<double> local_;     ///< one panel's unknowns
