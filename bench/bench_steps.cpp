@@ -4,8 +4,8 @@
 //                        [--compare-search]  (also time the narrow phase on every pair, on stderr)
 //                        [--no-pair-cache]  (search every block pair at every step, as before the
 //                        pair cache: contact/pair_cache.hpp; the run is the same, bit for bit)
-//                        [--double-factor-only]  (large systems solve with the double-precision
-//                        factor only, as before its single-precision panels: solver/panel_factor.hpp)
+//                        [--double-factor-only]  (large systems substitute with CHOLMOD's double
+//                        factor only, as before the panels, rounded or exact: solver/panel_factor.hpp)
 //                        [--probe-solve-cache]  (time each timed step's first substitution, then
 //                        the same substitution repeated at once with the factor in cache; on stderr;
 //                        the repeats lengthen the steps, so time steps without it)
@@ -207,7 +207,7 @@ int main(int argc, char** argv) {
                    ms(a.probeRepeatSeconds - before.probeRepeatSeconds, static_cast<int>(std::max(1L, probed))));
     }
     if (a.panelSubstitutions > before.panelSubstitutions)
-      std::fprintf(stderr, "%d blocks: %ld substitutions with the factor's single-precision panels (%.1f MB)\n", n,
+      std::fprintf(stderr, "%d blocks: %ld substitutions with the factor's panels (%.1f MB; rounded to single precision from 1e6 entries, exact below)\n", n,
                    a.panelSubstitutions - before.panelSubstitutions, 1e-6 * a.panelBytes);
     std::fprintf(stderr, "%d blocks: state checksum %.12g, fastest block %.6g m/s\n", n, sum, fastest);
     perStep.emplace_back(n, wall / accepted);

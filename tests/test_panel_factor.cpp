@@ -131,6 +131,12 @@ TEST(PanelFactor, SolvesWidePanelsOfOddWidthsToDoubleRoundOff) {
   ASSERT_TRUE(panels.build(r.owned.view()));
   EXPECT_EQ(panels.panelCount(), 1 + kGap + 1) << "the head, the single columns between, the filled tail";
   EXPECT_LE(relativeSolveError(r, panels), 1e-12);
+  // Exact panels (double entries) run the same kernels on the same layout.
+  solver::PanelFactor exact;
+  ASSERT_TRUE(exact.build(r.owned.view(), solver::PanelFactor::Precision::Double));
+  EXPECT_FALSE(exact.rounded());
+  EXPECT_EQ(exact.panelCount(), panels.panelCount());
+  EXPECT_LE(relativeSolveError(r, exact), 1e-12);
   // The AVX and the portable kernels split every sum into the same four lanes: the same bits
   // (panel_kernels.inc), so a run does not depend on the processor it ran on. Compared on this
   // pattern with entries of order one (L in (−1, 1), D in (1, 2)): the small entries of a
@@ -166,6 +172,7 @@ TEST(PanelFactor, RefusesWhatIsNotSuchAFactor) {
   OwnedFactor huge = f;
   huge.values[1] = 1e300;  // beyond single precision
   EXPECT_FALSE(panels.build(huge.view()));
+  EXPECT_TRUE(panels.build(huge.view(), solver::PanelFactor::Precision::Double)) << "within double precision";
   for (const double bad : {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()}) {
     OwnedFactor d = f;
     d.values[0] = bad;  // D0 not a finite positive number

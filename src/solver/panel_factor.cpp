@@ -17,14 +17,16 @@ void PanelFactor::clear() {
   panels_.clear();
   rows_.clear();
   values_.clear();
+  exactValues_.clear();
   diagonal_.clear();
   perm_.clear();
   widest_ = 0;
   mostRows_ = 0;
 }
 
-bool PanelFactor::build(const SimplicialFactorView& f) {
+bool PanelFactor::build(const SimplicialFactorView& f, Precision precision) {
   clear();
+  precision_ = precision;
   const int n = f.n;
   const auto start = [&](int j) { return static_cast<long>(f.colStart[j]); };
   // The layout the solve relies on: each column led by its diagonal, rows ascending, D > 0.
@@ -37,7 +39,17 @@ bool PanelFactor::build(const SimplicialFactorView& f) {
   }
   // Entries beyond single precision's range would become infinite (a factor of a sane K holds
   // ratios of its entries, near 1); the solve then stays with the double factor.
-  constexpr double kLargest = 1e30;
+  const double largest = precision == Precision::Single ? 1e30 : std::numeric_limits<double>::infinity();
+  long entries = 0;
+  const auto keep = [&](double v) {
+    if (!(std::abs(v) < largest)) return false;
+    if (precision == Precision::Single)
+      values_.push_back(static_cast<float>(v));
+    else
+      exactValues_.push_back(v);
+    ++entries;
+    return true;
+  };
   diagonal_.resize(static_cast<size_t>(n));
   perm_.assign(f.perm, f.perm + n);
   // Column k + 1 continues column k's panel when it is k's parent (k's first row below the
@@ -52,26 +64,22 @@ bool PanelFactor::build(const SimplicialFactorView& f) {
   for (int j = 0; j < n;) {
     int w = 1;
     while (j + w < n && sharesRows(j + w - 1)) ++w;
-    Panel panel{j, w, static_cast<int>(rows_.size()), f.colCount[j] - w, static_cast<long>(values_.size())};
+    Panel panel{j, w, static_cast<int>(rows_.size()), f.colCount[j] - w, entries};
     const long below = start(j) + w;
     rows_.insert(rows_.end(), f.rows + below, f.rows + below + panel.rowCount);
     for (int r = 1; r < w; ++r)
       for (int c = 0; c < r; ++c) {
-        const double v = f.values[start(j + c) + (r - c)];
-        if (!(std::abs(v) < kLargest)) {
+        if (!keep(f.values[start(j + c) + (r - c)])) {
           clear();
           return false;
         }
-        values_.push_back(static_cast<float>(v));
       }
     for (int i = 0; i < panel.rowCount; ++i)
       for (int c = 0; c < w; ++c) {
-        const double v = f.values[start(j + c) + (w - c) + i];
-        if (!(std::abs(v) < kLargest)) {
+        if (!keep(f.values[start(j + c) + (w - c) + i])) {
           clear();
           return false;
         }
-        values_.push_back(static_cast<float>(v));
       }
     for (int c = 0; c < w; ++c) diagonal_[static_cast<size_t>(j + c)] = f.values[start(j + c)];
     panels_.push_back(panel);
@@ -108,6 +116,7 @@ struct Lanes {
     const __m128 f = _mm_loadu_ps(p);
     return {_mm_cvtps_pd(f), _mm_cvtps_pd(_mm_movehl_ps(f, f))};
   }
+  static V widen(const double* p) { return load(p); }
   static V load(const double* p) { return {_mm_loadu_pd(p), _mm_loadu_pd(p + 2)}; }
   static void store(double* p, V v) { _mm_storeu_pd(p, v.lo), _mm_storeu_pd(p + 2, v.hi); }
   static V add(V a, V b) { return {_mm_add_pd(a.lo, b.lo), _mm_add_pd(a.hi, b.hi)}; }
@@ -126,6 +135,7 @@ struct Lanes {
   static V zero() { return {{0, 0, 0, 0}}; }
   static V splat(double a) { return {{a, a, a, a}}; }
   static V widen(const float* p) { return {{double(p[0]), double(p[1]), double(p[2]), double(p[3])}}; }
+  static V widen(const double* p) { return {{p[0], p[1], p[2], p[3]}}; }
   static V load(const double* p) { return {{p[0], p[1], p[2], p[3]}}; }
   static void store(double* p, V v) { std::memcpy(p, v.l, sizeof v.l); }
   static V add(V a, V b) { return {{a.l[0] + b.l[0], a.l[1] + b.l[1], a.l[2] + b.l[2], a.l[3] + b.l[3]}}; }
@@ -147,6 +157,7 @@ struct Lanes {
   static V zero() { return _mm256_setzero_pd(); }
   static V splat(double a) { return _mm256_set1_pd(a); }
   static V widen(const float* p) { return _mm256_cvtps_pd(_mm_loadu_ps(p)); }
+  static V widen(const double* p) { return _mm256_loadu_pd(p); }
   static V load(const double* p) { return _mm256_loadu_pd(p); }
   static void store(double* p, V v) { _mm256_storeu_pd(p, v); }
   static V add(V a, V b) { return _mm256_add_pd(a, b); }
@@ -179,20 +190,25 @@ void PanelFactor::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) const {
   for (int k = 0; k < n; ++k) y_[k] = b[perm_[static_cast<size_t>(k)]];
   local_.resize(static_cast<size_t>(widest_));
   gathered_.resize(static_cast<size_t>(mostRows_));
-  const PanelArrays f{n, panels_.data(), static_cast<int>(panels_.size()), rows_.data(), values_.data(),
-                      diagonal_.data()};
+  const PanelArrays f{n, panels_.data(), static_cast<int>(panels_.size()), rows_.data(), diagonal_.data()};
+  const auto substitute = [&](auto kernel) {
+    if (precision_ == Precision::Single)
+      kernel(f, values_.data(), y_.data(), local_.data(), gathered_.data());
+    else
+      kernel(f, exactValues_.data(), y_.data(), local_.data(), gathered_.data());
+  };
 #if DDASLOPE_PANEL_AVX
   if (kernel_ == Kernel::Best && avxAvailable())
-    avx::substitute(f, y_.data(), local_.data(), gathered_.data());
+    substitute([](const PanelArrays& a, const auto* v, double* y, double* yc, double* xs) { avx::substitute(a, v, y, yc, xs); });
   else
 #endif
-    portable::substitute(f, y_.data(), local_.data(), gathered_.data());
+    substitute([](const PanelArrays& a, const auto* v, double* y, double* yc, double* xs) { portable::substitute(a, v, y, yc, xs); });
   x.resize(n);
   for (int k = 0; k < n; ++k) x[perm_[static_cast<size_t>(k)]] = y_[k];
 }
 
 double PanelFactor::bytes() const {
-  return sizeof(float) * double(values_.size()) + sizeof(int) * double(rows_.size() + perm_.size()) +
+  return sizeof(float) * double(values_.size()) + sizeof(double) * double(exactValues_.size()) + sizeof(int) * double(rows_.size() + perm_.size()) +
          sizeof(double) * double(diagonal_.size()) + sizeof(Panel) * double(panels_.size());
 }
 

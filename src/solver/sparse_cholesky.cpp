@@ -37,10 +37,10 @@ struct SparseCholesky::Impl {
     usePanels = false;
   }
   /// Whether this generation substitutes through panels (built, or to be built for its next
-  /// solve): a factor large enough, in use long enough, whose panels did not fail or fall short.
+  /// solve): a factor in use long enough, whose panels did not fail or fall short.
   bool panelsEarned() const {
     return panelGeneration == generation ||
-           (modified && lnz >= SparseCholesky::kPanelMinEntries && unpanelledGeneration != generation &&
+           (modified && unpanelledGeneration != generation &&
             solvesWithGeneration >= SparseCholesky::kSolvesBeforePanels);
   }
   /// Panels of `modified` for this generation, if it has earned them and they can be built.
@@ -54,7 +54,9 @@ struct SparseCholesky::Impl {
     view.colCount = static_cast<const int*>(modified->nz);
     view.rows = static_cast<const int*>(modified->i);
     view.values = static_cast<const double*>(modified->x);
-    if (modified->is_super || modified->is_ll || !panels.build(view)) {
+    const auto precision =
+        lnz >= SparseCholesky::kPanelMinEntries ? PanelFactor::Precision::Single : PanelFactor::Precision::Double;
+    if (modified->is_super || modified->is_ll || !panels.build(view, precision)) {
       unpanelledGeneration = generation;
       return false;
     }
@@ -147,7 +149,7 @@ void SparseCholesky::beginSolve() {
   ++impl_->solvesWithGeneration;
 }
 
-bool SparseCholesky::solvingWithPanels() const { return impl_->usePanels; }
+bool SparseCholesky::solvingWithPanels() const { return impl_->usePanels && impl_->panels.rounded(); }
 
 void SparseCholesky::dropPanels() {
   impl_->usePanels = false;

@@ -62,22 +62,28 @@ struct PanelArrays {
   const Panel* panels = nullptr;
   int panelCount = 0;
   const int* rows = nullptr;
-  const float* values = nullptr;
   const double* diagonal = nullptr;
 };
 }  // namespace detail
 
 class PanelFactor {
  public:
-  /// Regroups and rounds the factor (a copy: the view may change afterwards). Returns false, and
-  /// leaves the panels empty, if the view is not a factor of that layout (a column not led by its
-  /// diagonal or not sorted, a D(j,j) not positive) or an entry does not fit single precision.
-  bool build(const SimplicialFactorView& f);
+  /// Single: L's entries rounded to single precision (a preconditioner within about 1e-7 of the
+  /// factor, for factors too large for the cache); Double: kept exact (the factor itself, whose
+  /// substitution streams the entries without CHOLMOD's row index per entry).
+  enum class Precision { Single, Double };
+  /// Regroups (and rounds, if Single) the factor: a copy, the view may change afterwards.
+  /// Returns false, and leaves the panels empty, if the view is not a factor of that layout (a
+  /// column not led by its diagonal or not sorted, a D(j,j) not positive) or an entry does not fit
+  /// single precision where asked for.
+  bool build(const SimplicialFactorView& f, Precision precision = Precision::Single);
+  /// Whether the panels hold L rounded (Single): a preconditioner, not the factor.
+  bool rounded() const { return precision_ == Precision::Single; }
   bool empty() const { return panels_.empty(); }
   /// Panels: runs of columns that share their rows below (fewer than the columns where any do).
   int panelCount() const { return static_cast<int>(panels_.size()); }
   void clear();
-  /// x := A⁻¹ b for A = Pᵀ L D Lᵀ P with L's entries as rounded to single precision.
+  /// x := A⁻¹ b for A = Pᵀ L D Lᵀ P with L's entries as the panels hold them.
   void solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) const;
   /// Bytes the panels hold (entries, row patterns, D), for the bench.
   double bytes() const;
@@ -92,7 +98,9 @@ class PanelFactor {
   using Panel = detail::PanelArrays::Panel;
   std::vector<Panel> panels_;
   std::vector<int> rows_;
-  std::vector<float> values_;
+  std::vector<float> values_;         ///< L's entries, Single
+  std::vector<double> exactValues_;   ///< L's entries, Double
+  Precision precision_ = Precision::Single;
   std::vector<double> diagonal_;
   std::vector<int> perm_;
   int widest_ = 0;

@@ -48,16 +48,18 @@ class SparseCholesky {
   /// anyway) instead of the supernodal factor: with Debian's reference BLAS its single
   /// right-hand-side solve is a third faster (0.79 against 1.19 ms at 5856 unknowns).
   void setSimplicialSolves(bool on) { simplicialSolves_ = on; }
-  /// With simplicial solves and a factor of at least kPanelMinEntries entries: once the factor
-  /// (as last modified) has served kSolvesBeforePanels solves, substitute with its
-  /// single-precision panels (solver/panel_factor.hpp) instead: a preconditioner within about
-  /// 1e-7 of it that streams a third of the bytes. Only for callers that check each solution
-  /// against K (conjugate gradients) and announce each system solve with beginSolve().
+  /// With simplicial solves: once the factor (as last modified) has served kSolvesBeforePanels
+  /// solves, substitute with its panels (solver/panel_factor.hpp) instead: from kPanelMinEntries
+  /// entries rounded to single precision, a preconditioner within about 1e-7 of the factor that
+  /// streams a third of the bytes; below, exact (double entries, the factor itself, without
+  /// CHOLMOD's row index per entry and with vectorised kernels). Only for callers that check each
+  /// solution against K (conjugate gradients) and announce each system solve with beginSolve().
   void setPanelSolves(bool on) { panelSolves_ = on; }
   /// A new system solve begins: it counts towards the factor's panels and fixes whether its
   /// substitutions use them (one preconditioner for a whole CG run). Without it, none do.
   void beginSolve();
-  /// Whether this solve's substitutions use the panels (for the solver's tolerance logic).
+  /// Whether this solve's substitutions use rounded panels (for the solver's tolerance logic:
+  /// exact panels solve as the factor does).
   bool solvingWithPanels() const;
   /// The rest of this solve, and this factor, substitute in double precision: CG through the
   /// panels missed its budget (their rounding, about 6e-8 · κ(K), can, where K is stiff).
@@ -69,12 +71,12 @@ class SparseCholesky {
   /// contact state change (sudden loading) keeps the double factor and seldom pays for a
   /// regrouping (about one and a half substitutions' worth) that it would use once.
   static constexpr int kSolvesBeforePanels = 8;
-  /// Smaller factors stay in the cache from one step to the next, where the double factor is
-  /// solved as fast and needs no conjugate-gradient iteration. In a build that used panels at
-  /// every size, the 976-brick quiet wall (`ddaslope_bench --anchor-rows 31`, 0.58 million
-  /// entries, 6.9 MB) took 1.75 ms per step with them against 1.26 without (one CG iteration per
-  /// step), and the 2047-brick rigid wall (0.36 million) 2.77 against 2.48 ms. From 1.1 million
-  /// entries (13 MB; rigid, 5076 bricks) the panels win (README, *Performance*).
+  /// Smaller factors stay in the cache from one step to the next, where exact panels are solved
+  /// as fast and need no conjugate-gradient iteration. In a build that rounded panels at every
+  /// size, the 976-brick quiet wall (`ddaslope_bench --anchor-rows 31`, 0.58 million entries,
+  /// 6.9 MB) took 1.75 ms per step with them against 1.26 without (one CG iteration per step), and
+  /// the 2047-brick rigid wall (0.36 million) 2.77 against 2.48 ms. From 1.1 million entries
+  /// (13 MB; rigid, 5076 bricks) the rounded panels win (README, *Performance*).
   static constexpr double kPanelMinEntries = 1e6;
 
  private:
