@@ -106,54 +106,66 @@ TEST(PanelFactor, SolvesTheFactorItHoldsToDoubleRoundOff) {
   EXPECT_LE(relativeSolveError(r, panels), 1e-12);
 }
 
-// The same exactness for wide panels of odd widths, which the solve's kernels take in chunks of
-// sixteen, eight, … columns, four triangle rows at a time, and a last odd column. An arrow
-// matrix: the first 37 columns dense and coupled to the last 51 rows, 12 uncoupled columns
-// between. The factor's panels: the head (37 wide, the 51 rows below), 12 single columns, and
-// the 51 last columns, which the head fills completely (51 wide, a triangle only). Entries are
-// random in (−1, 1), the diagonal dominant (100 against at most 87 off-diagonal entries a row).
-TEST(PanelFactor, SolvesWidePanelsOfOddWidthsToDoubleRoundOff) {
-  constexpr int kHead = 37, kGap = 12, n = 100;
+// The same exactness for panels of every width class the solve's kernels distinguish: sixteen
+// columns per pass over the rows below, then 12, 8 or 4, then 3, 2 or 1; rows four at a time and
+// the rest; triangles four rows at a time and the rest. An arrow matrix: dense heads of 37, 27,
+// 31, 18 and 3 columns (37 = 32 + 4 + 1, 27 = 16 + 8 + 3, 31 = 16 + 12 + 3, 18 = 16 + 2, 3), each
+// coupled to the last 45 rows and not to each other, then 6 uncoupled columns, then the 45. The
+// factor's panels: each head (its width, the 45 rows below), 6 single columns, and the 45 last
+// columns, which the heads fill completely (45 wide, a triangle only). Entries random in
+// (−1, 1), the diagonal dominant (300 against at most 161 + 44 off-diagonal entries a row).
+TEST(PanelFactor, SolvesPanelsOfEveryWidthClassToDoubleRoundOff) {
+  const std::vector<int> heads = {37, 27, 31, 18, 3};
+  constexpr int kGap = 6, kTail = 45;
+  int n = kGap + kTail;
+  for (const int h : heads) n += h;
   std::mt19937 rng(11);
   std::uniform_real_distribution<double> u(-1, 1);
   std::vector<Eigen::Triplet<double>> t;
-  for (int j = 0; j < n; ++j) {
-    t.emplace_back(j, j, 100.0 + u(rng));
-    if (j < kHead) {
-      for (int i = j + 1; i < kHead; ++i) t.emplace_back(i, j, u(rng));
-      for (int i = kHead + kGap; i < n; ++i) t.emplace_back(i, j, u(rng));
+  for (int j = 0; j < n; ++j) t.emplace_back(j, j, 300.0 + u(rng));
+  int first = 0;
+  for (const int h : heads) {
+    for (int j = first; j < first + h; ++j) {
+      for (int i = j + 1; i < first + h; ++i) t.emplace_back(i, j, u(rng));
+      for (int i = n - kTail; i < n; ++i) t.emplace_back(i, j, u(rng));
     }
+    first += h;
   }
   Eigen::SparseMatrix<double> lowerA(n, n);
   lowerA.setFromTriplets(t.begin(), t.end());
   const RoundedFactor r = roundedFactorOf(lowerA, rng);
+  const int expectedPanels = static_cast<int>(heads.size()) + kGap + 1;
   solver::PanelFactor panels;
   ASSERT_TRUE(panels.build(r.owned.view()));
-  EXPECT_EQ(panels.panelCount(), 1 + kGap + 1) << "the head, the single columns between, the filled tail";
+  EXPECT_EQ(panels.panelCount(), expectedPanels) << "the heads, the single columns between, the filled tail";
   EXPECT_LE(relativeSolveError(r, panels), 1e-12);
   // Exact panels (double entries) run the same kernels on the same layout.
   solver::PanelFactor exact;
   ASSERT_TRUE(exact.build(r.owned.view(), solver::PanelFactor::Precision::Double));
   EXPECT_FALSE(exact.rounded());
-  EXPECT_EQ(exact.panelCount(), panels.panelCount());
+  EXPECT_EQ(exact.panelCount(), expectedPanels);
   EXPECT_LE(relativeSolveError(r, exact), 1e-12);
+
   // The AVX and the portable kernels split every sum into the same four lanes: the same bits
   // (panel_kernels.inc), so a run does not depend on the processor it ran on. Compared on this
-  // pattern with entries of order one (L in (−1, 1), D in (1, 2)): the small entries of a
-  // diagonally dominant factor would hide a different rounding of their sums.
+  // pattern with entries of order one (L in (−1, 1), D in (1, 2)), in both precisions: the small
+  // entries of a diagonally dominant factor would hide a different rounding of their sums.
   if (!solver::PanelFactor::avxAvailable()) GTEST_SKIP() << "no AVX here: one kernel only";
   OwnedFactor rough = r.owned;
   for (int j = 0; j < n; ++j)
     for (int q = 0; q < rough.count[j]; ++q)
       rough.values[rough.start[j] + q] = q == 0 ? 1.5 + u(rng) / 2 : static_cast<float>(u(rng));
-  ASSERT_TRUE(panels.build(rough.view()));
   const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(n, 1, 2).array().sin();
-  Eigen::VectorXd best, portable;
-  panels.solve(b, best);
-  panels.setKernel(solver::PanelFactor::Kernel::Portable);
-  panels.solve(b, portable);
-  ASSERT_TRUE(best.allFinite());
-  for (int k = 0; k < n; ++k) EXPECT_EQ(best[k], portable[k]) << "entry " << k;
+  for (const auto precision : {solver::PanelFactor::Precision::Single, solver::PanelFactor::Precision::Double}) {
+    solver::PanelFactor p;
+    ASSERT_TRUE(p.build(rough.view(), precision));
+    Eigen::VectorXd best, portable;
+    p.solve(b, best);
+    p.setKernel(solver::PanelFactor::Kernel::Portable);
+    p.solve(b, portable);
+    ASSERT_TRUE(best.allFinite());
+    for (int k = 0; k < n; ++k) EXPECT_EQ(best[k], portable[k]) << "entry " << k;
+  }
 }
 
 // What is not a simplicial LDLᵀ factor with D > 0 is refused, not solved wrongly.
@@ -187,29 +199,31 @@ TEST(PanelFactor, RefusesWhatIsNotSuchAFactor) {
 
 namespace {
 
-/// A 2-D grid of 6×6 blocks coupled to their eight neighbours (2116 blocks, 12 696 unknowns):
-/// the wall's pattern, large enough for panels (about 1.6 million entries of L under nested
-/// dissection), and diagonally dominant (Gershgorin: condition below 3.2).
+/// A 2-D grid of 6×6 blocks coupled to their eight neighbours (by default 46 × 46 = 2116 blocks,
+/// 12 696 unknowns): the wall's pattern, large enough for rounded panels (about 1.6 million
+/// entries of L under nested dissection), and diagonally dominant (Gershgorin: condition below
+/// 3.2).
 struct Grid {
-  static constexpr int kSide = 46;
+  static constexpr int kDefaultSide = 46;
+  const int side;
   std::vector<std::pair<int, int>> couplings;
   assembly::BlockSparseMatrix k;
-  Grid() {
-    for (int r = 0; r < kSide; ++r)
-      for (int c = 0; c < kSide; ++c) {
-        const int b = r * kSide + c;
-        if (c + 1 < kSide) couplings.emplace_back(b, b + 1);
-        if (r + 1 < kSide) couplings.emplace_back(b, b + kSide);
-        if (r + 1 < kSide && c + 1 < kSide) couplings.emplace_back(b, b + kSide + 1);
-        if (r + 1 < kSide && c > 0) couplings.emplace_back(b, b + kSide - 1);
+  explicit Grid(int sideBlocks = kDefaultSide) : side(sideBlocks) {
+    for (int r = 0; r < side; ++r)
+      for (int c = 0; c < side; ++c) {
+        const int b = r * side + c;
+        if (c + 1 < side) couplings.emplace_back(b, b + 1);
+        if (r + 1 < side) couplings.emplace_back(b, b + side);
+        if (r + 1 < side && c + 1 < side) couplings.emplace_back(b, b + side + 1);
+        if (r + 1 < side && c > 0) couplings.emplace_back(b, b + side - 1);
       }
-    k.setPattern(kSide * kSide, assembly::BlockSparseMatrix::normalise(couplings));
+    k.setPattern(side * side, assembly::BlockSparseMatrix::normalise(couplings));
     fill(0);
   }
   /// `drift` scales the diagonal blocks: a change of K a factor has not seen, as a step makes.
   void fill(double drift) {
     k.setZero();
-    for (int b = 0; b < kSide * kSide; ++b) {
+    for (int b = 0; b < side * side; ++b) {
       Mat6 d = Mat6::Identity() * (60.0 + 0.01 * b) * (1 + drift * (b % 5));
       for (int e = 0; e < 6; ++e) d(e, (e + 2) % 6) = d((e + 2) % 6, e) = 1.0;
       k.addDiagonal(b, d);
@@ -272,6 +286,28 @@ TEST(LinearSolver, PanelsOfAFactorOfKItselfAreCheckedToo) {
   EXPECT_EQ(s.stats().factorisations, 1);
 }
 
+// A factor under kPanelMinEntries gets exact panels (double entries): they solve as the factor
+// does, so a factor of K itself needs no CG iteration through them, and their solutions match
+// CHOLMOD's substitution to round-off (condition below 3.2: 1e-13 leaves a factor of 300 over
+// double precision's 3e-16 and none for the rounded panels' 1e-7).
+TEST(LinearSolver, ExactPanelsOfASmallerFactorSolveAsTheFactorDoes) {
+  Grid g(20);  // 400 blocks, 2400 unknowns
+  solver::LinearSolver withPanels, doubleOnly;
+  largeSystem(withPanels, true);
+  largeSystem(doubleOnly, false);
+  Eigen::VectorXd xp, xd;
+  for (int n = 0; n < 2 * solver::SparseCholesky::kSolvesBeforePanels; ++n) {
+    const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(g.k.size(), -2 - n, 7);
+    ASSERT_TRUE(withPanels.solve(g.k, b, xp));
+    ASSERT_TRUE(doubleOnly.solve(g.k, b, xd));
+    EXPECT_LE((xp - xd).norm(), 1e-13 * xd.norm()) << "solve " << n;
+  }
+  ASSERT_LT(withPanels.factorEntries(), solver::SparseCholesky::kPanelMinEntries) << "the exact panels' size class";
+  EXPECT_GT(withPanels.panelSubstitutions(), 0) << "the panels must have been used";
+  EXPECT_EQ(withPanels.stats().cgIterations, 0) << "exact panels of K's own factor need no CG iteration";
+  EXPECT_EQ(withPanels.stats().factorisations, 1);
+}
+
 // The panels are rebuilt from the factor as CHOLMOD's update/downdate leaves it (columns it may
 // have grown and moved): after rank-one changes, a solve through them agrees with the double
 // factor's to the rounding of L's entries to single precision (about 6e-8 relative) times K's
@@ -286,7 +322,7 @@ TEST(SparseCholesky, PanelsFollowTheFactorThroughUpdates) {
   }
   panelled.setPanelSolves(true);
   std::mt19937 rng(11);
-  std::uniform_int_distribution<int> block(0, Grid::kSide * Grid::kSide - 1);
+  std::uniform_int_distribution<int> block(0, g.side * g.side - 1);
   std::uniform_real_distribution<double> u(-0.3, 0.3);
   const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(g.k.size(), -1, 3);
   for (int round = 0; round < 3; ++round) {

@@ -52,6 +52,17 @@ bool PanelFactor::build(const SimplicialFactorView& f, Precision precision) {
   };
   diagonal_.resize(static_cast<size_t>(n));
   perm_.assign(f.perm, f.perm + n);
+  // The entries below the diagonals, reserved at once: growing by doubling would hold up to half
+  // again as much memory while it copies (and keep it), and the other precision's array is freed.
+  long entriesBelow = 0;
+  for (int j = 0; j < n; ++j) entriesBelow += f.colCount[j] - 1;
+  if (precision == Precision::Single) {
+    values_.reserve(static_cast<size_t>(entriesBelow));
+    std::vector<double>().swap(exactValues_);
+  } else {
+    exactValues_.reserve(static_cast<size_t>(entriesBelow));
+    std::vector<float>().swap(values_);
+  }
   // Column k + 1 continues column k's panel when it is k's parent (k's first row below the
   // diagonal) and has k's rows below it. In a Cholesky pattern, one entry fewer implies it; the
   // rows are compared anyway (O(entries)), so that a factor whose pattern was pruned (CHOLMOD's

@@ -154,6 +154,7 @@ bool SparseCholesky::solvingWithPanels() const { return impl_->usePanels && impl
 void SparseCholesky::dropPanels() {
   impl_->usePanels = false;
   impl_->unpanelledGeneration = impl_->generation;
+  impl_->panelGeneration = -1;  // not rebuilt for this generation: panelsEarned() sees it dropped
 }
 
 double SparseCholesky::panelBytes() const { return impl_->panels.bytes(); }
