@@ -96,9 +96,9 @@ class LinearSolver {
   void setOrdering(FillOrdering o) { cholesky_.setOrdering(o); }
   /// Solves with a simplicial copy of each new factor (SparseCholesky::setSimplicialSolves).
   void setSimplicialSolves(bool on) { cholesky_.setSimplicialSolves(on); }
-  /// Substitutions with single-precision panels of a factor in long use
-  /// (SparseCholesky::setPanelSolves); every solution is then checked against K by CG, and a CG
-  /// run that misses its budget through them is tried again with the double factor.
+  /// Substitutions with panels of a factor in long use (SparseCholesky::setPanelSolves). Through
+  /// rounded panels every solution is checked against K by CG, and a CG run that misses its budget
+  /// through them is tried again with the double factor; exact panels solve as the factor does.
   void setPanelSolves(bool on) { cholesky_.setPanelSolves(on); }
   long panelSubstitutions() const { return cholesky_.panelSubstitutions(); }
   double panelBytes() const { return cholesky_.panelBytes(); }

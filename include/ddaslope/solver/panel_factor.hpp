@@ -1,5 +1,5 @@
 #pragma once
-// A simplicial LDLᵀ factor regrouped into panels of single-precision entries, for the many
+// A simplicial LDLᵀ factor regrouped into panels (single-precision entries, or exact), for the many
 // solves a large quiet run makes with one factor.
 //
 // Why: a large system's step is one forward and back substitution, which streams the whole

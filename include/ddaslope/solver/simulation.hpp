@@ -63,7 +63,7 @@ struct RunStatistics {
   long probedSubstitutions = 0;
   double probeFirstSeconds = 0, probeRepeatSeconds = 0;
   double factorEntries = 0;        ///< entries of the Cholesky factor's L, last analysis
-  long panelSubstitutions = 0;     ///< substitutions with the factor's single-precision panels
+  long panelSubstitutions = 0;     ///< substitutions with the factor's panels (rounded or exact)
   double panelBytes = 0;           ///< bytes of the last panels built
   /// Contact state changes between open-close iterates (issue #16's profile of sudden loading):
   /// between locked and sliding, and between open and closed (locked or sliding).
@@ -144,8 +144,8 @@ class Simulation {
   /// Diagnostics: each solve's first substitution also repeated at once and both timed
   /// (LinearSolver::setCacheProbe; RunStatistics::probe*). The run is unchanged.
   void setSolveCacheProbe(bool on) { linearSolver_.setCacheProbe(on); }
-  /// Off: large systems solve with the double-precision factor only, as before its
-  /// single-precision panels (solver/panel_factor.hpp; for comparisons: the bench, the tests).
+  /// Off: large systems substitute with CHOLMOD's double-precision factor only, as before the
+  /// panels, rounded or exact (solver/panel_factor.hpp; for comparisons: the bench, the tests).
   void setPanelSolves(bool on) { panelSolves_ = on; }
   /// Threads this run's contact search, linearisation and contact judgement may use (1 by
   /// default: a search runs its forward runs side by side instead). The result does not depend
