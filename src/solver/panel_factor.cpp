@@ -184,6 +184,17 @@ struct Lanes {
 #pragma GCC pop_options
 #endif
 
+/// The substitution with the AVX kernels where asked (and built), else the portable ones.
+template <class T>
+void substituteWith(bool useAvx, const PanelArrays& f, const T* values, double* y, double* yc, double* xs) {
+#if DDASLOPE_PANEL_AVX
+  if (useAvx) return avx::substitute(f, values, y, yc, xs);
+#else
+  (void)useAvx;
+#endif
+  portable::substitute(f, values, y, yc, xs);
+}
+
 }  // namespace
 
 bool PanelFactor::avxAvailable() {
@@ -202,25 +213,19 @@ void PanelFactor::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) const {
   local_.resize(static_cast<size_t>(widest_));
   gathered_.resize(static_cast<size_t>(mostRows_));
   const PanelArrays f{n, panels_.data(), static_cast<int>(panels_.size()), rows_.data(), diagonal_.data()};
-  const auto substitute = [&](auto kernel) {
-    if (precision_ == Precision::Single)
-      kernel(f, values_.data(), y_.data(), local_.data(), gathered_.data());
-    else
-      kernel(f, exactValues_.data(), y_.data(), local_.data(), gathered_.data());
-  };
-#if DDASLOPE_PANEL_AVX
-  if (kernel_ == Kernel::Best && avxAvailable())
-    substitute([](const PanelArrays& a, const auto* v, double* y, double* yc, double* xs) { avx::substitute(a, v, y, yc, xs); });
+  const bool useAvx = kernel_ == Kernel::Best && avxAvailable();
+  if (precision_ == Precision::Single)
+    substituteWith(useAvx, f, values_.data(), y_.data(), local_.data(), gathered_.data());
   else
-#endif
-    substitute([](const PanelArrays& a, const auto* v, double* y, double* yc, double* xs) { portable::substitute(a, v, y, yc, xs); });
+    substituteWith(useAvx, f, exactValues_.data(), y_.data(), local_.data(), gathered_.data());
   x.resize(n);
   for (int k = 0; k < n; ++k) x[perm_[static_cast<size_t>(k)]] = y_[k];
 }
 
 double PanelFactor::bytes() const {
-  return sizeof(float) * double(values_.size()) + sizeof(double) * double(exactValues_.size()) + sizeof(int) * double(rows_.size() + perm_.size()) +
-         sizeof(double) * double(diagonal_.size()) + sizeof(Panel) * double(panels_.size());
+  return sizeof(float) * double(values_.size()) + sizeof(double) * double(exactValues_.size()) +
+         sizeof(int) * double(rows_.size() + perm_.size()) + sizeof(double) * double(diagonal_.size()) +
+         sizeof(Panel) * double(panels_.size());
 }
 
 }  // namespace ddaslope::solver
