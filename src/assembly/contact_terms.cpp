@@ -50,7 +50,6 @@ void lineariseInto(const model::Block& vb, const model::Block& eb, const contact
   const Vec2 p2 = eb.vertices[k.edge];
   const Vec2 p3 = eb.vertices[(k.edge + 1) % n];
   const double len = (p3 - p2).norm();
-  kin.tangent = (p3 - p2) / len;
   // Penetration = Δ/l, Δ = cross(P2 − P1, P3 − P1) > 0 when P1 is inside the edge's block.
   kin.penetration0 = cross(p2 - p1, p3 - p1) / len + c.normalOffset;
   const Vec2 a1(p2.y() - p3.y(), p3.x() - p2.x());
@@ -61,14 +60,13 @@ void lineariseInto(const model::Block& vb, const model::Block& eb, const contact
   kin.normal.head<6>() = tTransposeTimes(vc, p1, a1) / len;
   kin.normal.tail<6>() = (tTransposeTimes(ec, p2, a2) + tTransposeTimes(ec, p3, a3)) / len;
   // Shear: (P1 − P0)·t with P0 a material point of the edge, t fixed over the step.
-  const Vec2& t = kin.tangent;
+  const Vec2 t = (p3 - p2) / len;
   const Vec2 anchor = p2 + c.lockRatio * (p3 - p2);
   const Vec2 start = p2 + c.geometry.ratio * (p3 - p2);
   kin.shearLocked0 = (p1 - anchor).dot(t);
   kin.shearLocked.head<6>() = tTransposeTimes(vc, p1, t);
   kin.shearLocked.tail<6>() = minusTTransposeTimes(ec, anchor, t);
-  kin.shearStep.head<6>() = kin.shearLocked.head<6>();
-  kin.shearStep.tail<6>() = minusTTransposeTimes(ec, start, t);
+  kin.shearStepEdge = minusTTransposeTimes(ec, start, t);
 }
 
 }  // namespace ddaslope::assembly

@@ -580,7 +580,7 @@ Simulation::Attempt Simulation::tryStep(double dt, Regime regime, bool freezeCyc
       } else {
         // Friction N tanφ (plus c·L while a softening bond lasts) opposite to the slip, as a pair
         // of point loads: K stays symmetric.
-        addTerm(c, -c.slideDirection * friction[q], kin[q].shearStep);
+        addTerm(c, -c.slideDirection * friction[q], kin[q].shearStep());
       }
     }
     stats_.times.assembly += sw.lap();
