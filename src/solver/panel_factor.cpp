@@ -186,13 +186,14 @@ struct Lanes {
 
 /// The substitution with the AVX kernels where asked (and built), else the portable ones.
 template <class T>
-void substituteWith(bool useAvx, const PanelArrays& f, const T* values, double* y, double* yc, double* xs) {
+void substituteWith(bool useAvx, const PanelArrays& f, const T* values, double* y, double* yc, double* xs,
+                    bool prefetch) {
 #if DDASLOPE_PANEL_AVX
-  if (useAvx) return avx::substitute(f, values, y, yc, xs);
+  if (useAvx) return avx::substitute(f, values, y, yc, xs, prefetch);
 #else
   (void)useAvx;
 #endif
-  portable::substitute(f, values, y, yc, xs);
+  portable::substitute(f, values, y, yc, xs, prefetch);
 }
 
 }  // namespace
@@ -214,12 +215,18 @@ void PanelFactor::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) const {
   gathered_.resize(static_cast<size_t>(mostRows_));
   const PanelArrays f{n, panels_.data(), static_cast<int>(panels_.size()), rows_.data(), diagonal_.data()};
   const bool useAvx = kernel_ == Kernel::Best && avxAvailable();
+  const bool prefetch =
+      prefetch_ == Prefetch::Always || (prefetch_ == Prefetch::Auto && entryBytes() >= kPrefetchMinBytes);
   if (precision_ == Precision::Single)
-    substituteWith(useAvx, f, values_.data(), y_.data(), local_.data(), gathered_.data());
+    substituteWith(useAvx, f, values_.data(), y_.data(), local_.data(), gathered_.data(), prefetch);
   else
-    substituteWith(useAvx, f, exactValues_.data(), y_.data(), local_.data(), gathered_.data());
+    substituteWith(useAvx, f, exactValues_.data(), y_.data(), local_.data(), gathered_.data(), prefetch);
   x.resize(n);
   for (int k = 0; k < n; ++k) x[perm_[static_cast<size_t>(k)]] = y_[k];
+}
+
+double PanelFactor::entryBytes() const {
+  return sizeof(float) * double(values_.size()) + sizeof(double) * double(exactValues_.size());
 }
 
 double PanelFactor::bytes() const {

@@ -25,7 +25,10 @@
 // bench's --probe-solve-cache, one substitution as the steps run (repeated at once):
 //   2047 bricks: 1.40–1.61 (1.21–1.34) ms in order, 1.15–1.25 (0.83–0.88) SSE2, 0.75–0.92 (0.52–0.63) AVX
 //   5076 bricks: 6.0 (6.0) ms in order, 3.7–5.0 (3.0–4.7) SSE2, 3.2–3.9 (2.7–3.6) AVX
-// The rest is waiting for memory: rows strided by the panel's width, panels read back to front.
+// The rest is waiting for memory. Backward, the panels are read back to front (each front to
+// back), short runs the hardware prefetcher follows poorly: a factor larger than the cache had its
+// back substitution take twice its forward one at 19 951 bricks. There each panel's lines are asked
+// for before it is read (Prefetch; build/ddaslope_substitution_bench times it on the wall's factor).
 
 #include <vector>
 
@@ -93,6 +96,17 @@ class PanelFactor {
   void setKernel(Kernel k) { kernel_ = k; }
   /// Whether Best means AVX here (GCC on x86-64, a processor with AVX).
   static bool avxAvailable();
+  /// Whether the back substitution asks for each panel's cache lines before reading it: Auto
+  /// from kPrefetchMinBytes of entries up. The same bits either way.
+  enum class Prefetch { Auto, Always, Never };
+  void setPrefetch(Prefetch p) { prefetch_ = p; }
+  /// Entries from which a factor is taken to be read from memory in a step, not from the cache
+  /// (half the 32 MB last-level cache of the machine measured: the contacts' arrays share it).
+  /// Prefetching a factor the cache holds costs time (the 2047-brick factor's 5.8 MB: 0.35 →
+  /// 0.39 ms per substitution); one it does not saves more (19 951 bricks, 90 MB: 15.5 → 11.5 ms).
+  static constexpr double kPrefetchMinBytes = 16e6;
+  /// Bytes of L's entries.
+  double entryBytes() const;
 
  private:
   using Panel = detail::PanelArrays::Panel;
@@ -105,6 +119,7 @@ class PanelFactor {
   std::vector<int> perm_;
   int widest_ = 0;
   Kernel kernel_ = Kernel::Best;
+  Prefetch prefetch_ = Prefetch::Auto;
   int mostRows_ = 0;  ///< the most rows below any panel
   mutable Eigen::VectorXd y_;
   mutable std::vector<double> local_;     ///< one panel's unknowns

@@ -1,0 +1,171 @@
+// One substitution with the factor of the side-by-side wall (issue #16), in seconds instead of the
+// minutes the wall's equilibrium takes at 20 000 blocks. The factor's pattern is the wall's:
+// every free brick is coupled to the bricks its bounding box touches (the couplings of its
+// contacts), six unknowns each, ordered by CHOLMOD's nested dissection as the runs order it
+// (1.45 million entries at 2047 bricks, 22.4 million at 19 951, as ddaslope_bench reports). The
+// entries are made up (a diagonally dominant K of that pattern): a substitution's cost depends on
+// the pattern, not on the values. Prints, per wall, the best and the median of `reps` timed
+// substitutions through single-precision panels, for each kernel and with the back
+// substitution's prefetch on and off (solver/panel_factor.hpp), and a checksum of the solution,
+// which must not depend on either choice.
+//   build/ddaslope_substitution_bench [--anchor-rows 45,71,141] [--reps 40]
+// One core: run with OMP_NUM_THREADS=1.
+#include <cholmod.h>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "ddaslope/model/wall_scene.hpp"
+#include "ddaslope/solver/panel_factor.hpp"
+
+using namespace ddaslope;
+
+namespace {
+
+/// Free bricks whose bounding boxes touch (within 1 mm), each pair once (i < j).
+std::vector<std::vector<int>> touchingBricks(const model::Scene& scene) {
+  std::vector<std::array<double, 4>> boxes;  // x0, x1, y0, y1
+  for (const model::Block& b : scene.blocks) {
+    if (b.fixed) continue;
+    std::array<double, 4> box{1e300, -1e300, 1e300, -1e300};
+    for (const Vec2& v : b.vertices)
+      box = {std::min(box[0], v.x()), std::max(box[1], v.x()), std::min(box[2], v.y()), std::max(box[3], v.y())};
+    boxes.push_back(box);
+  }
+  const int n = static_cast<int>(boxes.size());
+  std::vector<int> byLeft(n);
+  for (int i = 0; i < n; ++i) byLeft[i] = i;
+  std::sort(byLeft.begin(), byLeft.end(), [&](int a, int b) { return boxes[a][0] < boxes[b][0]; });
+  constexpr double kTouch = 1e-3;
+  std::vector<std::vector<int>> above(n);  // above[j]: the i < j coupled to j
+  for (int a = 0; a < n; ++a)
+    for (int b = a + 1; b < n; ++b) {
+      const int i = byLeft[a], j = byLeft[b];
+      if (boxes[j][0] > boxes[i][1] + kTouch) break;
+      if (boxes[j][2] <= boxes[i][3] + kTouch && boxes[i][2] <= boxes[j][3] + kTouch)
+        above[std::max(i, j)].push_back(std::min(i, j));
+    }
+  for (auto& v : above) std::sort(v.begin(), v.end());
+  return above;
+}
+
+struct Pattern {
+  int n = 0;
+  std::vector<int> colStart{0}, rows;
+  std::vector<double> values;
+};
+
+/// The upper triangle, column by column, of a K with dense 6 × 6 blocks on that graph: off-diagonal
+/// entries 0.1, diagonal 100 (positive definite by dominance).
+Pattern stiffnessPattern(const std::vector<std::vector<int>>& above) {
+  constexpr int kDof = 6;
+  Pattern p;
+  p.n = kDof * static_cast<int>(above.size());
+  for (size_t bj = 0; bj < above.size(); ++bj)
+    for (int cj = 0; cj < kDof; ++cj) {
+      for (const int bi : above[bj])
+        for (int ci = 0; ci < kDof; ++ci) p.rows.push_back(kDof * bi + ci), p.values.push_back(0.1);
+      for (int ci = 0; ci <= cj; ++ci)
+        p.rows.push_back(kDof * static_cast<int>(bj) + ci), p.values.push_back(ci == cj ? 100.0 : 0.1);
+      p.colStart.push_back(static_cast<int>(p.rows.size()));
+    }
+  return p;
+}
+
+std::vector<int> list(const char* s) {
+  std::vector<int> out;
+  std::stringstream ss(s);
+  for (std::string item; std::getline(ss, item, ',');) out.push_back(std::atoi(item.c_str()));
+  return out;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::vector<int> anchorRows{45, 71, 141};
+  int reps = 40;
+  for (int i = 1; i < argc; ++i) {
+    if (!std::strcmp(argv[i], "--anchor-rows") && i + 1 < argc)
+      anchorRows = list(argv[++i]);
+    else if (!std::strcmp(argv[i], "--reps") && i + 1 < argc)
+      reps = std::max(1, std::atoi(argv[++i]));
+    else {
+      std::fprintf(stderr, "usage: ddaslope_substitution_bench [--anchor-rows 45,71,141] [--reps 40]\n");
+      return 2;
+    }
+  }
+  std::printf("bricks,factor_entries,panel_mb,kernel,prefetch,best_ms,median_ms,checksum\n");
+  for (const int rows : anchorRows) {
+    const model::Scene scene = model::makeAnchorWall(rows, false);
+    const auto above = touchingBricks(scene);
+    Pattern k = stiffnessPattern(above);
+    cholmod_common common;
+    cholmod_start(&common);
+    common.print = 0;
+    common.supernodal = CHOLMOD_SUPERNODAL;
+    common.nmethods = 1;
+    common.method[0].ordering = CHOLMOD_NESDIS;  // as a large system orders its factor
+    cholmod_sparse a{};
+    a.nrow = a.ncol = static_cast<size_t>(k.n);
+    a.nzmax = k.rows.size();
+    a.p = k.colStart.data();
+    a.i = k.rows.data();
+    a.x = k.values.data();
+    a.stype = 1;
+    a.itype = CHOLMOD_INT;
+    a.xtype = CHOLMOD_REAL;
+    a.dtype = CHOLMOD_DOUBLE;
+    a.sorted = a.packed = 1;
+    cholmod_factor* f = cholmod_analyze(&a, &common);
+    if (!f || !cholmod_factorize(&a, f, &common) || common.status != CHOLMOD_OK) {
+      std::fprintf(stderr, "%d rows: CHOLMOD could not factorise the wall's K\n", rows);
+      return 1;
+    }
+    // The simplicial LDLᵀ form the panels are built from (solver/sparse_cholesky.cpp).
+    cholmod_change_factor(CHOLMOD_REAL, false, false, true, true, f, &common);
+    solver::SimplicialFactorView view;
+    view.n = k.n;
+    view.perm = static_cast<const int*>(f->Perm);
+    view.colStart = static_cast<const int*>(f->p);
+    view.colCount = static_cast<const int*>(f->nz);
+    view.rows = static_cast<const int*>(f->i);
+    view.values = static_cast<const double*>(f->x);
+    solver::PanelFactor panels;
+    if (!panels.build(view, solver::PanelFactor::Precision::Single)) {
+      std::fprintf(stderr, "%d rows: the factor did not make panels\n", rows);
+      return 1;
+    }
+    const double entries = common.lnz;
+    cholmod_free_factor(&f, &common);
+    cholmod_finish(&common);
+
+    Eigen::VectorXd b(k.n), x;
+    for (int i = 0; i < k.n; ++i) b[i] = 1.0 + 1e-3 * (i % 17);
+    using solver::PanelFactor;
+    for (const auto kernel : {PanelFactor::Kernel::Best, PanelFactor::Kernel::Portable})
+      for (const auto prefetch : {PanelFactor::Prefetch::Always, PanelFactor::Prefetch::Never}) {
+        panels.setKernel(kernel);
+        panels.setPrefetch(prefetch);
+        std::vector<double> times;
+        for (int r = 0; r < reps; ++r) {
+          const auto t0 = std::chrono::steady_clock::now();
+          panels.solve(b, x);
+          times.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+        }
+        std::sort(times.begin(), times.end());
+        const char* kernelName =
+            kernel == PanelFactor::Kernel::Portable ? "portable" : (PanelFactor::avxAvailable() ? "avx" : "portable");
+        std::printf("%zu,%.0f,%.1f,%s,%s,%.3f,%.3f,%.17g\n", above.size(), entries, panels.bytes() / 1e6, kernelName,
+                    prefetch == PanelFactor::Prefetch::Always ? "on" : "off", times.front(), times[times.size() / 2],
+                    x.sum());
+      }
+  }
+  return 0;
+}
