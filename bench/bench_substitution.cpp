@@ -9,6 +9,9 @@
 // substitution's prefetch on and off (solver/panel_factor.hpp), and a checksum of the solution,
 // which must not depend on either choice.
 //   build/ddaslope_substitution_bench [--anchor-rows 45,71,141] [--reps 40]
+//   build/ddaslope_substitution_bench --anchor-rows 45,141 --orderings
+//       instead, the factor's entries under CHOLMOD's orderings and nested dissection's settings
+//       (the fill a different ordering would save).
 // One core: run with OMP_NUM_THREADS=1.
 #include <cholmod.h>
 
@@ -79,6 +82,52 @@ Pattern stiffnessPattern(const std::vector<std::vector<int>>& above) {
   return p;
 }
 
+cholmod_sparse viewOf(Pattern& k) {
+  cholmod_sparse a{};
+  a.nrow = a.ncol = static_cast<size_t>(k.n);
+  a.nzmax = k.rows.size();
+  a.p = k.colStart.data();
+  a.i = k.rows.data();
+  a.x = k.values.data();
+  a.stype = 1;
+  a.itype = CHOLMOD_INT;
+  a.xtype = CHOLMOD_REAL;
+  a.dtype = CHOLMOD_DOUBLE;
+  a.sorted = a.packed = 1;
+  return a;
+}
+
+/// Entries of L under each ordering (symbolic analysis only).
+void surveyOrderings(int bricks, Pattern& k) {
+  struct Choice {
+    const char* name;
+    int ordering, small, camd, compress;
+  };
+  const Choice choices[] = {{"nesdis (ddaslope)", CHOLMOD_NESDIS, 200, 1, 1},
+                            {"nesdis nd_small 64", CHOLMOD_NESDIS, 64, 1, 1},
+                            {"nesdis nd_small 600", CHOLMOD_NESDIS, 600, 1, 1},
+                            {"nesdis nd_camd 0", CHOLMOD_NESDIS, 200, 0, 1},
+                            {"nesdis nd_camd 2", CHOLMOD_NESDIS, 200, 2, 1},
+                            {"nesdis nd_compress 0", CHOLMOD_NESDIS, 200, 1, 0},
+                            {"metis", CHOLMOD_METIS, 200, 1, 1},
+                            {"amd", CHOLMOD_AMD, 200, 1, 1}};
+  cholmod_common common;
+  cholmod_start(&common);
+  common.print = 0;
+  cholmod_sparse a = viewOf(k);
+  for (const Choice& c : choices) {
+    common.nmethods = 1;
+    common.method[0].ordering = c.ordering;
+    common.method[0].nd_small = static_cast<size_t>(c.small);
+    common.method[0].nd_camd = c.camd;
+    common.method[0].nd_compress = c.compress;
+    cholmod_factor* f = cholmod_analyze(&a, &common);
+    if (f) std::printf("%d,%s,%.0f\n", bricks, c.name, common.lnz);
+    cholmod_free_factor(&f, &common);
+  }
+  cholmod_finish(&common);
+}
+
 std::vector<int> list(const char* s) {
   std::vector<int> out;
   std::stringstream ss(s);
@@ -91,38 +140,36 @@ std::vector<int> list(const char* s) {
 int main(int argc, char** argv) {
   std::vector<int> anchorRows{45, 71, 141};
   int reps = 40;
+  bool orderings = false;
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--anchor-rows") && i + 1 < argc)
       anchorRows = list(argv[++i]);
     else if (!std::strcmp(argv[i], "--reps") && i + 1 < argc)
       reps = std::max(1, std::atoi(argv[++i]));
+    else if (!std::strcmp(argv[i], "--orderings"))
+      orderings = true;
     else {
-      std::fprintf(stderr, "usage: ddaslope_substitution_bench [--anchor-rows 45,71,141] [--reps 40]\n");
+      std::fprintf(stderr, "usage: ddaslope_substitution_bench [--anchor-rows 45,71,141] [--reps 40] [--orderings]\n");
       return 2;
     }
   }
-  std::printf("bricks,factor_entries,panel_mb,kernel,prefetch,best_ms,median_ms,checksum\n");
+  std::printf(orderings ? "bricks,ordering,factor_entries\n"
+                        : "bricks,factor_entries,panel_mb,kernel,prefetch,best_ms,median_ms,checksum\n");
   for (const int rows : anchorRows) {
     const model::Scene scene = model::makeAnchorWall(rows, false);
     const auto above = touchingBricks(scene);
     Pattern k = stiffnessPattern(above);
+    if (orderings) {
+      surveyOrderings(static_cast<int>(above.size()), k);
+      continue;
+    }
     cholmod_common common;
     cholmod_start(&common);
     common.print = 0;
     common.supernodal = CHOLMOD_SUPERNODAL;
     common.nmethods = 1;
     common.method[0].ordering = CHOLMOD_NESDIS;  // as a large system orders its factor
-    cholmod_sparse a{};
-    a.nrow = a.ncol = static_cast<size_t>(k.n);
-    a.nzmax = k.rows.size();
-    a.p = k.colStart.data();
-    a.i = k.rows.data();
-    a.x = k.values.data();
-    a.stype = 1;
-    a.itype = CHOLMOD_INT;
-    a.xtype = CHOLMOD_REAL;
-    a.dtype = CHOLMOD_DOUBLE;
-    a.sorted = a.packed = 1;
+    cholmod_sparse a = viewOf(k);
     cholmod_factor* f = cholmod_analyze(&a, &common);
     if (!f || !cholmod_factorize(&a, f, &common) || common.status != CHOLMOD_OK) {
       std::fprintf(stderr, "%d rows: CHOLMOD could not factorise the wall's K\n", rows);

@@ -102,8 +102,9 @@ class PanelFactor {
   void setPrefetch(Prefetch p) { prefetch_ = p; }
   /// Entries from which a factor is taken to be read from memory in a step, not from the cache
   /// (half the 32 MB last-level cache of the machine measured: the contacts' arrays share it).
-  /// Prefetching a factor the cache holds costs time (the 2047-brick factor's 5.8 MB: 0.35 →
-  /// 0.39 ms per substitution); one it does not saves more (19 951 bricks, 90 MB: 15.5 → 11.5 ms).
+  /// Prefetching a factor the cache holds costs time (the 2047-brick factor's 5.8 MB: 0.37 →
+  /// 0.40 ms per substitution); one it does not saves more (19 951 bricks, 90 MB: 15.8–16.0 →
+  /// 13.6 ms; build/ddaslope_substitution_bench, medians).
   static constexpr double kPrefetchMinBytes = 16e6;
   /// Bytes of L's entries.
   double entryBytes() const;
