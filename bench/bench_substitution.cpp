@@ -18,6 +18,7 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -128,7 +129,7 @@ void surveyOrderings(int bricks, Pattern& k) {
   cholmod_finish(&common);
 }
 
-std::vector<int> list(const char* s) {
+std::vector<int> parseList(const char* s) {
   std::vector<int> out;
   std::stringstream ss(s);
   for (std::string item; std::getline(ss, item, ',');) out.push_back(std::atoi(item.c_str()));
@@ -143,7 +144,7 @@ int main(int argc, char** argv) {
   bool orderings = false;
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--anchor-rows") && i + 1 < argc)
-      anchorRows = list(argv[++i]);
+      anchorRows = parseList(argv[++i]);
     else if (!std::strcmp(argv[i], "--reps") && i + 1 < argc)
       reps = std::max(1, std::atoi(argv[++i]));
     else if (!std::strcmp(argv[i], "--orderings"))
@@ -176,7 +177,10 @@ int main(int argc, char** argv) {
       return 1;
     }
     // The simplicial LDLᵀ form the panels are built from (solver/sparse_cholesky.cpp).
-    cholmod_change_factor(CHOLMOD_REAL, false, false, true, true, f, &common);
+    if (!cholmod_change_factor(CHOLMOD_REAL, false, false, true, true, f, &common)) {
+      std::fprintf(stderr, "%d rows: CHOLMOD could not make the factor simplicial\n", rows);
+      return 1;
+    }
     solver::SimplicialFactorView view;
     view.n = k.n;
     view.perm = static_cast<const int*>(f->Perm);
@@ -196,6 +200,7 @@ int main(int argc, char** argv) {
     Eigen::VectorXd b(k.n), x;
     for (int i = 0; i < k.n; ++i) b[i] = 1.0 + 1e-3 * (i % 17);
     using solver::PanelFactor;
+    double firstChecksum = NAN;
     for (const auto kernel : {PanelFactor::Kernel::Best, PanelFactor::Kernel::Portable})
       for (const auto prefetch : {PanelFactor::Prefetch::Always, PanelFactor::Prefetch::Never}) {
         panels.setKernel(kernel);
@@ -212,6 +217,12 @@ int main(int argc, char** argv) {
         std::printf("%zu,%.0f,%.1f,%s,%s,%.3f,%.3f,%.17g\n", above.size(), entries, panels.bytes() / 1e6, kernelName,
                     prefetch == PanelFactor::Prefetch::Always ? "on" : "off", times.front(), times[times.size() / 2],
                     x.sum());
+        // Kernel and prefetch are promised not to change a bit of the solution.
+        if (std::isnan(firstChecksum)) firstChecksum = x.sum();
+        if (x.sum() != firstChecksum) {
+          std::fprintf(stderr, "%d rows: the solution depends on the kernel or the prefetch\n", rows);
+          return 1;
+        }
       }
   }
   return 0;

@@ -147,17 +147,20 @@ TEST(PanelFactor, SolvesPanelsOfEveryWidthClassToDoubleRoundOff) {
   EXPECT_LE(relativeSolveError(r, exact), 1e-12);
 
   // Asking for a panel's cache lines ahead (a factor larger than the cache) is only a hint: the
-  // back substitution returns the same bits with it as without, in both precisions.
+  // back substitution returns the same bits with it as without, in both precisions and kernels.
   const Eigen::VectorXd probe = Eigen::VectorXd::LinSpaced(n, -1, 3);
-  for (solver::PanelFactor* p : {&panels, &exact}) {
-    Eigen::VectorXd ahead, plain;
-    p->setPrefetch(solver::PanelFactor::Prefetch::Always);
-    p->solve(probe, ahead);
-    p->setPrefetch(solver::PanelFactor::Prefetch::Never);
-    p->solve(probe, plain);
-    ASSERT_TRUE(ahead.allFinite());
-    for (int k = 0; k < n; ++k) EXPECT_EQ(ahead[k], plain[k]) << "entry " << k;
-  }
+  for (solver::PanelFactor* p : {&panels, &exact})
+    for (const auto kernel : {solver::PanelFactor::Kernel::Best, solver::PanelFactor::Kernel::Portable}) {
+      Eigen::VectorXd ahead, plain;
+      p->setKernel(kernel);
+      p->setPrefetch(solver::PanelFactor::Prefetch::Always);
+      p->solve(probe, ahead);
+      p->setPrefetch(solver::PanelFactor::Prefetch::Never);
+      p->solve(probe, plain);
+      ASSERT_TRUE(ahead.allFinite());
+      for (int k = 0; k < n; ++k) EXPECT_EQ(ahead[k], plain[k]) << "entry " << k;
+      EXPECT_LE(relativeSolveError(r, *p), 1e-12) << "with the prefetch off";
+    }
 
   // The AVX and the portable kernels split every sum into the same four lanes: the same bits
   // (panel_kernels.inc), so a run does not depend on the processor it ran on. Compared on this

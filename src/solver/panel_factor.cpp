@@ -1,5 +1,7 @@
 #include "ddaslope/solver/panel_factor.hpp"
 
+#include "ddaslope/core/prefetch.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -230,8 +232,7 @@ double PanelFactor::entryBytes() const {
 }
 
 double PanelFactor::bytes() const {
-  return sizeof(float) * double(values_.size()) + sizeof(double) * double(exactValues_.size()) +
-         sizeof(int) * double(rows_.size() + perm_.size()) + sizeof(double) * double(diagonal_.size()) +
+  return entryBytes() + sizeof(int) * double(rows_.size() + perm_.size()) + sizeof(double) * double(diagonal_.size()) +
          sizeof(Panel) * double(panels_.size());
 }
 

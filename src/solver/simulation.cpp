@@ -16,6 +16,7 @@
 #include "ddaslope/contact/contact_law.hpp"
 #include "ddaslope/contact/narrow_phase.hpp"
 #include "ddaslope/core/block_order.hpp"
+#include "ddaslope/core/prefetch.hpp"
 #include "ddaslope/core/errors.hpp"
 #include "ddaslope/core/parallel.hpp"
 #include "ddaslope/solver/state_cycle.hpp"
@@ -284,14 +285,13 @@ std::vector<contact::ContactJudgement> Simulation::judgeContacts(
   // further on in the arrays (a neighbouring block's contacts): asked for kPartnerAhead contacts
   // early, so that the wait for memory overlaps the judgements in between.
   constexpr size_t kPartnerAhead = 16;
+  const bool pairs = edge && regime != Regime::HeldEquilibrium;
   for (size_t q = 0; q < cs.size(); ++q) {
-    if (edge && q + kPartnerAhead < cs.size()) {
+    if (pairs && q + kPartnerAhead < cs.size()) {
       const int ahead = partner_[q + kPartnerAhead];
       if (ahead > static_cast<int>(q + kPartnerAhead)) {
-        const char* o = reinterpret_cast<const char*>(&cs[static_cast<size_t>(ahead)]);
-        __builtin_prefetch(o);
-        __builtin_prefetch(o + sizeof(Contact) - 1);
-        __builtin_prefetch(&response[static_cast<size_t>(ahead)]);
+        prefetchBytes(&cs[static_cast<size_t>(ahead)], sizeof(Contact));
+        prefetchBytes(&response[static_cast<size_t>(ahead)], sizeof(contact::ContactResponse));
       }
     }
     const Contact& c = cs[q];

@@ -29,6 +29,9 @@ struct ContactKinematics {
   double shearFromAnchor(const Vec12& d) const { return shearLocked0 + shearLocked.dot(d); }
   double slip(const Vec12& d) const { return shearStep().dot(d); }
 };
+// Four cache lines, no padding: the 12-vectors first, the scalars last (a scalar between two
+// vectors would pad the record to their alignment).
+static_assert(sizeof(ContactKinematics) == 256, "ContactKinematics grew: it is read several times a step");
 
 /// Δ = det[1 x1 y1; 1 x2 y2; 1 x3 y3] / l with the second-order term dropped (Shi eq. 2.52).
 ContactKinematics linearise(const model::Block& vertexBlock, const model::Block& edgeBlock,

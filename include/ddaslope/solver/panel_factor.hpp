@@ -27,8 +27,9 @@
 //   5076 bricks: 6.0 (6.0) ms in order, 3.7–5.0 (3.0–4.7) SSE2, 3.2–3.9 (2.7–3.6) AVX
 // The rest is waiting for memory. Backward, the panels are read back to front (each front to
 // back), short runs the hardware prefetcher follows poorly: a factor larger than the cache had its
-// back substitution take twice its forward one at 19 951 bricks. There each panel's lines are asked
-// for before it is read (Prefetch; build/ddaslope_substitution_bench times it on the wall's factor).
+// back substitution take 1.7 times its forward one (a perf profile of the 19 951-brick step; the
+// passes are functions of their own). There each panel's lines are asked for before it is read
+// (Prefetch; build/ddaslope_substitution_bench times it on the wall's factor).
 
 #include <vector>
 
@@ -100,11 +101,12 @@ class PanelFactor {
   /// from kPrefetchMinBytes of entries up. The same bits either way.
   enum class Prefetch { Auto, Always, Never };
   void setPrefetch(Prefetch p) { prefetch_ = p; }
-  /// Entries from which a factor is taken to be read from memory in a step, not from the cache
-  /// (half the 32 MB last-level cache of the machine measured: the contacts' arrays share it).
-  /// Prefetching a factor the cache holds costs time (the 2047-brick factor's 5.8 MB: 0.37 →
-  /// 0.40 ms per substitution); one it does not saves more (19 951 bricks, 90 MB: 15.8–16.0 →
-  /// 13.6 ms; build/ddaslope_substitution_bench, medians).
+  /// Entries from which a factor is taken to be read from memory in a step, not from the cache.
+  /// Measured with build/ddaslope_substitution_bench (medians; the bench's back-to-back solves
+  /// find a factor smaller than the cache warm): the 2047-brick factor's 5.8 MB lose (0.37 →
+  /// 0.40 ms per substitution), the 5076-brick 17.6 MB gain (1.9 → 1.6 ms), 19 951 bricks' 90 MB
+  /// more (15.8–16.0 → 13.6 ms). The threshold lies between those two sizes, at half the 32 MB
+  /// last-level cache of the machine measured (the contacts' arrays share it in a step).
   static constexpr double kPrefetchMinBytes = 16e6;
   /// Bytes of L's entries.
   double entryBytes() const;
