@@ -1,11 +1,11 @@
 #include "ddaslope/solver/panel_factor.hpp"
 
-#include "ddaslope/core/prefetch.hpp"
-
 #include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <limits>
+
+#include "ddaslope/core/prefetch.hpp"
 
 #if defined(__x86_64__)
 #include <immintrin.h>

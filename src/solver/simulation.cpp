@@ -16,9 +16,9 @@
 #include "ddaslope/contact/contact_law.hpp"
 #include "ddaslope/contact/narrow_phase.hpp"
 #include "ddaslope/core/block_order.hpp"
-#include "ddaslope/core/prefetch.hpp"
 #include "ddaslope/core/errors.hpp"
 #include "ddaslope/core/parallel.hpp"
+#include "ddaslope/core/prefetch.hpp"
 #include "ddaslope/solver/state_cycle.hpp"
 
 namespace ddaslope::solver {
