@@ -7,7 +7,9 @@
 // the pattern, not on the values. Prints, per wall, the best and the median of `reps` timed
 // substitutions through single-precision panels, for each kernel and with the back
 // substitution's prefetch on and off (solver/panel_factor.hpp), and a checksum of the solution,
-// which must not depend on either choice.
+// which must not depend on either choice. Two more rows per wall: CHOLMOD's own substitution with
+// the double-precision factor (kernel "cholmod-double", its bytes with row indices as panel_mb),
+// which a factor's first solves use, and the regrouping into panels ("panel-build").
 //   build/ddaslope_substitution_bench [--anchor-rows 45,71,141] [--reps 40]
 //   build/ddaslope_substitution_bench --anchor-rows 45,141 --orderings
 //       instead, the factor's entries under CHOLMOD's orderings and nested dissection's settings
@@ -188,17 +190,53 @@ int main(int argc, char** argv) {
     view.colCount = static_cast<const int*>(f->nz);
     view.rows = static_cast<const int*>(f->i);
     view.values = static_cast<const double*>(f->x);
-    solver::PanelFactor panels;
-    if (!panels.build(view, solver::PanelFactor::Precision::Single)) {
-      std::fprintf(stderr, "%d rows: the factor did not make panels\n", rows);
-      return 1;
-    }
     const double entries = common.lnz;
+    Eigen::VectorXd b(k.n), x;
+    for (int i = 0; i < k.n; ++i) b[i] = 1.0 + 1e-3 * (i % 17);
+    // What a large system pays for a factor before its panels exist: CHOLMOD's substitution with
+    // the double-precision simplicial factor (SparseCholesky before kSolvesBeforePanels solves),
+    // and the regrouping into rounded panels. A handful of each: the times hardly vary.
+    solver::PanelFactor panels;
+    {
+      constexpr int kFew = 5;
+      std::vector<double> solveMs, buildMs;
+      double checksum = 0;
+      cholmod_dense rhs{};
+      rhs.nrow = rhs.nzmax = rhs.d = static_cast<size_t>(k.n);
+      rhs.ncol = 1;
+      rhs.x = b.data();
+      rhs.xtype = CHOLMOD_REAL;
+      rhs.dtype = CHOLMOD_DOUBLE;
+      for (int r = 0; r < kFew; ++r) {
+        const auto t0 = std::chrono::steady_clock::now();
+        cholmod_dense* sol = cholmod_solve(CHOLMOD_A, f, &rhs, &common);
+        solveMs.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+        if (!sol) {
+          std::fprintf(stderr, "%d rows: CHOLMOD could not solve with its factor\n", rows);
+          return 1;
+        }
+        checksum = Eigen::Map<const Eigen::VectorXd>(static_cast<const double*>(sol->x), k.n).sum();
+        cholmod_free_dense(&sol, &common);
+      }
+      for (int r = 0; r < kFew; ++r) {
+        const auto t0 = std::chrono::steady_clock::now();
+        const bool built = panels.build(view, solver::PanelFactor::Precision::Single);
+        buildMs.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+        if (!built) {
+          std::fprintf(stderr, "%d rows: the factor did not make panels\n", rows);
+          return 1;
+        }
+      }
+      std::sort(solveMs.begin(), solveMs.end());
+      std::sort(buildMs.begin(), buildMs.end());
+      std::printf("%zu,%.0f,%.1f,cholmod-double,-,%.3f,%.3f,%.17g\n", above.size(), entries,
+                  12 * entries / 1e6, solveMs.front(), solveMs[kFew / 2], checksum);
+      std::printf("%zu,%.0f,%.1f,panel-build,-,%.3f,%.3f,\n", above.size(), entries, panels.bytes() / 1e6,
+                  buildMs.front(), buildMs[kFew / 2]);
+    }
     cholmod_free_factor(&f, &common);
     cholmod_finish(&common);
 
-    Eigen::VectorXd b(k.n), x;
-    for (int i = 0; i < k.n; ++i) b[i] = 1.0 + 1e-3 * (i % 17);
     using solver::PanelFactor;
     double firstChecksum = NAN;
     for (const auto kernel : {PanelFactor::Kernel::Best, PanelFactor::Kernel::Portable})

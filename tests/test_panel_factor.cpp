@@ -12,6 +12,7 @@
 #include <Eigen/SparseCholesky>
 
 #include "ddaslope/assembly/block_sparse_matrix.hpp"
+#include "ddaslope/core/prefetch.hpp"
 #include "ddaslope/solver/linear_solver.hpp"
 #include "ddaslope/solver/panel_factor.hpp"
 #include "ddaslope/solver/sparse_cholesky.hpp"
@@ -146,8 +147,8 @@ TEST(PanelFactor, SolvesPanelsOfEveryWidthClassToDoubleRoundOff) {
   EXPECT_EQ(exact.panelCount(), expectedPanels);
   EXPECT_LE(relativeSolveError(r, exact), 1e-12);
 
-  // Asking for a panel's cache lines ahead (a factor larger than the cache) is only a hint: the
-  // back substitution returns the same bits with it as without, in both precisions and kernels.
+  // Asking for the entries' cache lines ahead (a factor larger than the cache) is only a hint:
+  // the substitutions return the same bits with it as without, in both precisions and kernels.
   const Eigen::VectorXd probe = Eigen::VectorXd::LinSpaced(n, -1, 3);
   for (solver::PanelFactor* p : {&panels, &exact})
     for (const auto kernel : {solver::PanelFactor::Kernel::Best, solver::PanelFactor::Kernel::Portable}) {
@@ -185,6 +186,46 @@ TEST(PanelFactor, SolvesPanelsOfEveryWidthClassToDoubleRoundOff) {
 }
 
 // What is not a simplicial LDLᵀ factor with D > 0 is refused, not solved wrongly.
+// The substitutions' look-ahead (core/prefetch.hpp) asks for every cache line of the run once,
+// none outside it, and not more than the distance (and the rest of a line) ahead of the reading,
+// whichever way the run is read and however unevenly the reading advances (a panel's rows, then
+// a wide one's chunks).
+// The run: 10 000 bytes from an address 24 bytes into a line (as a panel's entries may start);
+// its lines are the 157 that hold bytes 24 … 10 023 of an aligned buffer.
+TEST(RunPrefetcher, AsksForEachLineOfTheRunOnceAndOnlyAhead) {
+  alignas(64) static char buffer[10112];
+  const char* begin = buffer + 24;
+  const char* end = begin + 10000;
+  constexpr std::ptrdiff_t kDistance = 1000;
+  for (const bool ascending : {true, false}) {
+    std::vector<std::ptrdiff_t> asked;  // line numbers (bytes from the buffer / 64)
+    const char* reached = nullptr;
+    const auto record = [&](const void* p) {
+      const char* c = static_cast<const char*>(p);
+      ASSERT_TRUE(c >= begin && c < end) << "a request outside the run, at byte " << c - buffer;
+      ASSERT_LE(ascending ? c - reached : reached - c, kDistance + 63) << "asked for too far ahead";
+      asked.push_back((c - buffer) / 64);
+    };
+    using Prefetcher = BasicRunPrefetcher<decltype(record)>;
+    Prefetcher ahead(begin, end, ascending ? Prefetcher::Direction::Ascending : Prefetcher::Direction::Descending,
+                     kDistance, record);
+    std::mt19937 rng(5);
+    std::uniform_int_distribution<int> step(1, 700);
+    for (std::ptrdiff_t read = 0; read < 10000;) {
+      read = std::min<std::ptrdiff_t>(10000, read + step(rng));
+      reached = ascending ? begin + read : end - read;
+      ahead.reach(reached);
+    }
+    std::vector<std::ptrdiff_t> lines = asked;
+    std::sort(lines.begin(), lines.end());
+    EXPECT_EQ(std::adjacent_find(lines.begin(), lines.end()), lines.end()) << "a line asked for twice";
+    lines.erase(std::unique(lines.begin(), lines.end()), lines.end());
+    ASSERT_EQ(lines.size(), 157u) << (ascending ? "ascending" : "descending");
+    EXPECT_EQ(lines.front(), 0);
+    EXPECT_EQ(lines.back(), 156);
+  }
+}
+
 TEST(PanelFactor, RefusesWhatIsNotSuchAFactor) {
   // 2 × 2: column 0 = [D0; L10], column 1 = [D1].
   OwnedFactor f{{0, 1}, {0, 2}, {2, 1}, {0, 1, 1}, {2.0, 0.5, 3.0}};

@@ -25,11 +25,12 @@
 // bench's --probe-solve-cache, one substitution as the steps run (repeated at once):
 //   2047 bricks: 1.40–1.61 (1.21–1.34) ms in order, 1.15–1.25 (0.83–0.88) SSE2, 0.75–0.92 (0.52–0.63) AVX
 //   5076 bricks: 6.0 (6.0) ms in order, 3.7–5.0 (3.0–4.7) SSE2, 3.2–3.9 (2.7–3.6) AVX
-// The rest is waiting for memory. Backward, the panels are read back to front (each front to
-// back), short runs the hardware prefetcher follows poorly: a factor larger than the cache had its
-// back substitution take 1.7 times its forward one (a perf profile of the 19 951-brick step; the
-// passes are functions of their own). There each panel's lines are asked for before it is read
-// (Prefetch; build/ddaslope_substitution_bench times it on the wall's factor).
+// The rest is waiting for memory. A factor larger than the cache is laid out so that each pass
+// reads its entries as one run (PanelArrays: the back substitution forward through them, the
+// forward substitution back) and asked for a few kilobytes ahead of the reading (Prefetch): the
+// hardware prefetcher alone followed neither the back substitution's panels, read back to front
+// (it took 1.7 times the forward pass in a perf profile of the 19 951-brick step), nor a wide
+// panel's rows. build/ddaslope_substitution_bench times one substitution of the wall's factor.
 
 #include <vector>
 
@@ -50,19 +51,37 @@ struct SimplicialFactorView {
 };
 
 namespace detail {
+/// Where row r of a panel's unit lower triangle (width w; entries T(r, c < r)) starts within the
+/// triangle: rows stored last first, so that the back substitution, which takes them from the
+/// last, reads forward (PanelArrays).
+inline long triangleRowOffset(int w, int r) {
+  return (static_cast<long>(w) * (w - 1) - static_cast<long>(r) * (r + 1)) / 2;
+}
+
 /// The arrays one substitution reads (src/solver/panel_kernels.inc).
 struct PanelArrays {
-  /// Columns first … first + width − 1 share the rows rows[rowStart …] below them. Entries of
-  /// L(first + r, first + c), r > c, are at values[valueStart + r(r − 1)/2 + c]; then the rows
-  /// below, row by row, width entries each.
+  /// Columns first … first + width − 1 share the rows rows[rowStart …] below them. The entries
+  /// of those rows, L(rows[rowStart + i], first + c), are at values[valueStart + i·width + c]
+  /// (row by row); then the triangle, L(first + r, first + c) for r > c at
+  /// values[triangleStart() + triangleRowOffset(width, r) + c].
+  ///
+  /// The last panel's entries come first in `values`, the first panel's last. The back
+  /// substitution, which takes the panels last to first, each's rows first to last and its
+  /// triangle last row first, then reads one ascending run, and the forward substitution one
+  /// descending run (it takes a panel's rows from the last; they are independent there, so the
+  /// order changes no bit). The hardware prefetcher follows neither well when a panel is wide, so
+  /// large factors are also prefetched in software (PanelFactor::Prefetch).
   struct Panel {
     int first = 0;
     int width = 0;
     int rowStart = 0;
     int rowCount = 0;
     long valueStart = 0;
+    long entries() const { return static_cast<long>(width) * rowCount + static_cast<long>(width) * (width - 1) / 2; }
+    long triangleStart() const { return valueStart + static_cast<long>(width) * rowCount; }
   };
   int n = 0;
+  long entries = 0;  ///< of all panels: values[0 … entries)
   const Panel* panels = nullptr;
   int panelCount = 0;
   const int* rows = nullptr;
@@ -97,16 +116,19 @@ class PanelFactor {
   void setKernel(Kernel k) { kernel_ = k; }
   /// Whether Best means AVX here (GCC on x86-64, a processor with AVX).
   static bool avxAvailable();
-  /// Whether the back substitution asks for each panel's cache lines before reading it: Auto
-  /// from kPrefetchMinBytes of entries up. The same bits either way.
+  /// Whether the substitutions ask for the entries' cache lines ahead of reading them (a few
+  /// kilobytes ahead, in the direction each pass reads): Auto from kPrefetchMinBytes of entries up.
+  /// The same bits either way.
   enum class Prefetch { Auto, Always, Never };
   void setPrefetch(Prefetch p) { prefetch_ = p; }
   /// Entries from which a factor is taken to be read from memory in a step, not from the cache.
-  /// Measured with build/ddaslope_substitution_bench (medians; the bench's back-to-back solves
-  /// find a factor smaller than the cache warm): the 2047-brick factor's 5.8 MB lose (0.37 →
-  /// 0.40 ms per substitution), the 5076-brick 17.6 MB gain (1.9 → 1.6 ms), 19 951 bricks' 90 MB
-  /// more (15.8–16.0 → 13.6 ms). The threshold lies between those two sizes, at half the 32 MB
-  /// last-level cache of the machine measured (the contacts' arrays share it in a step).
+  /// Measured with build/ddaslope_substitution_bench (medians of 20, AVX, prefetch off → on; the
+  /// bench's back-to-back solves find a factor smaller than the cache warm, 2026-11-25 05:00 UTC):
+  /// the 2047-brick factor's 5.8 MB lose (0.32 → 0.37 ms per substitution), the 5076-brick
+  /// 17.6 MB break even there (1.09 → 1.11 ms) and gain in a step, where the contacts' arrays
+  /// share the cache (the prefetch's first form: 1.9 → 1.6 ms), 19 951 bricks' 90 MB gain most
+  /// (12.8 → 9.1 ms). The threshold lies between the first two, at half the 32 MB last-level
+  /// cache of the machine measured.
   static constexpr double kPrefetchMinBytes = 16e6;
   /// Bytes of L's entries.
   double entryBytes() const;
