@@ -9,7 +9,9 @@
 // substitution's prefetch on and off (solver/panel_factor.hpp), and a checksum of the solution,
 // which must not depend on either choice. Two more rows per wall: CHOLMOD's own substitution with
 // the double-precision factor (kernel "cholmod-double", its bytes with row indices as panel_mb),
-// which a factor's first solves use, and the regrouping into panels ("panel-build").
+// which a factor's first solves use, the regrouping into panels ("panel-build"), and one plain
+// read of as many single-precision entries as the panels hold ("memory-read", forward and back:
+// the floor, which a substitution, reading them twice, could reach at best).
 //   build/ddaslope_substitution_bench [--anchor-rows 45,71,141] [--reps 40]
 //   build/ddaslope_substitution_bench --anchor-rows 45,141 --orderings
 //       instead, the factor's entries under CHOLMOD's orderings and nested dissection's settings
@@ -236,6 +238,32 @@ int main(int argc, char** argv) {
     }
     cholmod_free_factor(&f, &common);
     cholmod_finish(&common);
+    // The floor: one plain read of as many single-precision entries, forward and back (kernel
+    // "memory-read"); a substitution reads them twice.
+    {
+      std::vector<float> plain(static_cast<size_t>(entries), 1.0f);
+      for (const bool forward : {true, false}) {
+        std::vector<double> times;
+        double sum = 0;
+        for (int r = 0; r < reps; ++r) {
+          const auto t0 = std::chrono::steady_clock::now();
+          float s[8] = {};
+          const size_t m = plain.size() / 8 * 8;
+          if (forward)
+            for (size_t i = 0; i < m; i += 8)
+              for (int l = 0; l < 8; ++l) s[l] += plain[i + static_cast<size_t>(l)];
+          else
+            for (size_t i = m; i > 0; i -= 8)
+              for (int l = 0; l < 8; ++l) s[l] += plain[i - 8 + static_cast<size_t>(l)];
+          times.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+          sum = 0;
+          for (const float v : s) sum += v;
+        }
+        std::sort(times.begin(), times.end());
+        std::printf("%zu,%.0f,%.1f,memory-read,%s,%.3f,%.3f,%.17g\n", above.size(), entries, 4 * entries / 1e6,
+                    forward ? "forward" : "back", times.front(), times[times.size() / 2], sum);
+      }
+    }
 
     using solver::PanelFactor;
     double firstChecksum = NAN;

@@ -398,7 +398,14 @@ TEST(SparseCholesky, PanelsFollowTheFactorThroughUpdates) {
     }
     ASSERT_TRUE(panelled.modify(added, true));
     ASSERT_TRUE(exact.modify(added, true));
-    for (int s = 0; s <= solver::SparseCholesky::kSolvesBeforePanels; ++s) panelled.beginSolve();
+    // A factor of this size (rounded panels) serves its first kSolvesBeforeRoundedPanels solves
+    // itself, then through its panels.
+    ASSERT_GE(panelled.factorEntries(), solver::SparseCholesky::kPanelMinEntries);
+    for (int s = 0; s < solver::SparseCholesky::kSolvesBeforeRoundedPanels; ++s) {
+      panelled.beginSolve();
+      ASSERT_FALSE(panelled.solvingWithPanels()) << "round " << round << ", solve " << s;
+    }
+    panelled.beginSolve();
     ASSERT_TRUE(panelled.solvingWithPanels()) << "round " << round;
     Eigen::VectorXd xp, xd;
     panelled.solve(b, xp);

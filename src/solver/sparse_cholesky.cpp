@@ -36,12 +36,17 @@ struct SparseCholesky::Impl {
     solvesWithGeneration = 0;
     usePanels = false;
   }
+  /// Rounded panels pay for themselves sooner than exact ones (SparseCholesky::kSolvesBeforeRoundedPanels).
+  int solvesBeforePanels() const {
+    return lnz >= SparseCholesky::kPanelMinEntries ? SparseCholesky::kSolvesBeforeRoundedPanels
+                                                   : SparseCholesky::kSolvesBeforePanels;
+  }
   /// Whether this generation substitutes through panels (built, or to be built for its next
   /// solve): a factor in use long enough, whose panels did not fail or fall short.
   bool panelsEarned() const {
     return panelGeneration == generation ||
            (modified && unpanelledGeneration != generation &&
-            solvesWithGeneration >= SparseCholesky::kSolvesBeforePanels);
+            solvesWithGeneration >= solvesBeforePanels());
   }
   /// Panels of `modified` for this generation, if it has earned them and they can be built.
   bool panelsReady() {
