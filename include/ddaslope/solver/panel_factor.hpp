@@ -123,7 +123,7 @@ class PanelFactor {
   void setPrefetch(Prefetch p) { prefetch_ = p; }
   /// Entries from which a factor is taken to be read from memory in a step, not from the cache.
   /// Measured with build/ddaslope_substitution_bench (medians of 20, AVX, prefetch off → on; the
-  /// bench's back-to-back solves find a factor smaller than the cache warm, 2026-11-25 05:00 UTC):
+  /// bench's back-to-back solves find a factor smaller than the cache warm, 2026-11-25 04:50 UTC):
   /// the 2047-brick factor's 5.8 MB lose (0.32 → 0.37 ms per substitution), the 5076-brick
   /// 17.6 MB break even there (1.09 → 1.11 ms) and gain in a step, where the contacts' arrays
   /// share the cache (the prefetch's first form: 1.9 → 1.6 ms), 19 951 bricks' 90 MB gain most
