@@ -6,7 +6,7 @@
 // entries are made up (a diagonally dominant K of that pattern): a substitution's cost depends on
 // the pattern, not on the values. Prints, per wall, the best and the median of `reps` timed
 // substitutions through single-precision panels, for each kernel and with the back
-// substitution's prefetch on and off (solver/panel_factor.hpp), and a checksum of the solution,
+// substitutions' prefetch on and off (solver/panel_factor.hpp), and a checksum of the solution,
 // which must not depend on either choice. Two more rows per wall: CHOLMOD's own substitution with
 // the double-precision factor (kernel "cholmod-double", its bytes with row indices as panel_mb),
 // which a factor's first solves use, the regrouping into panels ("panel-build"), and one plain
@@ -196,7 +196,7 @@ int main(int argc, char** argv) {
     Eigen::VectorXd b(k.n), x;
     for (int i = 0; i < k.n; ++i) b[i] = 1.0 + 1e-3 * (i % 17);
     // What a large system pays for a factor before its panels exist: CHOLMOD's substitution with
-    // the double-precision simplicial factor (SparseCholesky before kSolvesBeforePanels solves),
+    // the double-precision simplicial factor (SparseCholesky before kSolvesBeforeRoundedPanels solves),
     // and the regrouping into rounded panels. A handful of each: the times hardly vary.
     solver::PanelFactor panels;
     {
@@ -245,16 +245,19 @@ int main(int argc, char** argv) {
       for (const bool forward : {true, false}) {
         std::vector<double> times;
         double sum = 0;
+        // 32 independent sums (four vector registers' worth): the additions' latency, which one
+        // register of 8 sums would wait on, stays below the memory's.
+        constexpr size_t kSums = 32;
         for (int r = 0; r < reps; ++r) {
           const auto t0 = std::chrono::steady_clock::now();
-          float s[8] = {};
-          const size_t m = plain.size() / 8 * 8;
+          float s[kSums] = {};
+          const size_t m = plain.size() / kSums * kSums;
           if (forward)
-            for (size_t i = 0; i < m; i += 8)
-              for (int l = 0; l < 8; ++l) s[l] += plain[i + static_cast<size_t>(l)];
+            for (size_t i = 0; i < m; i += kSums)
+              for (size_t l = 0; l < kSums; ++l) s[l] += plain[i + l];
           else
-            for (size_t i = m; i > 0; i -= 8)
-              for (int l = 0; l < 8; ++l) s[l] += plain[i - 8 + static_cast<size_t>(l)];
+            for (size_t i = m; i > 0; i -= kSums)
+              for (size_t l = 0; l < kSums; ++l) s[l] += plain[i - kSums + l];
           times.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
           sum = 0;
           for (const float v : s) sum += v;

@@ -12,6 +12,8 @@
 #include <fstream>
 #include <iterator>
 #include <string>
+#include <system_error>
+#include <vector>
 
 #include "ddaslope/core/errors.hpp"
 
@@ -43,10 +45,27 @@ inline std::string captureCli(const std::string& args, std::string* stderrText) 
   return text;
 }
 
+/// The files writeTemp wrote, removed when the test program ends (each test runs as a process
+/// of its own under ctest): a test that fails half way leaves nothing behind either.
+struct TempFiles {
+  std::vector<std::filesystem::path> paths;
+  ~TempFiles() {
+    for (const auto& p : paths) {
+      std::error_code ignored;
+      std::filesystem::remove(p, ignored);
+    }
+  }
+};
+inline TempFiles& tempFiles() {
+  static TempFiles files;
+  return files;
+}
+
 /// Writes `text` to a file named after `name` and the process in the temporary folder.
 inline std::string writeTemp(const std::string& name, const std::string& text) {
   const std::filesystem::path p = std::filesystem::temp_directory_path() / (std::to_string(::getpid()) + "_" + name);
   std::ofstream(p) << text;
+  tempFiles().paths.push_back(p);
   return p.string();
 }
 

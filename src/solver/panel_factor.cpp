@@ -18,8 +18,10 @@ namespace ddaslope::solver {
 void PanelFactor::clear() {
   panels_.clear();
   rows_.clear();
-  values_.clear();
-  exactValues_.clear();
+  // Their memory too (up to a hundred megabytes), not only their contents: a build that fails
+  // leaves no panels to hold it for.
+  std::vector<float>().swap(values_);
+  std::vector<double>().swap(exactValues_);
   diagonal_.clear();
   perm_.clear();
   widest_ = 0;
@@ -125,14 +127,19 @@ using detail::PanelArrays;
 using detail::triangleRowOffset;
 
 /// How far ahead of the substitutions' reading a large factor's entries are asked for
-/// (Prefetch). build/ddaslope_substitution_bench at 19 951 bricks, AVX (2026-11-25): medians of
-/// 11.0–11.2 ms at 1 KB, 11.1–11.3 at 2 KB, 10.7–11.3 at 4 KB (before the chunked back pass).
-constexpr std::ptrdiff_t kPrefetchAheadBytes = 4096;
+/// (Prefetch). build/ddaslope_substitution_bench at 19 951 bricks, AVX (2026-11-25), before the
+/// chunked back pass: medians of 11.0–11.2 ms at 1 KB, 11.1–11.3 at 2 KB, 10.7–11.3 at 4 KB;
+/// within each other's spread, the largest kept (the most time for a miss to arrive). The
+/// kernels tell the prefetcher where they are once per four rows forward and once per chunk
+/// backward, so a wide panel's look-ahead runs up to a group or chunk further (20 and 81 KB at the
+/// widest, 1272 columns).
+constexpr std::size_t kPrefetchAheadBytes = 4096;
 /// Rows per chunk of the back substitution's column sums (transposedProduct): a chunk of a wide
 /// panel is read from memory once and then from L1 for each sixteen columns, where whole panels
 /// (up to megabytes at 19 951 bricks) were read from L2 or memory once per sixteen columns. The
 /// same bench: medians of 9.7–10.4 ms with 8 rows, 10.1–10.3 with 16, 10.4–10.6 with 32,
-/// 10.7–11.2 unchunked.
+/// 10.7–11.2 unchunked. 8 and 16 within each other's spread: 16 carries the sums through memory
+/// half as often.
 constexpr int kBackChunkRows = 16;
 
 namespace portable {
@@ -233,8 +240,8 @@ void PanelFactor::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) const {
   for (int k = 0; k < n; ++k) y_[k] = b[perm_[static_cast<size_t>(k)]];
   local_.resize(static_cast<size_t>(widest_));
   gathered_.resize(static_cast<size_t>(mostRows_));
-  const long entries = static_cast<long>(values_.size() + exactValues_.size());
-  const PanelArrays f{n, entries, panels_.data(), static_cast<int>(panels_.size()), rows_.data(), diagonal_.data()};
+  const auto valueCount = static_cast<long>(values_.size() + exactValues_.size());
+  const PanelArrays f{n, valueCount, panels_.data(), static_cast<int>(panels_.size()), rows_.data(), diagonal_.data()};
   const bool useAvx = kernel_ == Kernel::Best && avxAvailable();
   const bool prefetch =
       prefetch_ == Prefetch::Always || (prefetch_ == Prefetch::Auto && entryBytes() >= kPrefetchMinBytes);

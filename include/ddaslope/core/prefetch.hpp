@@ -3,10 +3,14 @@
 // cache that the hardware prefetcher does not follow well (a factor's panels, an edge-to-edge
 // pair's second half further on in the contacts). Only a hint: it never changes a result, and
 // compilers without the builtin simply skip it.
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 
 namespace ddaslope {
+
+/// The cache line's size assumed throughout (x86-64 and most ARM cores).
+constexpr std::size_t kCacheLine = 64;
 
 /// Asks for the cache line holding p.
 inline void prefetchLine(const void* p) {
@@ -20,7 +24,7 @@ inline void prefetchLine(const void* p) {
 /// Asks for every cache line of the `bytes` bytes from p, the last partial line included, without
 /// waiting for any (the processor still holds back when too many misses are outstanding).
 inline void prefetchBytes(const void* p, std::ptrdiff_t bytes) {
-  constexpr std::ptrdiff_t kLine = 64;
+  constexpr auto kLine = static_cast<std::ptrdiff_t>(kCacheLine);
   const char* c = static_cast<const char*>(p);
   for (std::ptrdiff_t o = 0; o < bytes; o += kLine) prefetchLine(c + o);
   if (bytes > 0) prefetchLine(c + (bytes - 1));
@@ -32,18 +36,19 @@ struct LineRequest {
 };
 
 /// Keeps the lines of an array read as one run, from its start to its end or back, asked for a
-/// fixed distance ahead of the reading: a steady look-ahead however unevenly the reads advance (a
-/// factor's panels hold from a hundred bytes to megabytes each), where asking for a whole panel
-/// at once would fill the processor's queue of outstanding misses and stall it.
+/// fixed distance ahead of the reading, however unevenly the reads advance (a factor's panels
+/// hold from a hundred bytes to megabytes each): where a whole panel was asked for at once, more
+/// lines than the processor keeps in flight, the look-ahead is about the distance beyond each
+/// point `reach` is told of. How often the reader tells it sets how steady it is.
 template <class Ask = LineRequest>
 class BasicRunPrefetcher {
  public:
   enum class Direction { Ascending, Descending };
-  BasicRunPrefetcher(const void* begin, const void* end, Direction direction, std::ptrdiff_t distance, Ask ask = {})
+  BasicRunPrefetcher(const void* begin, const void* end, Direction direction, std::size_t distance, Ask ask = {})
       : begin_(address(begin)),
         end_(address(end)),
         ascending_(direction == Direction::Ascending),
-        distance_(static_cast<std::uintptr_t>(distance)),
+        distance_(distance),
         ask_(ask) {
     // Lines are numbered by address / kLine; `next_` is the next line to ask for.
     if (end_ > begin_) next_ = ascending_ ? line(begin_) : line(end_ - 1);
@@ -53,7 +58,7 @@ class BasicRunPrefetcher {
   /// direction): every line of the run up to `distance` bytes beyond it is asked for, each once.
   void reach(const void* position) {
     if (end_ <= begin_) return;
-    const std::uintptr_t p = address(position);
+    const std::uintptr_t p = std::clamp(address(position), begin_, end_);
     if (ascending_) {
       const std::uintptr_t target = end_ - p > distance_ ? p + distance_ : end_;  // the first byte not asked for
       for (const std::intptr_t upTo = line(target - 1); next_ <= upTo && next_ <= last_; ++next_) ask_(lineAt(next_));
@@ -64,7 +69,7 @@ class BasicRunPrefetcher {
   }
 
  private:
-  static constexpr std::uintptr_t kLine = 64;
+  static constexpr std::uintptr_t kLine = kCacheLine;
   // Addresses as integers: the look-ahead steps by whole lines, which may begin before the run.
   static std::uintptr_t address(const void* p) { return reinterpret_cast<std::uintptr_t>(p); }
   static std::intptr_t line(std::uintptr_t a) { return static_cast<std::intptr_t>(a / kLine); }

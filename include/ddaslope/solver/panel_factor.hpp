@@ -81,7 +81,7 @@ struct PanelArrays {
     long triangleStart() const { return valueStart + static_cast<long>(width) * rowCount; }
   };
   int n = 0;
-  long entries = 0;  ///< of all panels: values[0 … entries)
+  long valueCount = 0;  ///< entries of all panels: values[0 … valueCount)
   const Panel* panels = nullptr;
   int panelCount = 0;
   const int* rows = nullptr;

@@ -49,7 +49,7 @@ class SparseCholesky {
   /// right-hand-side solve is a third faster (0.79 against 1.19 ms at 5856 unknowns).
   void setSimplicialSolves(bool on) { simplicialSolves_ = on; }
   /// With simplicial solves: once the factor (as last modified) has served kSolvesBeforePanels
-  /// (kSolvesBeforeRoundedPanels) solves, substitute with its panels (solver/panel_factor.hpp) instead: from kPanelMinEntries
+  /// solves (kSolvesBeforeRoundedPanels for rounded panels), substitute with its panels (solver/panel_factor.hpp) instead: from kPanelMinEntries
   /// entries rounded to single precision, a preconditioner within about 1e-7 of the factor that
   /// streams a third of the bytes; below, exact (double entries, the factor itself, without
   /// CHOLMOD's row index per entry and with vectorised kernels). Only for callers that check each
@@ -74,12 +74,13 @@ class SparseCholesky {
   /// The same for rounded panels (factors of kPanelMinEntries and more, read from memory): the
   /// regrouping costs about two of CHOLMOD's double-precision substitutions and each substitution
   /// through the panels saves four fifths of one, so they pay after 2.2–2.5 solves
-  /// (build/ddaslope_substitution_bench, 2026-11-25: regrouping 4.8 / 20 / 89 ms, CHOLMOD 2.7 in a
-  /// step / 9.5 / 45 ms, panels 0.35–0.5 / 1.3 / 9.5 ms at 2047 / 5076 / 19 951 bricks). The
+  /// (build/ddaslope_substitution_bench, 2026-11-25: regrouping 4.8 / 20 / 89 ms, CHOLMOD 9.5 / 45
+  /// ms, panels 1.3 / 9.5 ms at 5076 / 19 951 bricks; at 2047 CHOLMOD's 2.4–3.1 ms in a step, from
+  /// ddaslope_bench --probe-solve-cache, against the panels' 0.35–0.5). The
   /// 19 951-brick wall's first 100 steps after its equilibrium solved in 14.6 ms per step against
   /// 15.7 with 8; gravity at step 1 on 2047 bricks took 21.0–22.4 s with 2 against 22.1–22.2 with
-  /// 8. (Exact panels keep 8: with 2, that start on 976 bricks took 4.28–4.64 s against 4.10–4.22,
-  /// its factors changing after a few solves each.)
+  /// 8, interleaved (3 was not run interleaved with 8). (Exact panels keep 8: with 2, that start on
+  /// 976 bricks took 4.28–4.64 s against 4.10–4.22, its factors changing after a few solves each.)
   static constexpr int kSolvesBeforeRoundedPanels = 3;
   /// Smaller factors stay in the cache from one step to the next, where exact panels are solved
   /// as fast and need no conjugate-gradient iteration. In a build that rounded panels at every
