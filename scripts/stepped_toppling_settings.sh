@@ -4,11 +4,12 @@
 #   scripts/stepped_toppling_settings.sh [BINARY] [extra ddaslope options...]
 # e.g. with the default failure displacement (1e-3 w0 = 7.4 cm) instead of the case's 0.5 m:
 #   scripts/stepped_toppling_settings.sh build/ddaslope --set analysis.failure_displacement=0
+# CASE=cases/stepped_toppling_tjunctions.json runs the same slope written with T-junction vertices.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bin=${1:-build/ddaslope}; shift || true
 f() {
-  "$bin" fos cases/stepped_toppling.json --json "$@" | python3 -c "
+  "$bin" fos "${CASE:-cases/stepped_toppling.json}" --json "$@" | python3 -c "
 import json, sys
 d = json.load(sys.stdin)
 print(f\"{sys.argv[1]:28s} F = {d['factor_of_safety']:.4f}  ({d['forward_runs']} runs, {d['wall_time_s']:.1f} s)\")" "${label}"

@@ -1,6 +1,9 @@
 // Polygon moments and predicates against exact values.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+
 #include "ddaslope/geometry/polygon.hpp"
 
 using namespace ddaslope;
@@ -56,4 +59,55 @@ TEST(Polygon, ContainsPoint) {
   EXPECT_TRUE(geometry::containsPoint(sq, {0.5, 0.5}, 0));
   EXPECT_TRUE(geometry::containsPoint(sq, {1.0, 0.5}, 1e-12));  // on the boundary
   EXPECT_FALSE(geometry::containsPoint(sq, {1.5, 0.5}, 1e-12));
+}
+
+// An outline with vertices on its straight edges (T-junctions, edges split in CAD) is the same
+// polygon as its corners alone: they are removed, the corners kept in their order from the first.
+TEST(Outline, VerticesOnStraightEdgesAreRemoved) {
+  const std::vector<Vec2> corners{{0, 0}, {4, 0}, {4, 2}, {0, 2}};
+  std::vector<Vec2> drawn{{0, 0}, {1, 0}, {2.5, 0}, {4, 0}, {4, 1}, {4, 2}, {3, 2}, {0, 2}, {0, 1.2}};
+  EXPECT_EQ(geometry::removeCollinearVertices(drawn, 1e-6), 5);
+  EXPECT_EQ(drawn, corners);
+  // Starting on a vertex of an edge: the outline starts at the first corner kept.
+  std::vector<Vec2> fromMid{{2, 0}, {4, 0}, {4, 2}, {0, 2}, {0, 0}};
+  EXPECT_EQ(geometry::removeCollinearVertices(fromMid, 1e-6), 1);
+  EXPECT_EQ(fromMid, (std::vector<Vec2>{{4, 0}, {4, 2}, {0, 2}, {0, 0}}));
+  std::vector<Vec2> plain = corners;
+  EXPECT_EQ(geometry::removeCollinearVertices(plain, 1e-6), 0);
+  EXPECT_EQ(plain, corners);
+}
+
+// The tolerance is against the chord that replaces a run, and far from the origin the test is made
+// on differences: a vertex 1e-7 of its 10 m chord off the line goes at 1e-6, one 1e-5 off stays.
+TEST(Outline, ToleranceIsRelativeToTheChord) {
+  const Vec2 o(5e5, 5e6);
+  std::vector<Vec2> slight{o + Vec2(0, 0), o + Vec2(5, -1e-6), o + Vec2(10, 0), o + Vec2(10, 4), o + Vec2(0, 4)};
+  EXPECT_EQ(geometry::removeCollinearVertices(slight, 1e-6), 1);
+  EXPECT_EQ(slight.size(), 4u);
+  std::vector<Vec2> bent{o + Vec2(0, 0), o + Vec2(5, -1e-4), o + Vec2(10, 0), o + Vec2(10, 4), o + Vec2(0, 4)};
+  EXPECT_EQ(geometry::removeCollinearVertices(bent, 1e-6), 0);
+}
+
+// A gentle arc of 40 segments of 0.2 m, each bending by 2e-6 rad, is not flattened piece by piece:
+// one vertex lies 2.5e-7 of its neighbours' chord off it (removable), but a run of m segments sags
+// by about m·θ/8 of its chord, so each run is tested against the one chord that replaces it and
+// stops at four segments; the whole arc (sag 1e-5 of it) keeps about ten chords.
+TEST(Outline, GentleCurveIsNotFlattenedPieceByPiece) {
+  std::vector<Vec2> arc;
+  const double theta = 2e-6, radius = 1e5;
+  for (int k = 0; k <= 40; ++k)
+    arc.push_back({radius * std::sin(k * theta), 2 * radius * std::pow(std::sin(k * theta / 2), 2)});
+  std::vector<Vec2> outline{{0, -5}, {arc.back().x(), -5}};
+  outline.insert(outline.end(), arc.rbegin(), arc.rend());  // the top from right to left
+  ASSERT_GT(geometry::signedArea(outline), 0);
+  const int removed = geometry::removeCollinearVertices(outline, 1e-6);
+  EXPECT_GT(removed, 20);
+  EXPECT_GE(outline.size(), 2u + 9u) << "the arc flattened into too few chords";
+  // Every vertex of the arc lies within 1e-6 of the chord (at most 0.8 m) that replaced it.
+  for (const Vec2& p : arc) {
+    double nearest = INFINITY;
+    for (size_t k = 0; k < outline.size(); ++k)
+      nearest = std::min(nearest, geometry::distanceToSegment(p, outline[k], outline[(k + 1) % outline.size()], nullptr));
+    EXPECT_LE(nearest, 1e-6 * 0.8) << "m from the simplified outline";
+  }
 }

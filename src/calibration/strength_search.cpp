@@ -6,7 +6,10 @@
 #include <chrono>
 #include <cmath>
 #include <mutex>
+#include <map>
 #include <optional>
+#include <set>
+#include <sstream>
 #include <thread>
 
 #include "ddaslope/calibration/bisection.hpp"
@@ -21,31 +24,36 @@ double secondsSince(std::chrono::steady_clock::time_point t0) {
 }
 
 /// Wraps a verdict function so that every forward run is counted, recorded and reported
-/// (thread-safe).
+/// (thread-safe). The function is told the value and how many times the case's duration to run.
 struct CountedVerdict {
   /// `quantity`: the searched value's symbol for the progress line; `width`: the bracket the
   /// search narrows to (≤ 0: 1e-3 of its failing end), for the estimate of the runs left.
-  CountedVerdict(std::function<TrialResult(double)> v, const SearchSettings& s, const char* quantity, double width)
+  CountedVerdict(std::function<TrialResult(double, double)> v, const SearchSettings& s, const char* quantity,
+                 double width)
       : verdict(std::move(v)), progress(s.progress), quantity(quantity), width(width), perRound(std::max(1, s.threads)) {}
-  std::function<TrialResult(double)> verdict;
+  std::function<TrialResult(double, double)> verdict;
   io::ProgressSink progress;
   const char* quantity;
   double width;
   int perRound;
+  /// The duration factor of the runs being made: 1, or kReRunLength while a review re-runs trials.
+  double length = 1;
   std::atomic<int> runs{0};
   std::mutex mutex;
   std::vector<TrialRecord> trials;
   bool operator()(double x) {
     ++runs;
-    TrialResult r = verdict(x);
+    TrialResult r = verdict(x, length);
     const std::lock_guard<std::mutex> lock(mutex);
-    trials.push_back({x, r});
+    trials.push_back({x, r, length > 1});
     if (progress) report(x, r.stable);
     return r.stable;
   }
   /// The trials by value: the record does not depend on which thread finished first.
   std::vector<TrialRecord> sortedTrials() {
-    std::sort(trials.begin(), trials.end(), [](const TrialRecord& a, const TrialRecord& b) { return a.value < b.value; });
+    std::sort(trials.begin(), trials.end(), [](const TrialRecord& a, const TrialRecord& b) {
+      return a.value < b.value || (a.value == b.value && !a.rerun && b.rerun);
+    });
     return trials;
   }
 
@@ -120,14 +128,124 @@ Result& account(Result& r, CountedVerdict& v, std::chrono::steady_clock::time_po
   return r;
 }
 
+/// The verdict in force at each value tried (a re-run's replaces the first run's), by value.
+std::map<double, TrialResult> verdictsByValue(const std::vector<TrialRecord>& trials) {
+  std::map<double, TrialResult> by;
+  for (const TrialRecord& t : trials)
+    if (t.rerun || !by.count(t.value)) by[t.value] = t.result;
+  return by;
+}
+
+/// The review every search ends with (TrialReview). `stableBelow`: whether the stable side is
+/// that of the smaller values (F, k_h) or of the larger (c, φ); `domain`: the values a trial may
+/// take. `setAnswer` records a new bracket.
+template <class Result>
+void reviewTrials(Result& r, CountedVerdict& v, bool stableBelow, std::pair<double, double> domain, double width,
+                  int threads, const std::function<void(double stable, double failing)>& setAnswer) {
+  // Oriented so that stable values lie below failing ones.
+  const auto o = [&](double x) { return stableBelow ? x : -x; };
+  std::set<double> rerun;
+  bool probed = false;
+  for (int round = 0; round < 6; ++round) {
+    const std::map<double, TrialResult> by = verdictsByValue(v.trials);
+    const TrialResult* highestStable = nullptr;
+    double hs = -INFINITY, lf = INFINITY, lfAny = INFINITY, hsValue = 0, lfValue = 0, lfAnyValue = 0;
+    for (const auto& [x, t] : by) {
+      if (t.stable && o(x) > hs) hs = o(x), hsValue = x, highestStable = &t;
+      if (!t.stable && !t.undecided && o(x) < lf) lf = o(x), lfValue = x;
+      if (!t.stable && o(x) < lfAny) lfAny = o(x), lfAnyValue = x;
+    }
+    if (!highestStable || lfAny == INFINITY) return;  // nothing bracketed: the search's own message stands
+    if (hs > lf) {
+      // A failing trial on the stable side of a stable one. Re-run, longer, every decided trial
+      // between them that has not been re-run yet.
+      std::vector<double> again;
+      for (const auto& [x, t] : by)
+        if (o(x) >= lf && o(x) <= hs && !t.undecided && !rerun.count(x)) again.push_back(x);
+      if (again.empty() || round >= 4) {
+        // The answer lies where the verdicts are mixed: between the last stable trial below the
+        // first failure and the first failing trial above the last stable one.
+        double below = -INFINITY, above = INFINITY, belowValue = lfValue, aboveValue = hsValue;
+        for (const auto& [x, t] : by) {
+          if (t.stable && o(x) < lf && o(x) > below) below = o(x), belowValue = x;
+          if (!t.stable && o(x) > hs && o(x) < above) above = o(x), aboveValue = x;
+        }
+        const double target = width > 0 ? width : 1e-3 * std::abs(lfValue);
+        r.review.contradiction = true;
+        // Trials that disagree by less than the precision asked for do not unsettle the answer,
+        // given over the whole mixed range.
+        r.found = hs - lf <= target * (1 + 1e-9);
+        setAnswer(belowValue, aboveValue);
+        std::ostringstream m;
+        m << "verdicts contradict: stable at " << hsValue << " but failing at " << lfValue << " (" << v.quantity
+          << "), also when re-run " << kReRunLength << " times longer; ";
+        if (r.found)
+          m << "they are closer than the bracket width asked for (" << target << "), so the answer is given over the "
+            << "range that holds them, [" << std::min(belowValue, aboveValue) << ", " << std::max(belowValue, aboveValue)
+            << "]";
+        else
+          m << "the answer lies between " << belowValue << " and " << aboveValue << " and this search cannot say where "
+            << "(see the trials)";
+        r.message = m.str();
+        return;
+      }
+      v.length = kReRunLength;
+      evaluateAll(std::ref(v), again, threads);
+      v.length = 1;
+      r.review.reruns += static_cast<int>(again.size());
+      rerun.insert(again.begin(), again.end());
+      continue;
+    }
+    const double target = width > 0 ? width : 1e-3 * std::abs(lfAnyValue);
+    if (round > 0 && std::abs(lfAnyValue - hsValue) > target * (1 + 1e-9)) {
+      // Re-runs moved the bracket: narrow it again, and review again.
+      narrowBracket(std::ref(v), hsValue, lfAnyValue, target, threads);
+      continue;
+    }
+    if (round > 0) {
+      r.found = true;
+      setAnswer(hsValue, lfAnyValue);
+    }
+    if (by.at(lfAnyValue).undecided && lf == INFINITY && !probed) {
+      // Undecided trials and no decided failure beyond them: look further out for one, so that
+      // the bracket reported is one the trials vouch for.
+      probed = true;
+      double far = lfAnyValue;
+      for (const auto& [x, t] : by)
+        if (t.undecided && o(x) > o(far)) far = x;
+      const double step = std::max(std::abs(far - hsValue), target);
+      for (int k = 0; k < 4; ++k) {
+        const double x = far + (stableBelow ? 1 : -1) * step * std::pow(2.0, k);
+        if (x < domain.first || x > domain.second) break;
+        if (!v(x) && !verdictsByValue(v.trials).at(x).undecided) break;
+      }
+      continue;
+    }
+    if (by.at(lfAnyValue).undecided && !(lf < INFINITY && std::abs(lfValue - hsValue) <= target * (1 + 1e-9))) {
+      r.review.undecided = true;
+      r.found = false;
+      std::ostringstream m;
+      m << "undecided at " << lfAnyValue << " (" << v.quantity << "): a small motion that neither grew nor stopped "
+        << "within the run's extensions; the slope stands at " << hsValue;
+      if (lf < INFINITY) m << " and fails at " << lfValue << ": the answer lies between them";
+      else m << ", and no trial beyond it was decided failing";
+      r.message = m.str();
+      r.stableEnd = hsValue;
+      r.failingEnd = lf < INFINITY ? lfValue : lfAnyValue;
+    }
+    return;
+  }
+}
+
 }  // namespace
 
 CriticalResult criticalCohesion(const model::Scene& scene, int joint, double frictionDeg, double width,
                                 const SearchSettings& s, double initialGuess) {
   const auto t0 = std::chrono::steady_clock::now();
   const auto held = sharedEquilibrium(scene);
-  CountedVerdict stableAt{[&](double c) {
+  CountedVerdict stableAt{[&](double c, double length) {
     model::Scene trial = scene;
+    trial.settings.duration *= length;
     trial.joints[joint].cohesion = c;
     trial.joints[joint].frictionAngle = degToRad(frictionDeg);
     return judgeStability(trial, s.verdict, held ? &*held : nullptr, endOf(s, c));
@@ -150,6 +268,9 @@ CriticalResult criticalCohesion(const model::Scene& scene, int joint, double fri
       narrowInto(r, f, hi, failing, width, s.threads);
     }
   }
+  reviewTrials(r, stableAt, false, {0.0, 1e12}, width, s.threads, [&](double stable, double failing) {
+    r.stableEnd = stable, r.failingEnd = failing, r.critical = 0.5 * (stable + failing);
+  });
   return account(r, stableAt, t0);
 }
 
@@ -157,8 +278,9 @@ CriticalResult criticalFriction(const model::Scene& scene, int joint, double coh
                                 const SearchSettings& s) {
   const auto t0 = std::chrono::steady_clock::now();
   const auto held = sharedEquilibrium(scene);
-  CountedVerdict stableAt{[&](double phiDeg) {
+  CountedVerdict stableAt{[&](double phiDeg, double length) {
     model::Scene trial = scene;
+    trial.settings.duration *= length;
     trial.joints[joint].cohesion = cohesion;
     trial.joints[joint].frictionAngle = degToRad(phiDeg);
     return judgeStability(trial, s.verdict, held ? &*held : nullptr, endOf(s, phiDeg));
@@ -174,6 +296,9 @@ CriticalResult criticalFriction(const model::Scene& scene, int joint, double coh
       r.critical = 0;
     }
   }
+  reviewTrials(r, stableAt, false, {0.0, 89.9}, width, s.threads, [&](double stable, double failing) {
+    r.stableEnd = stable, r.failingEnd = failing, r.critical = 0.5 * (stable + failing);
+  });
   return account(r, stableAt, t0);
 }
 
@@ -181,8 +306,9 @@ CriticalResult criticalSeismicCoefficient(const model::Scene& scene, int directi
                                           const SearchSettings& s) {
   const auto t0 = std::chrono::steady_clock::now();
   // The load enters each trial's own equilibrium (model/seismic.hpp): none is shared.
-  CountedVerdict stableAt{[&](double k) {
+  CountedVerdict stableAt{[&](double k, double length) {
     model::Scene trial = scene;
+    trial.settings.duration *= length;
     trial.seismic.kh = direction * k;
     trial.seismic.ground = {};  // k_y belongs to the slope, not to a record
     // Told k_h as applied; k = 0 is one trial whatever the direction (not −0 and 0).
@@ -219,6 +345,9 @@ CriticalResult criticalSeismicCoefficient(const model::Scene& scene, int directi
       }
     }
   }
+  reviewTrials(r, stableAt, true, {0.0, 2.0}, width, s.threads, [&](double stable, double failing) {
+    r.stableEnd = stable, r.failingEnd = failing, r.critical = 0.5 * (stable + failing);
+  });
   return account(r, stableAt, t0);
 }
 
@@ -266,16 +395,24 @@ std::vector<CurvePoint> criticalCurve(const model::Scene& scene, int joint, doub
 
 FactorOfSafetyResult factorOfSafety(const model::Scene& scene, const std::vector<int>& joints, double width,
                                     const SearchSettings& s) {
-  const auto t0 = std::chrono::steady_clock::now();
   std::vector<int> reduced = joints;
   if (reduced.empty())
     for (size_t j = 0; j < scene.joints.size(); ++j) reduced.push_back(static_cast<int>(j));
   const auto held = sharedEquilibrium(scene);
-  CountedVerdict stableAt{[&](double f) {
-    model::Scene trial = scene;
-    for (int j : reduced) trial.joints[j] = scene.joints[j].reducedBy(f);
-    return judgeStability(trial, s.verdict, held ? &*held : nullptr, endOf(s, f));
-  }, s, "F", width};
+  return factorOfSafetyOf(
+      [&](double f, double length) {
+        model::Scene trial = scene;
+        trial.settings.duration *= length;
+        for (int j : reduced) trial.joints[j] = scene.joints[j].reducedBy(f);
+        return judgeStability(trial, s.verdict, held ? &*held : nullptr, endOf(s, f));
+      },
+      width, s);
+}
+
+FactorOfSafetyResult factorOfSafetyOf(const std::function<TrialResult(double, double)>& verdict, double width,
+                                      const SearchSettings& s) {
+  const auto t0 = std::chrono::steady_clock::now();
+  CountedVerdict stableAt{verdict, s, "F", width};
   FactorOfSafetyResult r;
   // Bracket from F = 1 by factors of 1.5 (stable: raise F; failing: lower it).
   double stable = 0, failing = 0, f = 1;
@@ -294,6 +431,9 @@ FactorOfSafetyResult factorOfSafety(const model::Scene& scene, const std::vector
     r.factor = b.critical;
     r.rounds = b.rounds;
   }
+  reviewTrials(r, stableAt, true, {0.0, 1e6}, width, s.threads, [&](double stable, double failing) {
+    r.stableEnd = stable, r.failingEnd = failing, r.factor = 0.5 * (stable + failing);
+  });
   return account(r, stableAt, t0);
 }
 

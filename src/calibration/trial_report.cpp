@@ -6,7 +6,7 @@ namespace ddaslope::calibration {
 namespace {
 
 bool failedOnLittleMotion(const TrialResult& r) {
-  return !r.stable && r.converged && r.rule != VerdictRule::MovedWhileSettling &&
+  return !r.stable && !r.undecided && r.converged && r.rule != VerdictRule::MovedWhileSettling &&
          r.maxDisplacement < kSmallFailureMotion * r.failureDisplacement;
 }
 
@@ -16,14 +16,22 @@ void appendTrials(io::JsonRecord& j, const std::vector<TrialRecord>& trials, con
   for (const TrialRecord& t : trials) {
     const TrialResult& r = t.result;
     io::JsonRecord item;
-    item.set(valueKey, t.value).set("stable", r.stable).set("rule", name(r.rule));
+    item.set(valueKey, t.value).set("stable", r.stable).set("undecided", r.undecided).set("rule", name(r.rule));
     item.set("max_displacement_m", r.maxDisplacement).set("failure_displacement_m", r.failureDisplacement);
     item.set("settling_displacement_m", r.settlingDisplacement);
     item.set("last_window_motion_m", r.lastWindowMotion).set("previous_window_motion_m", r.previousWindowMotion);
     item.set("noise_floor_m", r.noiseFloor).set("final_speed_m_s", r.finalSpeed);
-    item.set("time_s", r.timeReached).set("steps", r.steps).set("extended", r.extended).set("marginal", r.marginal);
+    item.set("moved_most", r.movedMost).set("decided_by", r.decidedBy);
+    item.set("time_s", r.timeReached).set("steps", r.steps).set("extended", r.extended).set("extensions", r.extensions);
+    item.set("marginal", r.marginal).set("rerun", t.rerun);
     j.append("trials", item);
   }
+}
+
+void appendReview(io::JsonRecord& j, const TrialReview& review) {
+  io::JsonRecord r;
+  r.set("contradiction", review.contradiction).set("undecided", review.undecided).set("reruns", review.reruns);
+  j.set("review", r);
 }
 
 std::string smallMotionWarning(const std::vector<TrialRecord>& trials, const std::string& valueLabel) {

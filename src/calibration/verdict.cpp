@@ -17,43 +17,105 @@ constexpr double kNoiseFactor = 5;
 /// gives 7/5, a transient dying out less than 1.
 constexpr double kStillMovingRatio = 0.9;
 constexpr double kMarginalRatioLow = 0.75, kMarginalRatioHigh = 1.25;
+/// A still-moving verdict on less motion than this fraction of the failure displacement is not
+/// failure unless the motion grows over extensions of the run.
+constexpr double kDecisiveMotion = 0.1;
+/// Extensions of the run (each by its duration) a small motion gets to show whether it grows.
+constexpr int kMaxExtensions = 3;
+/// Growth of the net speed over the last window from one judgement to the next that counts as
+/// growing (a slide accelerating from rest: 2, then 1.5, then 4/3 as the run doubles, triples…).
+constexpr double kGrowth = 1.1;
 
-/// Monitor positions at every accepted step, for window judgements.
-struct MonitorPath {
+/// Paths of the points a verdict watches, in three coordinates: a monitor's (x, y, 0) at every
+/// step, and a free block's centroid with its rotation times its reach, (x, y, R·θ), sampled every
+/// `interval` of simulated time (thousands of blocks over thousands of steps would otherwise keep
+/// gigabytes; 64 samples a run resolve the windows' quadratic fits).
+struct PointPaths {
+  explicit PointPaths(double interval) : interval(interval) {}
+  double interval;
+  size_t points = 0;
   std::vector<double> time;
-  std::vector<std::vector<Vec2>> position;  ///< [sample][monitor]
+  std::vector<Vec3> position;  ///< [sample · points + point]
 
-  void record(const solver::Simulation& sim) {
-    time.push_back(sim.time());
-    std::vector<Vec2> p;
-    for (const model::Monitor& m : sim.scene().monitors) p.push_back(m.point.current);
-    position.push_back(std::move(p));
+  bool due(double t) const { return time.empty() || t >= time.back() + interval * (1 - 1e-9); }
+  void record(double t, const std::vector<Vec3>& p) {
+    points = p.size();
+    time.push_back(t);
+    position.insert(position.end(), p.begin(), p.end());
   }
-  /// Position of monitor m at time t (linear between samples, held beyond the ends).
-  Vec2 at(size_t m, double t) const {
+  const Vec3& sample(size_t k, size_t m) const { return position[k * points + m]; }
+  /// Position of point m at time t (linear between samples, held beyond the ends).
+  Vec3 at(size_t m, double t) const {
     const auto it = std::lower_bound(time.begin(), time.end(), t);
-    if (it == time.begin()) return position.front()[m];
-    if (it == time.end()) return position.back()[m];
+    if (it == time.begin()) return sample(0, m);
+    if (it == time.end()) return sample(time.size() - 1, m);
     const size_t k = static_cast<size_t>(it - time.begin());
     const double w = (t - time[k - 1]) / std::max(time[k] - time[k - 1], 1e-300);
-    return (1 - w) * position[k - 1][m] + w * position[k][m];
+    return (1 - w) * sample(k - 1, m) + w * sample(k, m);
   }
-  /// RMS distance of monitor m's samples in [t0, t1] from their least-squares quadratic in time.
+  /// RMS distance of point m's samples in [t0, t1] from their least-squares quadratic in time.
   double scatter(size_t m, double t0, double t1) const {
     std::vector<size_t> in;
     for (size_t k = 0; k < time.size(); ++k)
       if (time[k] >= t0 && time[k] <= t1) in.push_back(k);
     if (in.size() < 4) return 0;
     Eigen::MatrixXd a(in.size(), 3);
-    Eigen::MatrixXd y(in.size(), 2);
+    Eigen::MatrixXd y(in.size(), 3);
     const double mid = 0.5 * (t0 + t1), half = std::max(0.5 * (t1 - t0), 1e-300);
     for (size_t r = 0; r < in.size(); ++r) {
       const double tau = (time[in[r]] - mid) / half;  // in [−1, 1]: a well-conditioned fit
       a.row(r) << 1, tau, tau * tau;
-      y.row(r) = (position[in[r]][m] - position[in.front()][m]).transpose();
+      y.row(r) = (sample(in[r], m) - sample(in.front(), m)).transpose();
     }
     const Eigen::MatrixXd coef = a.colPivHouseholderQr().solve(y);
     return std::sqrt((a * coef - y).squaredNorm() / static_cast<double>(in.size()));
+  }
+};
+
+/// Every free block of the scene, as the verdict watches it.
+struct BlockWatch {
+  std::vector<int> blocks;      ///< free blocks
+  std::vector<double> reach;    ///< largest distance of a vertex from the centroid at t = 0 (m)
+  std::vector<std::vector<Vec2>> start;  ///< vertices at t = 0
+
+  explicit BlockWatch(const model::Scene& s) {
+    for (size_t b = 0; b < s.blocks.size(); ++b)
+      if (!s.blocks[b].fixed) blocks.push_back(static_cast<int>(b));
+  }
+  void markStart(const model::Scene& s) {
+    reach.clear();
+    start.clear();
+    for (int b : blocks) {
+      const model::Block& blk = s.blocks[static_cast<size_t>(b)];
+      double r = 0;
+      for (const Vec2& v : blk.vertices) r = std::max(r, (v - blk.moments.centroid).norm());
+      reach.push_back(r);
+      start.push_back(blk.vertices);
+    }
+  }
+  std::vector<Vec3> positions(const model::Scene& s) const {
+    std::vector<Vec3> p;
+    p.reserve(blocks.size());
+    for (size_t k = 0; k < blocks.size(); ++k) {
+      const model::Block& blk = s.blocks[static_cast<size_t>(blocks[k])];
+      p.emplace_back(blk.moments.centroid.x(), blk.moments.centroid.y(), reach[k] * blk.rotation);
+    }
+    return p;
+  }
+  /// The largest displacement of a vertex of a free block from `from` (the vertices of every
+  /// block, or of the watched ones in order), and which block it is.
+  static double largestMove(const model::Scene& s, const std::vector<int>& which,
+                            const std::vector<std::vector<Vec2>>& from, int* block) {
+    double largest = 0;
+    for (size_t k = 0; k < which.size(); ++k) {
+      const std::vector<Vec2>& now = s.blocks[static_cast<size_t>(which[k])].vertices;
+      const std::vector<Vec2>& was = from[k];
+      for (size_t v = 0; v < now.size() && v < was.size(); ++v) {
+        const double d = (now[v] - was[v]).norm();
+        if (d > largest) largest = d, *block = which[k];
+      }
+    }
+    return largest;
   }
 };
 
@@ -61,28 +123,27 @@ struct WindowJudgement {
   WindowVerdict verdict = WindowVerdict::AtRest;
   bool marginal = false;
   WindowMotion motion;
+  std::string point;  ///< the deciding point
 };
 
-/// Judges every monitor on quarters of [0, end]; the deciding monitor is a moving one if any
-/// (the largest net motion), else the one nearest its floor.
-WindowJudgement judgeAllWindows(const MonitorPath& path, size_t monitors, double end, double restingSpeed) {
+/// Judges every point of `paths` on quarters of [0, end] into `worst`: the deciding point is a
+/// moving one if any (the largest net motion), else the one nearest its floor.
+void judgeAllWindows(const PointPaths& paths, const std::vector<std::string>& names, double end, double restingSpeed,
+                     WindowJudgement& worst, double& worstScore) {
   const double w = 0.25 * end;
-  WindowJudgement worst;
-  double worstScore = -1;
-  for (size_t m = 0; m < monitors; ++m) {
+  for (size_t m = 0; m < paths.points; ++m) {
     WindowMotion mo;
-    const Vec2 a = path.at(m, end - 2 * w), b = path.at(m, end - w), c = path.at(m, end);
+    const Vec3 a = paths.at(m, end - 2 * w), b = paths.at(m, end - w), c = paths.at(m, end);
     mo.last = (c - b).norm();
     mo.previous = (b - a).norm();
-    mo.floor = std::max(restingSpeed * w, kNoiseFactor * path.scatter(m, end - 2 * w, end));
+    mo.floor = std::max(restingSpeed * w, kNoiseFactor * paths.scatter(m, end - 2 * w, end));
     bool marginal = false;
     const WindowVerdict v = judgeWindows(mo, &marginal);
-    // Moving monitors first (by net motion), then the others by how near their floor they come.
+    // Moving points first (by net motion), then the others by how near their floor they come.
     const double score = v == WindowVerdict::StillMoving ? 2 + mo.last : mo.last / std::max(mo.floor, 1e-300) / 1e3;
-    if (score > worstScore) worstScore = score, worst.verdict = v, worst.motion = mo;
+    if (score > worstScore) worstScore = score, worst.verdict = v, worst.motion = mo, worst.point = names[m];
     worst.marginal |= marginal;
   }
-  return worst;
 }
 
 }  // namespace
@@ -91,11 +152,16 @@ const char* describe(VerdictRule rule) {
   switch (rule) {
     case VerdictRule::AtRest: return "at rest: net motion over the last window below the noise floor";
     case VerdictRule::SlowingDown: return "slowing down: net motion over the last window under 90 % of the window before";
-    case VerdictRule::PassedDisplacement: return "a monitor passed the failure displacement";
-    case VerdictRule::StillMoving: return "still moving and not slowing down at the end of the run";
+    case VerdictRule::PassedDisplacement: return "a monitor or a block passed the failure displacement";
+    case VerdictRule::StillMoving:
+      return "still moving and not slowing down at the end of the run (by at least 10 % of the failure displacement, "
+             "or growing over extensions of the run)";
     case VerdictRule::MovedWhileSettling:
-      return "a monitor passed the failure displacement while the scene came to rest before t = 0";
+      return "a monitor or a block passed the failure displacement while the scene came to rest before t = 0";
     case VerdictRule::NotConverged: return "the run did not converge";
+    case VerdictRule::Undecided:
+      return "undecided: a small motion (under 10 % of the failure displacement) still moving after 3 extensions of "
+             "the run, neither growing nor stopping";
   }
   return "";
 }
@@ -108,6 +174,7 @@ const char* name(VerdictRule rule) {
     case VerdictRule::StillMoving: return "still_moving";
     case VerdictRule::MovedWhileSettling: return "moved_while_settling";
     case VerdictRule::NotConverged: return "not_converged";
+    case VerdictRule::Undecided: return "undecided";
   }
   return "";
 }
@@ -129,7 +196,6 @@ WindowVerdict judgeWindows(const WindowMotion& m, bool* marginal) {
 
 TrialResult judgeStability(const model::Scene& scene, const VerdictSettings& settings,
                            const solver::HeldEquilibrium* shared, const TrialEndObserver& atEnd) {
-  DDASLOPE_ASSERT(!scene.monitors.empty(), "a stability verdict needs at least one monitor");
   solver::Simulation sim(scene);
   // The call's settings first, then the case's (analysis.failure_displacement, resting_speed).
   const double threshold = settings.failureDisplacement > 0      ? settings.failureDisplacement
@@ -141,20 +207,38 @@ TrialResult judgeStability(const model::Scene& scene, const VerdictSettings& set
   TrialResult r;
   r.failureDisplacement = threshold;
   const size_t monitors = scene.monitors.size();
+  std::vector<std::string> monitorNames, blockNames;
+  for (const model::Monitor& m : scene.monitors) monitorNames.push_back("monitor " + m.id);
+  BlockWatch watch(scene);
+  for (int b : watch.blocks) blockNames.push_back("block " + scene.blocks[static_cast<size_t>(b)].id);
   std::vector<Vec2> start;  // monitor positions at t = 0, after the equilibrium
-  MonitorPath path;
+  PointPaths monitorPath(0), blockPath(scene.settings.duration / 64);
+  const auto record = [&] {
+    std::vector<Vec3> p;
+    for (const model::Monitor& m : sim.scene().monitors) p.emplace_back(m.point.current.x(), m.point.current.y(), 0);
+    monitorPath.record(sim.time(), p);
+    if (blockPath.due(sim.time())) blockPath.record(sim.time(), watch.positions(sim.scene()));
+  };
+  // The largest motion since t = 0 of any monitor or any point of a free block: monitors report
+  // where the user looks, but a slope fails wherever it moves.
   const auto passedThreshold = [&] {
     const auto& mons = sim.scene().monitors;
-    for (size_t k = 0; k < monitors; ++k)
-      r.maxDisplacement = std::max(r.maxDisplacement, (mons[k].point.current - start[k]).norm());
+    for (size_t k = 0; k < monitors; ++k) {
+      const double d = (mons[k].point.current - start[k]).norm();
+      if (d > r.maxDisplacement) r.maxDisplacement = d, r.movedMost = monitorNames[k];
+    }
+    int block = -1;
+    const double d = BlockWatch::largestMove(sim.scene(), watch.blocks, watch.start, &block);
+    if (d > r.maxDisplacement) r.maxDisplacement = d, r.movedMost = "block " + sim.scene().blocks[static_cast<size_t>(block)].id;
     r.timeReached = sim.time();
     return r.maxDisplacement > threshold;
   };
   const auto finish = [&](VerdictRule rule) {
     r.rule = rule;
     r.stable = rule == VerdictRule::AtRest || rule == VerdictRule::SlowingDown;
+    r.undecided = rule == VerdictRule::Undecided;
     r.reason = describe(rule);
-    r.steps = static_cast<int>(path.time.size()) - 1;
+    r.steps = static_cast<int>(monitorPath.time.size()) - 1;
     for (size_t m = 0; m < monitors; ++m)
       r.finalSpeed = std::max(r.finalSpeed, sim.monitorVelocity(static_cast<int>(m)).norm());
     if (atEnd) atEnd(sim, r);
@@ -168,25 +252,62 @@ TrialResult judgeStability(const model::Scene& scene, const VerdictSettings& set
     for (size_t k = 0; k < monitors; ++k) {
       start.push_back(sim.scene().monitors[k].point.current);
       const Vec2 from = k < held.size() ? held[k] : scene.monitors[k].point.current;
-      r.settlingDisplacement = std::max(r.settlingDisplacement, (start[k] - from).norm());
+      const double d = (start[k] - from).norm();
+      if (d > r.settlingDisplacement) r.settlingDisplacement = d, r.movedMost = monitorNames[k];
+    }
+    {
+      std::vector<std::vector<Vec2>> heldVertices;
+      const auto& heldBlocks = sim.blocksAfterHeldEquilibrium();
+      for (int b : watch.blocks)
+        heldVertices.push_back(heldBlocks.empty() ? scene.blocks[static_cast<size_t>(b)].vertices
+                                                  : heldBlocks[static_cast<size_t>(b)].vertices);
+      int block = -1;
+      const double d = BlockWatch::largestMove(sim.scene(), watch.blocks, heldVertices, &block);
+      if (d > r.settlingDisplacement) r.settlingDisplacement = d, r.movedMost = "block " + scene.blocks[static_cast<size_t>(block)].id;
     }
     if (r.settlingDisplacement > threshold) return finish(VerdictRule::MovedWhileSettling);
-    path.record(sim);
+    r.movedMost.clear();
+    watch.markStart(sim.scene());
+    record();
+    // Net motion per second over the last window of each judgement that found a small motion
+    // still moving: it is failure only if it grows from one extension to the next.
+    std::vector<double> smallMotionSpeeds;
     for (;;) {
       while (!sim.finished()) {
         sim.advance();
-        path.record(sim);
+        record();
         if (passedThreshold()) return finish(VerdictRule::PassedDisplacement);
       }
-      const WindowJudgement j = judgeAllWindows(path, monitors, sim.time(), resting);
+      WindowJudgement j;
+      double worstScore = -1;
+      judgeAllWindows(monitorPath, monitorNames, sim.time(), resting, j, worstScore);
+      judgeAllWindows(blockPath, blockNames, sim.time(), resting, j, worstScore);
       r.lastWindowMotion = j.motion.last;
       r.previousWindowMotion = j.motion.previous;
       r.noiseFloor = j.motion.floor;
-      if (j.marginal && !r.extended) {
+      r.decidedBy = j.point;
+      if (j.marginal && r.extensions == 0) {
         // Marginal: run as long again rather than guess, then judge on quarters of the whole.
+        ++r.extensions;
         r.extended = true;
         sim.extendDuration(scene.settings.duration);
         continue;
+      }
+      if (j.verdict == WindowVerdict::StillMoving && r.maxDisplacement < kDecisiveMotion * threshold) {
+        // A motion this small against the failure displacement is failure only if it keeps
+        // growing: a contact's chatter or a slow settling moves a little and steadily.
+        smallMotionSpeeds.push_back(j.motion.last / (0.25 * sim.time()));
+        const size_t n = smallMotionSpeeds.size();
+        const bool growing = n >= 3 && smallMotionSpeeds[n - 1] >= kGrowth * smallMotionSpeeds[n - 2] &&
+                             smallMotionSpeeds[n - 2] >= kGrowth * smallMotionSpeeds[n - 3];
+        if (growing) return finish(VerdictRule::StillMoving);
+        if (r.extensions < kMaxExtensions) {
+          ++r.extensions;
+          r.extended = true;
+          sim.extendDuration(scene.settings.duration);
+          continue;
+        }
+        return finish(VerdictRule::Undecided);
       }
       r.marginal = j.marginal;
       return finish(j.verdict == WindowVerdict::StillMoving ? VerdictRule::StillMoving

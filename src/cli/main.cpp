@@ -102,6 +102,50 @@ void printKinkNotes(const ddaslope::model::Scene& scene) {
   }
 }
 
+/// Whether point p of block `own` lies on or near (1e-3 w0) the outline of another block.
+bool touchesAnotherBlock(const ddaslope::model::Scene& scene, const ddaslope::model::Block& own, const ddaslope::Vec2& p) {
+  const double near = 1e-3 * scene.modelHalfSize();
+  for (const auto& b : scene.blocks) {
+    if (&b == &own || (b.fixed && own.fixed)) continue;
+    for (size_t k = 0; k < b.vertices.size(); ++k)
+      if (ddaslope::geometry::distanceToSegment(p, b.vertices[k], b.vertices[(k + 1) % b.vertices.size()], nullptr) <= near)
+        return true;
+  }
+  return false;
+}
+
+/// What the reader did to the blocks' outlines, and the vertices it kept that bend a face so little
+/// that the face still meets its neighbour as two contacts judged apart.
+void printOutlineNotes(const ddaslope::model::Scene& scene) {
+  int removed = 0, blocks = 0;
+  for (const auto& b : scene.blocks) removed += b.removedCollinearVertices, blocks += b.removedCollinearVertices > 0;
+  if (removed > 0)
+    std::printf("  outlines: %d vertices on straight edges removed from %d blocks (T-junctions and split edges: each "
+                "face meets its neighbour as one contact, docs/contact-model.md)\n",
+                removed, blocks);
+  int slight = 0;
+  std::string first;
+  for (const auto& b : scene.blocks) {
+    const size_t n = b.vertices.size();
+    for (size_t k = 0; k < n; ++k) {
+      const ddaslope::Vec2 in = b.vertices[k] - b.vertices[(k + n - 1) % n], out = b.vertices[(k + 1) % n] - b.vertices[k];
+      const double turnDeg = std::abs(std::atan2(ddaslope::cross(in, out), in.dot(out))) * 180 / M_PI;
+      if (turnDeg >= scene.settings.edgeParallelToleranceDeg || !touchesAnotherBlock(scene, b, b.vertices[k])) continue;
+      if (slight++ == 0) {
+        char where[160];
+        std::snprintf(where, sizeof where, "block %s at (%g, %g), %.3g°", b.id.c_str(), b.vertices[k].x(),
+                      b.vertices[k].y(), turnDeg);
+        first = where;
+      }
+    }
+  }
+  if (slight > 0)
+    std::printf("  note: %d vertices bend their block's outline by less than the edge-parallel tolerance (%g°) but are "
+                "not on a straight line (first: %s): each splits a face into contacts judged apart, whose cohesion "
+                "may fail piecewise; straighten the edge where the bend is not real\n",
+                slight, scene.settings.edgeParallelToleranceDeg, first.c_str());
+}
+
 /// The seismic loading in force: the coefficients and the record's span and peaks.
 void printSeismicNote(const ddaslope::model::Scene& scene) {
   const ddaslope::model::SeismicLoad& q = scene.seismic;
@@ -149,6 +193,7 @@ int checkCommand(const std::string& casePath, const Overrides& o) {
   std::printf("  %s\n", settingsLine(scene).c_str());
   if (const std::string drawn = ddaslope::io::sectionDrawingSummary(casePath); !drawn.empty())
     std::printf("  %s\n", drawn.c_str());
+  printOutlineNotes(scene);
   printSeismicNote(scene);
   printKinkNotes(scene);
   if (ddaslope::io::hasProbabilitySection(casePath)) {
@@ -283,6 +328,7 @@ int seismicCoefficientCommand(const std::string& casePath, const ddaslope::model
     j.set("failing_at", r.failingEnd).set("stable_at", r.stableEnd);
     j.set("forward_runs", runs).set("wall_time_s", wall).set("message", r.message);
     j.set("settings", settingsLine(searched));
+    ddaslope::calibration::appendReview(j, r.review);
     ddaslope::calibration::appendTrials(j, r.trials, "k_h");
     if (!opt.vtkDir.empty()) j.set("vtk", opt.vtkDir);
     std::printf("%s\n", j.dump().c_str());
@@ -338,6 +384,7 @@ int criticalCommand(const std::string& casePath, const Overrides& o, const Criti
     j.set("critical", r.critical).set("unit", unit).set("bracket", std::vector<double>{r.failingEnd, r.stableEnd});
     j.set("forward_runs", r.runs).set("wall_time_s", r.wallTime).set("message", r.message);
     j.set("settings", settingsLine(scene));
+    ddaslope::calibration::appendReview(j, r.review);
     ddaslope::calibration::appendTrials(j, r.trials, cohesion ? "cohesion_pa" : "friction_angle_deg");
     if (!opt.vtkDir.empty()) j.set("vtk", opt.vtkDir);
     std::printf("%s\n", j.dump().c_str());
@@ -472,6 +519,7 @@ int fosCommand(const std::string& casePath, const Overrides& o, const FosOptions
     j.set("bracket", std::vector<double>{r.stableEnd, r.failingEnd}).set("width", opt.width);
     j.set("forward_runs", r.runs).set("rounds", r.rounds).set("wall_time_s", r.wallTime).set("message", r.message);
     j.set("settings", settingsLine(scene));
+    ddaslope::calibration::appendReview(j, r.review);
     ddaslope::calibration::appendTrials(j, r.trials, "factor");
     if (!opt.vtkDir.empty()) j.set("vtk", opt.vtkDir);
     std::printf("%s\n", j.dump().c_str());

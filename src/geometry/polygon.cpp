@@ -86,6 +86,54 @@ bool isSimple(const std::vector<Vec2>& pts) {
   return true;
 }
 
+int removeCollinearVertices(std::vector<Vec2>& pts, double relativeTolerance) {
+  const size_t n = pts.size();
+  if (n <= 3) return 0;
+  const auto at = [&](size_t k) -> const Vec2& { return pts[k % n]; };
+  // Start from the most prominent corner (farthest from its neighbours' chord, against the chord's
+  // length): a simple polygon keeps it whatever the rest.
+  size_t anchor = 0;
+  double prominent = -1;
+  for (size_t k = 0; k < n; ++k) {
+    const Vec2 chord = at(k + 1) - at(k + n - 1);
+    const double s = std::abs(cross(chord, at(k) - at(k + n - 1))) / std::max(chord.squaredNorm(), 1e-300);
+    if (s > prominent) prominent = s, anchor = k;
+  }
+  // Vertices from..to (exclusive, indices past anchor) all lie on the chord at(from)–at(to),
+  // their projections in order along it.
+  const auto onChord = [&](size_t from, size_t to) {
+    const Vec2 a = at(from), d = at(to) - a;
+    const double len = d.norm();
+    if (!(len > 0)) return false;
+    const Vec2 u = d / len;
+    double last = 0;
+    for (size_t k = from + 1; k < to; ++k) {
+      const Vec2 r = at(k) - a;
+      const double along = r.dot(u);
+      if (std::abs(cross(u, r)) > relativeTolerance * len || along <= last || along >= len) return false;
+      last = along;
+    }
+    return true;
+  };
+  std::vector<size_t> kept{anchor};
+  size_t from = anchor;
+  // The last run closes on the anchor (k = anchor + n).
+  for (size_t k = anchor + 2; k <= anchor + n; ++k) {
+    if (onChord(from, k)) continue;
+    from = k - 1;  // the chord cannot reach k: the vertex before it is a corner
+    kept.push_back(from % n);
+  }
+  const int removed = static_cast<int>(n - kept.size());
+  if (removed == 0) return 0;
+  // In their order, from the first one kept: an outline without such vertices is left as it was.
+  std::rotate(kept.begin(), std::min_element(kept.begin(), kept.end()), kept.end());
+  std::vector<Vec2> out;
+  out.reserve(kept.size());
+  for (size_t k : kept) out.push_back(pts[k]);
+  pts = std::move(out);
+  return removed;
+}
+
 void orientCounterClockwise(std::vector<Vec2>& pts) {
   if (signedArea(pts) < 0) std::reverse(pts.begin(), pts.end());
 }

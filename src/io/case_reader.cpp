@@ -98,6 +98,16 @@ void readJoints(const Reader& r, const json& doc, model::Scene& s, std::map<std:
   }
 }
 
+/// One face, one contact: vertices on a straight edge (T-junctions of a block-cutting program or
+/// a mesher, an edge split in CAD) are removed, so that the face meets its neighbour as one
+/// edge-to-edge contact whatever vertices it was drawn with (docs/contact-model.md).
+void normaliseOutlines(model::Scene& s) {
+  for (model::Block& b : s.blocks) {
+    b.removedCollinearVertices = geometry::removeCollinearVertices(b.vertices, model::kCollinearTolerance);
+    if (b.removedCollinearVertices > 0) b.moments = geometry::computeMoments(b.vertices);
+  }
+}
+
 /// Sizes the numbers can resolve: the scene from a laboratory sample to a mountain range, each
 /// block at least 1e-6 of it thick, and a bounded number of blocks.
 void checkGeometry(const Reader& r, const model::Scene& s) {
@@ -461,6 +471,7 @@ model::Scene parseCase(const std::string& text, const std::string& file) {
   readJoints(r, doc, s, jointIds);
   readSection(r, doc, s, materialIds, jointIds);
   readBlocks(r, doc, s, materialIds);
+  normaliseOutlines(s);
   checkGeometry(r, s);
   readJointPairs(r, doc, s, jointIds);
   readPointsAndLoads(r, doc, s);

@@ -1135,6 +1135,7 @@ void Simulation::bringToEquilibrium(const HeldEquilibrium* shared) {
   stats_.equilibriumConverged = shared->converged;
   heldMonitors_.clear();
   for (const model::Monitor& m : shared->monitors) heldMonitors_.push_back(m.point.current);
+  heldBlocks_ = shared->blocks;
   markActiveBlocks(shared->held);
   if (nActive_ > 0) {
     detectContacts(false);

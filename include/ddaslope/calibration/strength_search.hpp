@@ -17,6 +17,24 @@ namespace ddaslope::calibration {
 struct TrialRecord {
   double value = 0;
   TrialResult result;
+  /// A re-run, kReRunLength times longer, of a trial whose verdict contradicted another's (the
+  /// search's review): its verdict replaces the first one's.
+  bool rerun = false;
+};
+
+/// How much longer (× the case's duration) a search re-runs trials whose verdicts contradict.
+constexpr double kReRunLength = 4;
+
+/// What a search's review of its own trials found (every search ends with one). The verdict must
+/// be monotone in the value searched: a failing trial on the stable side of a stable one is a
+/// contradiction. Contradicting trials are re-run kReRunLength times longer and the bracket is
+/// narrowed again; if they still contradict, or if an undecided trial leaves the bracket between
+/// decided trials wider than asked for, the search has no answer (`found` false) and says so,
+/// with the bracket it can vouch for.
+struct TrialReview {
+  bool contradiction = false;  ///< trials still contradict after their re-runs
+  bool undecided = false;      ///< the answer's bracket is bounded by undecided trials
+  int reruns = 0;              ///< trials re-run longer
 };
 
 struct SearchSettings {
@@ -39,6 +57,7 @@ struct CriticalResult {
   double failingEnd = 0;    ///< bracket end that fails
   int runs = 0;
   double wallTime = 0;      ///< s
+  TrialReview review;
   std::vector<TrialRecord> trials;  ///< every forward run, by value
 };
 
@@ -82,6 +101,7 @@ struct FactorOfSafetyResult {
   int runs = 0;
   int rounds = 0;
   double wallTime = 0;
+  TrialReview review;
   std::vector<TrialRecord> trials;  ///< every forward run, by value
 };
 
@@ -91,5 +111,8 @@ struct FactorOfSafetyResult {
 /// shrinks the bracket by threads + 1.
 FactorOfSafetyResult factorOfSafety(const model::Scene& scene, const std::vector<int>& joints, double width,
                                     const SearchSettings& s = {});
+/// The same search on any verdict of (F, duration factor): factorOfSafety's, or a test's.
+FactorOfSafetyResult factorOfSafetyOf(const std::function<TrialResult(double, double)>& verdict, double width,
+                                      const SearchSettings& s = {});
 
 }  // namespace ddaslope::calibration

@@ -11,9 +11,14 @@ namespace ddaslope::calibration {
 
 /// Appends every trial to `j` under "trials": its value (under `valueKey`: "factor",
 /// "cohesion_pa", "friction_angle_deg"), the verdict, the rule that decided it, the largest
-/// monitor displacement and the failure displacement, the window motions and noise floor,
-/// the final speed, simulated time and steps, and whether it was extended or stayed marginal.
+/// displacement of a monitor or a free block (and which) and the failure displacement, the window
+/// motions and noise floor (and the deciding point), the final speed, simulated time and steps,
+/// its extensions, whether it stayed marginal, and whether it was a review's re-run.
 void appendTrials(io::JsonRecord& j, const std::vector<TrialRecord>& trials, const std::string& valueKey);
+
+/// Appends the search's review of its trials under "review": whether trials still contradicted
+/// after their re-runs, whether undecided trials bound the answer, and how many trials were re-run.
+void appendReview(io::JsonRecord& j, const TrialReview& review);
 
 /// A trial called failed while its monitors moved less than this fraction of the failure
 /// displacement deserves a look: its verdict rests on the trend of the motion, not its size.

@@ -8,24 +8,31 @@
 
 namespace ddaslope::calibration {
 
-/// A run is failing when
-/// (0) a monitor moved more than `failureDisplacement` while the scene came to rest before t = 0,
-///     once its contacts could slip (stages 2 and 3 of the equilibrium; stage 1's elastic
-///     settlement with every contact held does not count): a slope that gives way there and locks
-///     again metres further on has failed, even if it then stands (issue #14: a thin block
-///     squeezed out of a kink while settling);
-/// (a) a monitor moves more than `failureDisplacement` from where it is at t = 0, after the
-///     equilibrium; the run stops there: its verdict is certain; or
-/// (b) at the end of the run a monitor is still moving: over the last quarter of the run its net
+/// A run is failing when, for any monitor or any point of a free block (monitors are where the user
+/// looks; a slope fails wherever it moves, so every free block takes part):
+/// (0) it moved more than `failureDisplacement` while the scene came to rest before t = 0, once
+///     its contacts could slip (stages 2 and 3 of the equilibrium; stage 1's elastic settlement
+///     with every contact held does not count): a slope that gives way there and locks again
+///     metres further on has failed, even if it then stands (issue #14);
+/// (a) it moves more than `failureDisplacement` from where it is at t = 0, after the equilibrium;
+///     the run stops there: its verdict is certain; or
+/// (b) at the end of the run it is still moving: over the last quarter of the run its net
 ///     displacement is above the noise floor and at least 90 % of its net displacement over the
-///     quarter before (a slide just past failure accelerates: 7/5 of it from rest).
+///     quarter before (a slide just past failure accelerates: 7/5 of it from rest), and either the
+///     largest motion since t = 0 is at least 10 % of `failureDisplacement`, or the motion grows
+///     (net speed over the last window up by 10 % or more at each of two extensions of the run).
+/// A still-moving motion under 10 % of `failureDisplacement` that neither grows nor stops within
+/// three extensions of the run (each by its duration) is **undecided**: reported as such, never as
+/// failure (issue #38: contacts chattering at a T-junction moved 0.4 mm of a 105 mm failure
+/// displacement, and such trials were called failed).
 /// Motion is judged on net displacements over windows of simulated time, never on instantaneous
-/// speeds, so contact-spring vibration cannot trip it. The noise floor of a monitor is the larger
+/// speeds, so contact-spring vibration cannot trip it. The noise floor of a point is the larger
 /// of `restingSpeed` × window and 5 × the scatter of its path about a least-squares quadratic over
 /// the last two windows (a steady slide or a smooth acceleration has none; a vibration of
-/// amplitude A has about A/√2, and moves a monitor at most 2A net). A verdict that is marginal,
-/// a net motion within twice the floor or a window ratio in [0.75, 1.25] (a steady creep, or a
-/// transient that neither grows nor dies), is not guessed: the run is extended once by its
+/// amplitude A has about A/√2, and moves a point at most 2A net). A block's path is its centroid
+/// and its rotation times its reach, sampled 64 times per run duration. A verdict that is
+/// marginal, a net motion within twice the floor or a window ratio in [0.75, 1.25] (a steady creep,
+/// or a transient that neither grows nor dies), is not guessed: the run is extended once by its
 /// duration and judged again on quarters of the longer run. Neither rule depends on Δt: sliding
 /// at constant acceleration is integrated exactly by Newmark β = 1/2, γ = 1.
 struct VerdictSettings {
@@ -44,25 +51,34 @@ enum class VerdictRule {
   StillMoving,        ///< failing: rule (b)
   MovedWhileSettling, ///< failing: rule (0)
   NotConverged,       ///< failing: the run did not converge
+  Undecided,          ///< neither: a small motion that neither grew nor stopped within the extensions
 };
 const char* describe(VerdictRule rule);
 /// Short name for tables and JSON: "at_rest", "slowing_down", "failure_displacement",
-/// "still_moving", "moved_while_settling", "not_converged".
+/// "still_moving", "moved_while_settling", "not_converged", "undecided".
 const char* name(VerdictRule rule);
 
 struct TrialResult {
   bool stable = true;
+  /// Neither stable nor failing (VerdictRule::Undecided); `stable` is false, and a search counts
+  /// the trial as failing (the safe side) and says so.
+  bool undecided = false;
   VerdictRule rule = VerdictRule::AtRest;
-  double maxDisplacement = 0;      ///< largest monitor displacement after t = 0 (m)
-  double settlingDisplacement = 0; ///< largest monitor displacement in stages 2–3 of the equilibrium (m)
+  /// Largest displacement after t = 0 of a monitor or of any point of a free block (m).
+  double maxDisplacement = 0;
+  /// Largest such displacement in stages 2–3 of the equilibrium (m).
+  double settlingDisplacement = 0;
+  std::string movedMost;           ///< the point that moved most: "monitor ID" or "block ID"
+  std::string decidedBy;           ///< the point whose windows decided rule (b) or rest
   double failureDisplacement = 0;  ///< the threshold of rule (a) in force (m)
   double finalSpeed = 0;           ///< largest monitor speed at the end of the run (m/s)
-  double lastWindowMotion = 0;     ///< net displacement over the last window, deciding monitor (m)
+  double lastWindowMotion = 0;     ///< net displacement over the last window, deciding point (m)
   double previousWindowMotion = 0; ///< over the window before (m)
-  double noiseFloor = 0;           ///< that monitor's floor (m)
+  double noiseFloor = 0;           ///< that point's floor (m)
   double timeReached = 0;          ///< simulated time when the trial stopped (s)
   int steps = 0;                   ///< accepted steps after t = 0
-  bool extended = false;           ///< run once more for a marginal verdict
+  bool extended = false;           ///< run longer than its duration (a marginal verdict or a small motion)
+  int extensions = 0;              ///< how many times, each by the duration
   bool marginal = false;           ///< still marginal after the extension: decided by the 90 % rule
   bool converged = true;           ///< false if the run hit non-convergence (counted as failing)
   const char* reason = "";         ///< describe(rule)

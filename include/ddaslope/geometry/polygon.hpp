@@ -27,6 +27,11 @@ double signedArea(const std::vector<Vec2>& pts);
 PolygonMoments computeMoments(const std::vector<Vec2>& pts);
 /// True when no two non-adjacent edges touch and no two consecutive vertices coincide.
 bool isSimple(const std::vector<Vec2>& pts);
+/// Removes every vertex that lies on the straight line between the vertices kept on either side
+/// of it, within `relativeTolerance` of that chord's length (a run of such vertices is tested
+/// against the one chord that replaces it, so a gentle curve is not flattened piece by piece).
+/// Returns how many were removed. The polygon must be simple, with at least three corners.
+int removeCollinearVertices(std::vector<Vec2>& pts, double relativeTolerance);
 /// Reverses the order if needed so that the signed area is positive.
 void orientCounterClockwise(std::vector<Vec2>& pts);
 /// Point in polygon (boundary counts as inside within tol).

@@ -14,6 +14,12 @@ Mat26 displacementMatrix(const Vec2& centroid, const Vec2& p);
 /// (cos r0, sin r0) so that rotating blocks do not grow (dda-method.md §3).
 Vec2 displacedPoint(const Vec2& centroid, const Vec2& p, const Vec6& d);
 
+/// A vertex within this fraction of its chord's length of the straight line between its neighbours
+/// is not a corner: the reader removes it (geometry::removeCollinearVertices). A block's
+/// displacement is affine (first-order DDA), so such a vertex stays on that line, carries no
+/// unknown, mass or load of its own, and would only split one face into two contacts.
+constexpr double kCollinearTolerance = 1e-6;
+
 struct Block {
   std::string id;
   int material = 0;
@@ -25,6 +31,8 @@ struct Block {
   /// r0 summed over every displacement applied (rad, counter-clockwise): the rotation from the
   /// case's geometry, which the vertices alone cannot tell past a half turn (outputs only).
   double rotation = 0;
+  /// Vertices on a straight edge that the reader removed (kCollinearTolerance), for `check`.
+  int removedCollinearVertices = 0;
 
   Mat26 tAt(const Vec2& p) const { return displacementMatrix(moments.centroid, p); }
   /// Moves the vertices by D (exact rotation), recomputes the moments and adds r0 to rotation.

@@ -129,6 +129,8 @@ class Simulation {
   /// Monitor positions at the end of stage 1 of the equilibrium (every contact held: the elastic
   /// settlement under the loads), before any contact could slip; the case's positions until then.
   const std::vector<Vec2>& monitorsAfterHeldEquilibrium() const { return heldMonitors_; }
+  /// The blocks as stage 1 of the equilibrium left them (empty before bringToEquilibrium).
+  const std::vector<model::Block>& blocksAfterHeldEquilibrium() const { return heldBlocks_; }
   /// The scene's mechanical energy now; load work counts from t = 0 (after the equilibrium).
   EnergyBudget energy() const;
   /// Velocity of monitor m's point (m/s).
@@ -261,6 +263,7 @@ class Simulation {
   long partnerVersion_ = -1;  ///< the contacts' pairingVersion() partner_ was made for
   std::vector<int> sweepOrder_;  ///< the broad phase's order of the blocks, kept between steps
   std::vector<Vec2> heldMonitors_;  ///< see monitorsAfterHeldEquilibrium()
+  std::vector<model::Block> heldBlocks_;  ///< see blocksAfterHeldEquilibrium()
   assembly::BlockSparseMatrix matrix_;
   std::vector<std::pair<int, int>> lastCouplings_;  ///< block pairs of the contacts matrix_'s pattern was made for
   bool panelSolves_ = true;

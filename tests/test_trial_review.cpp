@@ -1,0 +1,162 @@
+// Verdicts chatter cannot trip, and searches that notice when they were tripped (issue #38):
+// a small motion is failure only if it grows over extensions of the run, one that neither grows
+// nor stops is undecided, and a search re-runs trials whose verdicts contradict (a failing trial
+// on the stable side of a stable one) and says so when it cannot resolve them.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <mutex>
+#include <set>
+
+#include "ddaslope/calibration/strength_search.hpp"
+#include "ddaslope/calibration/verdict.hpp"
+#include "ddaslope/io/case_reader.hpp"
+
+using namespace ddaslope;
+using calibration::TrialResult;
+
+namespace {
+
+/// A 1 × 1 m block on a frictionless horizontal base 100 m long: what moves it is what the test
+/// gives it (an initial velocity, a horizontal component of gravity), exactly.
+model::Scene blockOnFrictionlessBase(double vx, double gx) {
+  const std::string text = R"({
+    "gravity": [)" + std::to_string(gx) + R"(, -9.81],
+    "materials": {"rock": {"density": 2500, "young_modulus": 1e10, "poisson_ratio": 0.25}},
+    "joints": {"smooth": {"friction_angle": 0, "cohesion": 0, "tensile_strength": 0}},
+    "blocks": [
+      {"id": "base", "material": "rock", "fixed": true, "vertices": [[0, -2], [100, -2], [100, 0], [0, 0]]},
+      {"id": "block", "material": "rock", "vertices": [[10, 0], [11, 0], [11, 1], [10, 1]],
+       "velocity": [)" + std::to_string(vx) + R"(, 0]}],
+    "analysis": {"duration": 1.0, "time_step": 0.001}})";
+  return io::parseCase(text, "block_on_frictionless_base");
+}
+
+/// A verdict for the search tests: stable below `critical`, failing above, with whatever the
+/// test adds on top; counts calls.
+struct FakeVerdict {
+  double critical = 1.0;
+  std::function<bool(double f, double length, TrialResult&)> special;
+  TrialResult operator()(double f, double length) const {
+    TrialResult r;
+    r.stable = f < critical;
+    r.rule = r.stable ? calibration::VerdictRule::AtRest : calibration::VerdictRule::PassedDisplacement;
+    if (special) special(f, length, r);
+    return r;
+  }
+};
+
+calibration::SearchSettings twoAtOnce() {
+  calibration::SearchSettings s;
+  s.threads = 2;
+  return s;
+}
+
+}  // namespace
+
+// A block gliding at a constant 1 cm/s moves 4 cm in 4 s against a failure displacement of 1 m:
+// under 10 % of it, and neither growing nor stopping (Newton's first law: no force, no change). It
+// must be undecided after three extensions, not failure.
+TEST(SmallMotion, SteadyGlideIsUndecidedNotFailure) {
+  calibration::VerdictSettings v;
+  v.failureDisplacement = 1.0;
+  const TrialResult r = calibration::judgeStability(blockOnFrictionlessBase(0.01, 0), v);
+  EXPECT_TRUE(r.undecided) << r.reason;
+  EXPECT_FALSE(r.stable);
+  EXPECT_EQ(r.rule, calibration::VerdictRule::Undecided);
+  EXPECT_EQ(r.extensions, 3);
+  EXPECT_NEAR(r.maxDisplacement, 0.01 * 4, 0.01 * 0.04) << "m: 1 cm/s over 4 s";
+  EXPECT_EQ(r.decidedBy, "block block");  // no monitors: the block itself decides
+}
+
+// A block accelerated at 0.01 m/s² from rest (gravity's horizontal component, no friction) moves
+// a t²/2: 4.5 cm in 3 s, under 10 % of the 1 m failure displacement, but its speed over the last
+// window grows by 2 and then 1.5 from one extension to the next: failure, before the budget.
+TEST(SmallMotion, GrowingMotionIsFailureEvenWhenSmall) {
+  calibration::VerdictSettings v;
+  v.failureDisplacement = 1.0;
+  const TrialResult r = calibration::judgeStability(blockOnFrictionlessBase(0, 0.01), v);
+  EXPECT_FALSE(r.stable) << r.reason;
+  EXPECT_FALSE(r.undecided);
+  EXPECT_EQ(r.rule, calibration::VerdictRule::StillMoving);
+  EXPECT_EQ(r.extensions, 2);
+  EXPECT_NEAR(r.maxDisplacement, 0.5 * 0.01 * 9, 0.05 * 0.045) << "m: a t²/2 at t = 3 s";
+}
+
+// The same acceleration against a failure displacement of 4 cm: 5 mm in the first second is more
+// than 10 % of it, so the still-moving rule decides at once; against 4 mm, the block passes it at
+// t = √(2 · 0.004 / 0.01) = 0.894 s (rule (a)).
+TEST(SmallMotion, MotionLargeAgainstTheFailureDisplacementFailsAtOnce) {
+  calibration::VerdictSettings v;
+  v.failureDisplacement = 0.04;
+  const TrialResult moving = calibration::judgeStability(blockOnFrictionlessBase(0, 0.01), v);
+  EXPECT_EQ(moving.rule, calibration::VerdictRule::StillMoving);
+  EXPECT_EQ(moving.extensions, 0);
+  v.failureDisplacement = 0.004;
+  const TrialResult passed = calibration::judgeStability(blockOnFrictionlessBase(0, 0.01), v);
+  EXPECT_EQ(passed.rule, calibration::VerdictRule::PassedDisplacement);
+  EXPECT_NEAR(passed.timeReached, std::sqrt(2 * 0.004 / 0.01), 0.002);
+}
+
+// A trial that fails only because its run was short (chatter at F = 0.77-0.79 that a run four
+// times longer shows to be rest) contradicts the stable trial above it. The review re-runs it
+// longer and finds the true F = 1 within the width.
+TEST(SearchReview, ResolvesAContradictionByRunningTheTrialsLonger) {
+  FakeVerdict v;
+  v.special = [](double f, double length, TrialResult& r) {
+    if (f > 0.77 && f < 0.79 && length == 1) r.stable = false, r.rule = calibration::VerdictRule::StillMoving;
+    return true;
+  };
+  const auto r = calibration::factorOfSafetyOf(v, 0.005, twoAtOnce());
+  ASSERT_TRUE(r.found) << r.message;
+  EXPECT_FALSE(r.review.contradiction);
+  EXPECT_GE(r.review.reruns, 1);
+  EXPECT_NEAR(r.factor, 1.0, 0.005);
+  bool rerunSeen = false;
+  for (const auto& t : r.trials) rerunSeen |= t.rerun && t.value > 0.77 && t.value < 0.79 && t.result.stable;
+  EXPECT_TRUE(rerunSeen) << "the re-run of the contradicting trial is in the record";
+}
+
+// The same contradiction at any length cannot be resolved: no F, and the range it spans.
+TEST(SearchReview, ReportsAContradictionItCannotResolve) {
+  FakeVerdict v;
+  v.special = [](double f, double, TrialResult& r) {
+    if (f > 0.77 && f < 0.79) r.stable = false, r.rule = calibration::VerdictRule::StillMoving;
+    return true;
+  };
+  const auto r = calibration::factorOfSafetyOf(v, 0.005, twoAtOnce());
+  EXPECT_FALSE(r.found);
+  EXPECT_TRUE(r.review.contradiction);
+  EXPECT_NE(r.message.find("contradict"), std::string::npos) << r.message;
+  // The answer lies where the verdicts are mixed: from the last stable trial below the false
+  // failure to the first failure above the last stable trial (the true F = 1).
+  EXPECT_LT(r.stableEnd, 0.77);
+  EXPECT_GE(r.failingEnd, 1.0);
+  EXPECT_LT(r.failingEnd, 1.0 + 0.1);
+}
+
+// Undecided trials from F = 0.9 to 1.1: the search cannot vouch for more than [stable, failing]
+// around them, looks beyond them for a decided failure, and says so instead of returning a
+// number inside.
+TEST(SearchReview, UndecidedTrialsAreReportedNotTakenAsFailure) {
+  FakeVerdict v;
+  v.critical = 1.1;
+  v.special = [](double f, double, TrialResult& r) {
+    if (f >= 0.9 && f < 1.1) r.stable = false, r.undecided = true, r.rule = calibration::VerdictRule::Undecided;
+    return true;
+  };
+  const auto r = calibration::factorOfSafetyOf(v, 0.005, twoAtOnce());
+  EXPECT_FALSE(r.found);
+  EXPECT_TRUE(r.review.undecided);
+  EXPECT_LT(r.stableEnd, 0.9);
+  EXPECT_GE(r.failingEnd, 1.1);
+  EXPECT_NE(r.message.find("undecided"), std::string::npos) << r.message;
+}
+
+// A monotone verdict is left alone: no re-runs, the bisection's own answer.
+TEST(SearchReview, MonotoneTrialsNeedNoReRuns) {
+  const auto r = calibration::factorOfSafetyOf(FakeVerdict{}, 0.005, twoAtOnce());
+  ASSERT_TRUE(r.found);
+  EXPECT_EQ(r.review.reruns, 0);
+  EXPECT_NEAR(r.factor, 1.0, 0.005);
+}
