@@ -103,6 +103,8 @@ def main():
         transform_points(case, lambda p: [-p[0], p[1]])
         for b in case["blocks"]:
             b["vertices"].reverse()
+        if "phreatic_line" in case.get("water", {}):
+            case["water"]["phreatic_line"].reverse()  # x increasing again
         case["gravity"] = [-case.get("gravity", [0, -9.81])[0], case.get("gravity", [0, -9.81])[1]]
         if "seismic" in case and "k_h" in case["seismic"]:
             case["seismic"]["k_h"] = -case["seismic"]["k_h"]

@@ -251,10 +251,14 @@ class SearchSeries(unittest.TestCase):
                                     check=True, capture_output=True, text=True)
             report = json.loads(result.stdout)
             frames = series(f"{out}/blocks.pvd")
-            # One frame per forward run, at the factor it tried, in increasing order.
-            self.assertEqual(len(frames), report["forward_runs"])
-            self.assertEqual([t for t, _ in frames], sorted(t["factor"] for t in report["trials"]))
-            verdicts = {t["factor"]: t for t in report["trials"]}
+            # One frame per factor tried, in increasing order: a review's re-run at a factor (listed
+            # after the first run there) replaces that factor's frame, as its verdict replaces the
+            # first one's.
+            factors = sorted({t["factor"] for t in report["trials"]})
+            self.assertEqual(report["forward_runs"], len(report["trials"]))
+            self.assertEqual(report["forward_runs"] - len(factors), report["review"]["reruns"])
+            self.assertEqual([t for t, _ in frames], factors)
+            verdicts = {t["factor"]: t for t in report["trials"]}  # the last listed at a factor is in force
             for factor, path in frames:
                 blocks = Grid(path)
                 self.assertEqual(blocks.field["trial_value"], [factor])

@@ -10,11 +10,13 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <tuple>
 
 #include <nlohmann/json.hpp>
 
 #include "ddaslope/calibration/strength_search.hpp"
 #include "ddaslope/io/case_reader.hpp"
+#include "test_io.hpp"
 
 using namespace ddaslope;
 using nlohmann::json;
@@ -209,4 +211,75 @@ TEST(Invariance, FactorOfSafetyDoesNotDependOnWhereTheMonitorsAre) {
   EXPECT_NEAR(fos(load(standing, path)), f0, 0.01 * f0) << "monitor on a standing column";
   EXPECT_NEAR(fos(load(toe, path)), f0, 0.01 * f0) << "monitor on the toe column";
   EXPECT_NEAR(fos(load(none, path)), f0, 0.01 * f0) << "no monitor";
+}
+
+// A slope in national-grid coordinates (moved to (5e5, 5e6) m) is computed next to the origin:
+// there a coordinate's round-off (1e-9 m) was 1 % of a slow step's displacement, and the toppling
+// slope's F fell from 0.895 to 0.879. Its F is now the shipped one, and what the reader writes
+// back (`cut`) is the case's coordinates to the last bit (the shift is exact: Sterbenz).
+TEST(Invariance, FarFromTheOriginTheSceneIsComputedNearItAndWrittenBackExactly) {
+  const json doc = blocksOf(kCases + "toppling_slope.json");
+  const json far = translated(doc, 5e5, 5e6);
+  const model::Scene scene = load(far);
+  EXPECT_FALSE(scene.origin.isZero());
+  const double f0 = fos(load(doc));
+  EXPECT_NEAR(fos(scene), f0, 0.01 * f0) << "toppling slope at (5e5, 5e6)";
+  const std::string path = clitest::writeTemp("far_toppling.json", far.dump());
+  const json back = json::parse(io::expandSection(path));
+  ASSERT_EQ(back["blocks"].size(), far["blocks"].size());
+  for (size_t b = 0; b < far["blocks"].size(); ++b)
+    EXPECT_EQ(back["blocks"][b]["vertices"], far["blocks"][b]["vertices"]) << "block " << b;
+}
+
+/// The case with fixed block `id` cut in two by the vertical line x = `x` (a base drawn as pieces).
+json baseCutAt(json doc, const std::string& id, double x) {
+  json blocks = json::array();
+  for (const json& b : doc["blocks"]) {
+    if (b["id"] != id) {
+      blocks.push_back(b);
+      continue;
+    }
+    std::vector<Vec2> left, right;
+    const json& v = b["vertices"];
+    for (size_t k = 0; k < v.size(); ++k) {
+      const Vec2 p(v[k][0].get<double>(), v[k][1].get<double>());
+      const Vec2 q(v[(k + 1) % v.size()][0].get<double>(), v[(k + 1) % v.size()][1].get<double>());
+      (p.x() <= x ? left : right).push_back(p);
+      if ((p.x() - x) * (q.x() - x) < 0) {
+        const Vec2 c = p + (x - p.x()) / (q.x() - p.x()) * (q - p);
+        left.push_back(c), right.push_back(c);
+      }
+    }
+    for (const auto& [suffix, piece] : {std::pair{"_a", left}, std::pair{"_b", right}}) {
+      json part = b;
+      part["id"] = id + suffix;
+      part["vertices"] = json::array();
+      for (const Vec2& p : piece) part["vertices"].push_back(json::array({p.x(), p.y()}));
+      blocks.push_back(part);
+    }
+  }
+  doc["blocks"] = blocks;
+  return doc;
+}
+
+// A base drawn as several fixed blocks: a block resting across the seam met each piece as its own
+// edge-to-edge contact and had its cohesion judged in parts (the B2 block on a ramp cut under its
+// middle: F 0.899 instead of 1.087, the founding paper's defect again). Fixed pieces that share
+// boundary and meet every block with the same joint are read as one block: same F (1 %), and the
+// planar failure's critical cohesion with its base cut in two under the sliding block.
+TEST(Invariance, BaseSplitIntoFixedPiecesIsReadAsOneBase) {
+  for (const auto& [name, base, x] : {std::tuple{"cohesive_block_42kpa.json", "ramp", 13.7},
+                                      std::tuple{"planar_failure.json", "rock_mass", 10.0}}) {
+    const json doc = blocksOf(kCases + name);
+    const json cut = baseCutAt(doc, base, x);
+    ASSERT_EQ(cut["blocks"].size(), doc["blocks"].size() + 1) << name << ": the cut should split the base";
+    const model::Scene shipped = load(doc), pieces = load(cut);
+    ASSERT_EQ(pieces.blocks.size(), shipped.blocks.size()) << name << ": the pieces were not merged";
+    const int b = pieces.blockIndex(std::string(base) + "_a");
+    ASSERT_GE(b, 0);
+    EXPECT_NEAR(pieces.blocks[b].moments.area, shipped.blocks[shipped.blockIndex(base)].moments.area,
+                1e-9 * shipped.blocks[shipped.blockIndex(base)].moments.area);
+    const double f0 = fos(shipped);
+    EXPECT_NEAR(fos(pieces), f0, 0.01 * f0) << name;
+  }
 }

@@ -1,6 +1,7 @@
 #include "ddaslope/calibration/sample_runner.hpp"
 
 #include <algorithm>
+#include <iterator>
 #include <atomic>
 #include <chrono>
 #include <exception>
@@ -42,7 +43,11 @@ SampleResult evaluateSample(const model::Scene& scene, const SampleSettings& set
   out.inputs = inputs;
   if (settings.measure == model::ProbabilityMeasure::Verdict) {
     const TrialResult r = judgeStability(scene, settings.verdict);
-    out.outcome = !r.converged ? SampleOutcome::NotConverged : r.stable ? SampleOutcome::Stable : SampleOutcome::Fails;
+    // An undecided verdict is not a failure: counted with the runs that did not converge, which
+    // the study reports apart and bounds Pf with.
+    out.outcome = !r.converged || r.undecided ? SampleOutcome::NotConverged
+                  : r.stable                  ? SampleOutcome::Stable
+                                              : SampleOutcome::Fails;
     out.rule = name(r.rule);
     out.maxDisplacement = r.maxDisplacement;
   } else {
@@ -50,10 +55,13 @@ SampleResult evaluateSample(const model::Scene& scene, const SampleSettings& set
     s.verdict = settings.verdict;
     s.threads = 1;  // the samples run in parallel instead
     const FactorOfSafetyResult r = factorOfSafety(scene, settings.fosJoints, settings.fosWidth, s);
-    // The search always starts at F = 1: that run is the unreduced slope's verdict.
-    const auto atOne = std::find_if(r.trials.begin(), r.trials.end(), [](const TrialRecord& t) { return t.value == 1; });
-    const auto failingEnd = std::find_if(r.trials.begin(), r.trials.end(),
-                                         [&](const TrialRecord& t) { return t.value == r.failingEnd; });
+    // The search always starts at F = 1: that run is the unreduced slope's verdict (its review's
+    // re-run, if any, which the trials list after it).
+    const auto one = std::find_if(r.trials.rbegin(), r.trials.rend(), [](const TrialRecord& t) { return t.value == 1; });
+    const auto atOne = one == r.trials.rend() ? r.trials.end() : std::prev(one.base());
+    const auto last = std::find_if(r.trials.rbegin(), r.trials.rend(),
+                                   [&](const TrialRecord& t) { return t.value == r.failingEnd; });
+    const auto failingEnd = last == r.trials.rend() ? r.trials.end() : std::prev(last.base());
     if (atOne != r.trials.end()) {
       out.rule = name(atOne->result.rule);
       out.maxDisplacement = atOne->result.maxDisplacement;
@@ -64,6 +72,9 @@ SampleResult evaluateSample(const model::Scene& scene, const SampleSettings& set
     } else if (atOne == r.trials.end() || (failingEnd != r.trials.end() && !failingEnd->result.converged)) {
       out.outcome = SampleOutcome::NotConverged;  // F rests on a run that did not converge
       out.rule = name(VerdictRule::NotConverged);
+    } else if (atOne->result.undecided) {
+      out.outcome = SampleOutcome::NotConverged;
+      out.rule = name(VerdictRule::Undecided);
     } else {
       out.outcome = atOne->result.stable ? SampleOutcome::Stable : SampleOutcome::Fails;
       out.factor = r.factor;

@@ -41,10 +41,13 @@ struct CountedVerdict {
   std::atomic<int> runs{0};
   std::mutex mutex;
   std::vector<TrialRecord> trials;
+  /// Undecided verdicts in a row, as the bracketing loops see them (they run one trial at a time).
+  int undecidedInARow = 0;
   bool operator()(double x) {
     ++runs;
     TrialResult r = verdict(x, length);
     const std::lock_guard<std::mutex> lock(mutex);
+    undecidedInARow = r.undecided ? undecidedInARow + 1 : 0;
     trials.push_back({x, r, length > 1});
     if (progress) report(x, r.stable);
     return r.stable;
@@ -128,6 +131,11 @@ Result& account(Result& r, CountedVerdict& v, std::chrono::steady_clock::time_po
   return r;
 }
 
+/// Why a bracketing loop stopped on undecided verdicts.
+constexpr const char* kUndecidedBracket =
+    "two trials in a row were undecided (small motions that neither grew nor stopped within the runs' extensions): "
+    "no bracket; see the trials, and lengthen analysis.duration or look at the moving blocks with `ddaslope run`";
+
 /// The verdict in force at each value tried (a re-run's replaces the first run's), by value.
 std::map<double, TrialResult> verdictsByValue(const std::vector<TrialRecord>& trials) {
   std::map<double, TrialResult> by;
@@ -145,68 +153,81 @@ void reviewTrials(Result& r, CountedVerdict& v, bool stableBelow, std::pair<doub
   // Oriented so that stable values lie below failing ones.
   const auto o = [&](double x) { return stableBelow ? x : -x; };
   std::set<double> rerun;
-  bool probed = false;
-  for (int round = 0; round < 6; ++round) {
+  std::set<std::pair<double, double>> narrowed;
+  bool probed = false, changed = false;
+  const auto reRun = [&](const std::vector<double>& values) {
+    v.length = kReRunLength;
+    evaluateAll(std::ref(v), values, threads);
+    v.length = 1;
+    r.review.reruns += static_cast<int>(values.size());
+    rerun.insert(values.begin(), values.end());
+    changed = true;
+  };
+  for (int round = 0; round < 12; ++round) {
     const std::map<double, TrialResult> by = verdictsByValue(v.trials);
-    const TrialResult* highestStable = nullptr;
+    bool anyStable = false;
     double hs = -INFINITY, lf = INFINITY, lfAny = INFINITY, hsValue = 0, lfValue = 0, lfAnyValue = 0;
     for (const auto& [x, t] : by) {
-      if (t.stable && o(x) > hs) hs = o(x), hsValue = x, highestStable = &t;
+      if (t.stable && o(x) > hs) hs = o(x), hsValue = x, anyStable = true;
       if (!t.stable && !t.undecided && o(x) < lf) lf = o(x), lfValue = x;
       if (!t.stable && o(x) < lfAny) lfAny = o(x), lfAnyValue = x;
     }
-    if (!highestStable || lfAny == INFINITY) return;  // nothing bracketed: the search's own message stands
-    if (hs > lf) {
-      // A failing trial on the stable side of a stable one. Re-run, longer, every decided trial
-      // between them that has not been re-run yet.
+    if (!anyStable || lfAny == INFINITY) return;  // nothing bracketed: the search's own message stands
+    const double target = width > 0 ? width : 1e-3 * std::abs(lfAnyValue);
+    if (hs > lfAny) {
+      // A failing (or undecided) trial on the stable side of a stable one. Re-run, longer, every
+      // trial between them that has not been re-run yet.
       std::vector<double> again;
       for (const auto& [x, t] : by)
-        if (o(x) >= lf && o(x) <= hs && !t.undecided && !rerun.count(x)) again.push_back(x);
-      if (again.empty() || round >= 4) {
-        // The answer lies where the verdicts are mixed: between the last stable trial below the
-        // first failure and the first failing trial above the last stable one.
-        double below = -INFINITY, above = INFINITY, belowValue = lfValue, aboveValue = hsValue;
-        for (const auto& [x, t] : by) {
-          if (t.stable && o(x) < lf && o(x) > below) below = o(x), belowValue = x;
-          if (!t.stable && o(x) > hs && o(x) < above) above = o(x), aboveValue = x;
-        }
-        const double target = width > 0 ? width : 1e-3 * std::abs(lfValue);
-        r.review.contradiction = true;
-        // Trials that disagree by less than the precision asked for do not unsettle the answer,
-        // given over the whole mixed range.
-        r.found = hs - lf <= target * (1 + 1e-9);
-        setAnswer(belowValue, aboveValue);
-        std::ostringstream m;
-        m << "verdicts contradict: stable at " << hsValue << " but failing at " << lfValue << " (" << v.quantity
-          << "), also when re-run " << kReRunLength << " times longer; ";
-        if (r.found)
-          m << "they are closer than the bracket width asked for (" << target << "), so the answer is given over the "
-            << "range that holds them, [" << std::min(belowValue, aboveValue) << ", " << std::max(belowValue, aboveValue)
-            << "]";
-        else
-          m << "the answer lies between " << belowValue << " and " << aboveValue << " and this search cannot say where "
-            << "(see the trials)";
-        r.message = m.str();
-        return;
+        if (o(x) >= lfAny && o(x) <= hs && !rerun.count(x)) again.push_back(x);
+      if (!again.empty() && round < 10) {
+        reRun(again);
+        continue;
       }
-      v.length = kReRunLength;
-      evaluateAll(std::ref(v), again, threads);
-      v.length = 1;
-      r.review.reruns += static_cast<int>(again.size());
-      rerun.insert(again.begin(), again.end());
+      // The answer lies where the verdicts are mixed: between the last stable trial below the
+      // first failure and the first failing trial above the last stable one.
+      double below = -INFINITY, above = INFINITY, belowValue = lfAnyValue, aboveValue = hsValue;
+      for (const auto& [x, t] : by) {
+        if (t.stable && o(x) < lfAny && o(x) > below) below = o(x), belowValue = x;
+        if (!t.stable && o(x) > hs && o(x) < above) above = o(x), aboveValue = x;
+      }
+      r.review.contradiction = true;
+      // Trials that disagree by less than the precision asked for do not unsettle the answer,
+      // given over the whole mixed range.
+      r.found = hs - lfAny <= target * (1 + 1e-9);
+      setAnswer(belowValue, aboveValue);
+      std::ostringstream m;
+      m << "verdicts contradict: stable at " << hsValue << " but " << (by.at(lfAnyValue).undecided ? "undecided" : "failing")
+        << " at " << lfAnyValue << " (" << v.quantity << "), also when re-run " << kReRunLength << " times longer; ";
+      if (r.found)
+        m << "they are closer than the bracket width asked for (" << target << "), so the answer is given over the "
+          << "range that holds them, [" << std::min(belowValue, aboveValue) << ", " << std::max(belowValue, aboveValue)
+          << "]";
+      else
+        m << "the answer lies between " << belowValue << " and " << aboveValue << " and this search cannot say where "
+          << "(see the trials)";
+      r.message = m.str();
+      return;
+    }
+    // The bracket's failing end, if decided on the trend of a motion (not on its size), is run
+    // again longer, with every other trial so decided on the failing side: a one-thread bisection
+    // never tries a value that could contradict them.
+    const TrialResult& end = by.at(lfAnyValue);
+    const auto onTrend = [](const TrialResult& t) { return t.rule == VerdictRule::StillMoving || t.undecided; };
+    if (!rerun.count(lfAnyValue) && onTrend(end)) {
+      std::vector<double> again;
+      for (const auto& [x, t] : by)
+        if (o(x) >= lfAny && onTrend(t) && !rerun.count(x)) again.push_back(x);
+      reRun(again);
       continue;
     }
-    const double target = width > 0 ? width : 1e-3 * std::abs(lfAnyValue);
-    if (round > 0 && std::abs(lfAnyValue - hsValue) > target * (1 + 1e-9)) {
-      // Re-runs moved the bracket: narrow it again, and review again.
+    if (changed && std::abs(lfAnyValue - hsValue) > target * (1 + 1e-9)) {
+      // Re-runs moved the bracket: narrow it again (never twice between the same ends), review again.
+      if (!narrowed.insert({hsValue, lfAnyValue}).second) break;
       narrowBracket(std::ref(v), hsValue, lfAnyValue, target, threads);
       continue;
     }
-    if (round > 0) {
-      r.found = true;
-      setAnswer(hsValue, lfAnyValue);
-    }
-    if (by.at(lfAnyValue).undecided && lf == INFINITY && !probed) {
+    if (end.undecided && lf == INFINITY && !probed) {
       // Undecided trials and no decided failure beyond them: look further out for one, so that
       // the bracket reported is one the trials vouch for.
       probed = true;
@@ -221,7 +242,11 @@ void reviewTrials(Result& r, CountedVerdict& v, bool stableBelow, std::pair<doub
       }
       continue;
     }
-    if (by.at(lfAnyValue).undecided && !(lf < INFINITY && std::abs(lfValue - hsValue) <= target * (1 + 1e-9))) {
+    if (changed) {
+      r.found = true;
+      setAnswer(hsValue, lfAnyValue);
+    }
+    if (end.undecided && !(lf < INFINITY && std::abs(lfValue - hsValue) <= target * (1 + 1e-9))) {
       r.review.undecided = true;
       r.found = false;
       std::ostringstream m;
@@ -235,6 +260,8 @@ void reviewTrials(Result& r, CountedVerdict& v, bool stableBelow, std::pair<doub
     }
     return;
   }
+  r.found = false;
+  r.message = "the review of the trials did not settle within its rounds (see the trials)";
 }
 
 }  // namespace
@@ -258,11 +285,13 @@ CriticalResult criticalCohesion(const model::Scene& scene, int joint, double fri
   } else {
     // Bracket: double the cohesion until the scene holds.
     double failing = 0, hi = initialGuess;
-    while (!stableAt(hi) && hi < 1e12) {
+    while (!stableAt(hi) && hi < 1e12 && stableAt.undecidedInARow < 2) {
       failing = hi;
       hi *= 2;
     }
-    if (hi >= 1e12) {
+    if (stableAt.undecidedInARow >= 2) {
+      r.message = kUndecidedBracket;
+    } else if (hi >= 1e12) {
       r.message = "fails even with a cohesion of 1e12 Pa: strength cannot hold this scene";
     } else {
       narrowInto(r, f, hi, failing, width, s.threads);
@@ -318,7 +347,9 @@ CriticalResult criticalSeismicCoefficient(const model::Scene& scene, int directi
   constexpr double kFirst = 0.05, kLargest = 2.0;
   CriticalResult r;
   if (!stableAt(0)) {
-    r.message = "the slope fails without seismic loading (k_h = 0): it has no yield acceleration";
+    r.message = stableAt.undecidedInARow > 0 ? "undecided without seismic loading (k_h = 0): a small motion that "
+                                               "neither grew nor stopped; no yield acceleration can be bracketed"
+                                             : "the slope fails without seismic loading (k_h = 0): it has no yield acceleration";
   } else {
     double stable = 0, k = kFirst;
     while (stableAt(k)) {
@@ -418,13 +449,14 @@ FactorOfSafetyResult factorOfSafetyOf(const std::function<TrialResult(double, do
   double stable = 0, failing = 0, f = 1;
   const bool atOne = stableAt(f);
   (atOne ? stable : failing) = f;
-  for (int k = 0; k < 40 && (stable == 0 || failing == 0); ++k) {
+  for (int k = 0; k < 40 && (stable == 0 || failing == 0) && stableAt.undecidedInARow < 2; ++k) {
     f = atOne ? f * 1.5 : f / 1.5;
     (stableAt(f) ? stable : failing) = f;
   }
   if (stable == 0 || failing == 0) {
-    r.message = stable == 0 ? "fails at every reduction factor tried (down to 1.5^-40)"
-                            : "stable at every reduction factor tried (up to 1.5^40)";
+    r.message = stableAt.undecidedInARow >= 2 ? kUndecidedBracket
+                : stable == 0                 ? "fails at every reduction factor tried (down to 1.5^-40)"
+                                              : "stable at every reduction factor tried (up to 1.5^40)";
   } else {
     const BisectionResult b = narrowBracket(std::ref(stableAt), stable, failing, width, s.threads);
     copyBracket(b, r);

@@ -102,34 +102,43 @@ struct BlockWatch {
     }
     return p;
   }
-  /// The largest displacement of a vertex of a free block from `from` (the vertices of every
-  /// block, or of the watched ones in order), and which block it is.
-  static double largestMove(const model::Scene& s, const std::vector<int>& which,
-                            const std::vector<std::vector<Vec2>>& from, int* block) {
-    double largest = 0;
+  /// The largest displacement of a vertex of each watched block from `from` (its vertices in
+  /// the order of `which`), into `out`.
+  static void moves(const model::Scene& s, const std::vector<int>& which, const std::vector<std::vector<Vec2>>& from,
+                    std::vector<double>& out) {
+    out.assign(which.size(), 0.0);
     for (size_t k = 0; k < which.size(); ++k) {
       const std::vector<Vec2>& now = s.blocks[static_cast<size_t>(which[k])].vertices;
       const std::vector<Vec2>& was = from[k];
-      for (size_t v = 0; v < now.size() && v < was.size(); ++v) {
-        const double d = (now[v] - was[v]).norm();
-        if (d > largest) largest = d, *block = which[k];
-      }
+      for (size_t v = 0; v < now.size() && v < was.size(); ++v) out[k] = std::max(out[k], (now[v] - was[v]).norm());
     }
-    return largest;
   }
 };
 
+/// What the window rules find over every point (monitors first, then blocks), for one judgement.
 struct WindowJudgement {
-  WindowVerdict verdict = WindowVerdict::AtRest;
-  bool marginal = false;
-  WindowMotion motion;
-  std::string point;  ///< the deciding point
+  WindowVerdict verdict = WindowVerdict::AtRest;  ///< StillMoving: a point failing by rule (b)
+  bool marginal = false;   ///< some point's verdict is marginal
+  bool smallMotion = false;  ///< some point still moves, on too little motion to call it failure
+  WindowMotion motion;     ///< of the deciding point
+  std::string point;       ///< the deciding point
 };
 
-/// Judges every point of `paths` on quarters of [0, end] into `worst`: the deciding point is a
-/// moving one if any (the largest net motion), else the one nearest its floor.
-void judgeAllWindows(const PointPaths& paths, const std::vector<std::string>& names, double end, double restingSpeed,
-                     WindowJudgement& worst, double& worstScore) {
+/// Each point's net motion over the last window per second at every judgement so far, and its
+/// largest displacement since t = 0 (m): what rule (b) asks of a small motion.
+struct PointRecord {
+  std::vector<std::vector<double>> speeds;
+  std::vector<double> largest;
+};
+
+/// Judges every point of `paths` (point m is record index offset + m) on quarters of [0, end]. A
+/// point still moving fails rule (b) if it has moved at least kDecisiveMotion of the failure
+/// displacement since t = 0 or its speed over the last window grew at each of its last two
+/// judgements; else it is a small motion. The deciding point: a failing one if any (the largest
+/// net motion), else a small motion (the largest), else the one nearest its floor.
+void judgeAllWindows(const PointPaths& paths, const std::vector<std::string>& names, size_t offset, double end,
+                     double restingSpeed, double failure, PointRecord& record, WindowJudgement& worst,
+                     double& worstScore) {
   const double w = 0.25 * end;
   for (size_t m = 0; m < paths.points; ++m) {
     WindowMotion mo;
@@ -139,10 +148,18 @@ void judgeAllWindows(const PointPaths& paths, const std::vector<std::string>& na
     mo.floor = std::max(restingSpeed * w, kNoiseFactor * paths.scatter(m, end - 2 * w, end));
     bool marginal = false;
     const WindowVerdict v = judgeWindows(mo, &marginal);
-    // Moving points first (by net motion), then the others by how near their floor they come.
-    const double score = v == WindowVerdict::StillMoving ? 2 + mo.last : mo.last / std::max(mo.floor, 1e-300) / 1e3;
-    if (score > worstScore) worstScore = score, worst.verdict = v, worst.motion = mo, worst.point = names[m];
+    std::vector<double>& speeds = record.speeds[offset + m];
+    speeds.push_back(mo.last / w);
+    const size_t n = speeds.size();
+    const bool growing = n >= 3 && speeds[n - 1] >= kGrowth * speeds[n - 2] && speeds[n - 2] >= kGrowth * speeds[n - 3];
+    const bool small = v == WindowVerdict::StillMoving && record.largest[offset + m] < kDecisiveMotion * failure && !growing;
+    // Failing points first (by net motion), then small motions, then the others by how near their
+    // floor they come.
+    const double score = v == WindowVerdict::StillMoving ? (small ? 2 : 4) + mo.last
+                                                         : mo.last / std::max(mo.floor, 1e-300) / 1e3;
+    if (score > worstScore) worstScore = score, worst.verdict = small ? WindowVerdict::AtRest : v, worst.motion = mo, worst.point = names[m];
     worst.marginal |= marginal;
+    worst.smallMotion |= small;
   }
 }
 
@@ -220,16 +237,24 @@ TrialResult judgeStability(const model::Scene& scene, const VerdictSettings& set
     if (blockPath.due(sim.time())) blockPath.record(sim.time(), watch.positions(sim.scene()));
   };
   // The largest motion since t = 0 of any monitor or any point of a free block: monitors report
-  // where the user looks, but a slope fails wherever it moves.
+  // where the user looks, but a slope fails wherever it moves. Each point's own largest motion
+  // is kept for rule (b).
+  PointRecord points;
+  points.speeds.resize(monitors + watch.blocks.size());
+  points.largest.assign(monitors + watch.blocks.size(), 0.0);
+  std::vector<double> blockMoves;
   const auto passedThreshold = [&] {
     const auto& mons = sim.scene().monitors;
     for (size_t k = 0; k < monitors; ++k) {
       const double d = (mons[k].point.current - start[k]).norm();
+      points.largest[k] = std::max(points.largest[k], d);
       if (d > r.maxDisplacement) r.maxDisplacement = d, r.movedMost = monitorNames[k];
     }
-    int block = -1;
-    const double d = BlockWatch::largestMove(sim.scene(), watch.blocks, watch.start, &block);
-    if (d > r.maxDisplacement) r.maxDisplacement = d, r.movedMost = "block " + sim.scene().blocks[static_cast<size_t>(block)].id;
+    BlockWatch::moves(sim.scene(), watch.blocks, watch.start, blockMoves);
+    for (size_t k = 0; k < blockMoves.size(); ++k) {
+      points.largest[monitors + k] = std::max(points.largest[monitors + k], blockMoves[k]);
+      if (blockMoves[k] > r.maxDisplacement) r.maxDisplacement = blockMoves[k], r.movedMost = blockNames[k];
+    }
     r.timeReached = sim.time();
     return r.maxDisplacement > threshold;
   };
@@ -261,17 +286,15 @@ TrialResult judgeStability(const model::Scene& scene, const VerdictSettings& set
       for (int b : watch.blocks)
         heldVertices.push_back(heldBlocks.empty() ? scene.blocks[static_cast<size_t>(b)].vertices
                                                   : heldBlocks[static_cast<size_t>(b)].vertices);
-      int block = -1;
-      const double d = BlockWatch::largestMove(sim.scene(), watch.blocks, heldVertices, &block);
-      if (d > r.settlingDisplacement) r.settlingDisplacement = d, r.movedMost = "block " + scene.blocks[static_cast<size_t>(block)].id;
+      std::vector<double> settled;
+      BlockWatch::moves(sim.scene(), watch.blocks, heldVertices, settled);
+      for (size_t k = 0; k < settled.size(); ++k)
+        if (settled[k] > r.settlingDisplacement) r.settlingDisplacement = settled[k], r.movedMost = blockNames[k];
     }
     if (r.settlingDisplacement > threshold) return finish(VerdictRule::MovedWhileSettling);
     r.movedMost.clear();
     watch.markStart(sim.scene());
     record();
-    // Net motion per second over the last window of each judgement that found a small motion
-    // still moving: it is failure only if it grows from one extension to the next.
-    std::vector<double> smallMotionSpeeds;
     for (;;) {
       while (!sim.finished()) {
         sim.advance();
@@ -280,37 +303,24 @@ TrialResult judgeStability(const model::Scene& scene, const VerdictSettings& set
       }
       WindowJudgement j;
       double worstScore = -1;
-      judgeAllWindows(monitorPath, monitorNames, sim.time(), resting, j, worstScore);
-      judgeAllWindows(blockPath, blockNames, sim.time(), resting, j, worstScore);
+      judgeAllWindows(monitorPath, monitorNames, 0, sim.time(), resting, threshold, points, j, worstScore);
+      judgeAllWindows(blockPath, blockNames, monitors, sim.time(), resting, threshold, points, j, worstScore);
       r.lastWindowMotion = j.motion.last;
       r.previousWindowMotion = j.motion.previous;
       r.noiseFloor = j.motion.floor;
       r.decidedBy = j.point;
-      if (j.marginal && r.extensions == 0) {
-        // Marginal: run as long again rather than guess, then judge on quarters of the whole.
+      const bool failing = j.verdict == WindowVerdict::StillMoving;
+      // A marginal verdict is not guessed, and a small motion is failure only if it grows: run as
+      // long again, then judge on quarters of the whole.
+      if ((j.marginal && r.extensions == 0) || (!failing && j.smallMotion && r.extensions < kMaxExtensions)) {
         ++r.extensions;
         r.extended = true;
         sim.extendDuration(scene.settings.duration);
         continue;
       }
-      if (j.verdict == WindowVerdict::StillMoving && r.maxDisplacement < kDecisiveMotion * threshold) {
-        // A motion this small against the failure displacement is failure only if it keeps
-        // growing: a contact's chatter or a slow settling moves a little and steadily.
-        smallMotionSpeeds.push_back(j.motion.last / (0.25 * sim.time()));
-        const size_t n = smallMotionSpeeds.size();
-        const bool growing = n >= 3 && smallMotionSpeeds[n - 1] >= kGrowth * smallMotionSpeeds[n - 2] &&
-                             smallMotionSpeeds[n - 2] >= kGrowth * smallMotionSpeeds[n - 3];
-        if (growing) return finish(VerdictRule::StillMoving);
-        if (r.extensions < kMaxExtensions) {
-          ++r.extensions;
-          r.extended = true;
-          sim.extendDuration(scene.settings.duration);
-          continue;
-        }
-        return finish(VerdictRule::Undecided);
-      }
+      if (!failing && j.smallMotion) return finish(VerdictRule::Undecided);
       r.marginal = j.marginal;
-      return finish(j.verdict == WindowVerdict::StillMoving ? VerdictRule::StillMoving
+      return finish(failing ? VerdictRule::StillMoving
                     : j.verdict == WindowVerdict::SlowingDown ? VerdictRule::SlowingDown
                                                               : VerdictRule::AtRest);
     }

@@ -86,7 +86,8 @@ void printKinkNotes(const ddaslope::model::Scene& scene) {
   for (const auto& k : ddaslope::model::concaveKinksUnderBlocks(scene)) {
     std::printf("  note: the surface of %s bends up by %.1f° at (%g, %g), where a block reaching %.3g m up the slope "
                 "has a corner. ",
-                scene.blocks[k.fixedBlock].id.c_str(), k.bendDeg, k.point.x(), k.point.y(), k.upslopeReach);
+                scene.blocks[k.fixedBlock].id.c_str(), k.bendDeg, k.point.x() + scene.origin.x(),
+                k.point.y() + scene.origin.y(), k.upslopeReach);
     if (k.upslopeReach <= failure)
       std::printf("That is no more than the verdict's failure displacement (%.3g m): a slide can squeeze the block out "
                   "and rest on the next corner without being called failing. Make it wider (docs/case-format.md, "
@@ -114,15 +115,10 @@ bool touchesAnotherBlock(const ddaslope::model::Scene& scene, const ddaslope::mo
   return false;
 }
 
-/// What the reader did to the blocks' outlines, and the vertices it kept that bend a face so little
-/// that the face still meets its neighbour as two contacts judged apart.
-void printOutlineNotes(const ddaslope::model::Scene& scene) {
-  int removed = 0, blocks = 0;
-  for (const auto& b : scene.blocks) removed += b.removedCollinearVertices, blocks += b.removedCollinearVertices > 0;
-  if (removed > 0)
-    std::printf("  outlines: %d vertices on straight edges removed from %d blocks (T-junctions and split edges: each "
-                "face meets its neighbour as one contact, docs/contact-model.md)\n",
-                removed, blocks);
+/// The vertices the reader kept that bend a face touching another block by less than the
+/// edge-parallel tolerance: the face then meets its neighbour as two contacts judged apart. Empty
+/// if none.
+std::string slightBendNote(const ddaslope::model::Scene& scene) {
   int slight = 0;
   std::string first;
   for (const auto& b : scene.blocks) {
@@ -133,17 +129,39 @@ void printOutlineNotes(const ddaslope::model::Scene& scene) {
       if (turnDeg >= scene.settings.edgeParallelToleranceDeg || !touchesAnotherBlock(scene, b, b.vertices[k])) continue;
       if (slight++ == 0) {
         char where[160];
-        std::snprintf(where, sizeof where, "block %s at (%g, %g), %.3g°", b.id.c_str(), b.vertices[k].x(),
-                      b.vertices[k].y(), turnDeg);
+        std::snprintf(where, sizeof where, "block %s at (%g, %g), %.3g°", b.id.c_str(),
+                      b.vertices[k].x() + scene.origin.x(), b.vertices[k].y() + scene.origin.y(), turnDeg);
         first = where;
       }
     }
   }
-  if (slight > 0)
-    std::printf("  note: %d vertices bend their block's outline by less than the edge-parallel tolerance (%g°) but are "
-                "not on a straight line (first: %s): each splits a face into contacts judged apart, whose cohesion "
-                "may fail piecewise; straighten the edge where the bend is not real\n",
-                slight, scene.settings.edgeParallelToleranceDeg, first.c_str());
+  if (slight == 0) return "";
+  std::ostringstream m;
+  m << slight << " vertices bend their block's outline by less than the edge-parallel tolerance ("
+    << scene.settings.edgeParallelToleranceDeg << "°) but are not on a straight line (first: " << first
+    << "): each splits a face into contacts judged apart, whose cohesion may fail piecewise; straighten the edge "
+       "where the bend is not real (coordinates rounded in the file make such bends)";
+  return m.str();
+}
+
+/// What the reader did to the blocks' outlines, and the vertices it kept that bend a face so little
+/// that the face still meets its neighbour as two contacts judged apart.
+void printOutlineNotes(const ddaslope::model::Scene& scene) {
+  int removed = 0, blocks = 0;
+  for (const auto& b : scene.blocks) removed += b.removedCollinearVertices, blocks += b.removedCollinearVertices > 0;
+  if (removed > 0)
+    std::printf("  outlines: %d vertices on straight edges removed from %d block(s) (T-junctions and split edges: each "
+                "face meets its neighbour as one contact, docs/contact-model.md)\n",
+                removed, blocks);
+  for (const auto& b : scene.blocks)
+    if (!b.mergedIds.empty()) {
+      std::string ids;
+      for (const std::string& id : b.mergedIds) ids += (ids.empty() ? "" : ", ") + id;
+      std::printf("  fixed blocks %s merged into %s: they share boundary and meet every block with the same joint, so "
+                  "a block across their seam meets them as one contact (docs/contact-model.md)\n",
+                  ids.c_str(), b.id.c_str());
+    }
+  if (const std::string note = slightBendNote(scene); !note.empty()) std::printf("  note: %s\n", note.c_str());
 }
 
 /// The seismic loading in force: the coefficients and the record's span and peaks.
@@ -193,6 +211,10 @@ int checkCommand(const std::string& casePath, const Overrides& o) {
   std::printf("  %s\n", settingsLine(scene).c_str());
   if (const std::string drawn = ddaslope::io::sectionDrawingSummary(casePath); !drawn.empty())
     std::printf("  %s\n", drawn.c_str());
+  if (!scene.origin.isZero())
+    std::printf("  coordinates: far from (0, 0) for the scene's size; computed relative to (%.17g, %.17g), written back "
+                "in the case's coordinates\n",
+                scene.origin.x(), scene.origin.y());
   printOutlineNotes(scene);
   printSeismicNote(scene);
   printKinkNotes(scene);
@@ -338,7 +360,8 @@ int seismicCoefficientCommand(const std::string& casePath, const ddaslope::model
         std::printf("yield seismic coefficient k_y along %s (k_v = %g): %.6g g (failing at %.6g, stable at %.6g)%s\n",
                     d.c_str(), scene.seismic.kv, x.critical, x.failingEnd, x.stableEnd,
                     results.size() > 1 && &x == &r ? "  <- the slope's" : "");
-      else
+      if (x.found && !x.message.empty()) std::printf("  %s\n", x.message.c_str());
+      if (!x.found)
         std::printf("along %s: none: %s\n", d.c_str(), x.message.c_str());
     }
     if (r.found)
@@ -381,7 +404,7 @@ int criticalCommand(const std::string& casePath, const Overrides& o, const Criti
     ddaslope::io::JsonRecord j;
     j.set("case", casePath).set("joint", opt.joint).set("solve", opt.solve).set("found", r.found);
     if (cohesion) j.set("friction_angle_deg", phi); else j.set("cohesion_pa", c);
-    j.set("critical", r.critical).set("unit", unit).set("bracket", std::vector<double>{r.failingEnd, r.stableEnd});
+    j.set("critical", r.found ? r.critical : NAN).set("unit", unit).set("bracket", std::vector<double>{r.failingEnd, r.stableEnd});
     j.set("forward_runs", r.runs).set("wall_time_s", r.wallTime).set("message", r.message);
     j.set("settings", settingsLine(scene));
     ddaslope::calibration::appendReview(j, r.review);
@@ -400,6 +423,7 @@ int criticalCommand(const std::string& casePath, const Overrides& o, const Criti
                  opt.solve.c_str(), r.runs, r.message.c_str());
   }
   warnAboutTrials(casePath, ddaslope::calibration::smallMotionWarning(r.trials, cohesion ? "c" : "φ"));
+  warnAboutTrials(casePath, slightBendNote(scene));
   return r.found ? kExitOk : kExitNonConvergence;
 }
 
@@ -515,7 +539,8 @@ int fosCommand(const std::string& casePath, const Overrides& o, const FosOptions
   log->finish(r.found, r.found ? "F " + std::to_string(r.factor) : r.message);
   if (opt.json) {
     ddaslope::io::JsonRecord j;
-    j.set("case", casePath).set("found", r.found).set("factor_of_safety", r.factor);
+    // No answer, no number: the bracket and the message say what is known.
+    j.set("case", casePath).set("found", r.found).set("factor_of_safety", r.found ? r.factor : NAN);
     j.set("bracket", std::vector<double>{r.stableEnd, r.failingEnd}).set("width", opt.width);
     j.set("forward_runs", r.runs).set("rounds", r.rounds).set("wall_time_s", r.wallTime).set("message", r.message);
     j.set("settings", settingsLine(scene));
@@ -526,6 +551,7 @@ int fosCommand(const std::string& casePath, const Overrides& o, const FosOptions
   } else if (r.found) {
     std::printf("factor of safety (strength reduction on %s): %.4f (stable at %.4f, failing at %.4f)\n",
                 opt.joints.empty() ? "all joints" : "the named joints", r.factor, r.stableEnd, r.failingEnd);
+    if (!r.message.empty()) std::printf("  %s\n", r.message.c_str());
     std::printf("%d forward runs in %d rounds of %d, %.2f s wall; %s\n", r.runs, r.rounds, opt.threads, r.wallTime,
                 settingsLine(scene).c_str());
     printTrialStatesNote(opt.vtkDir, r.runs);
@@ -534,6 +560,7 @@ int fosCommand(const std::string& casePath, const Overrides& o, const FosOptions
                  r.runs, r.message.c_str());
   }
   warnAboutTrials(casePath, ddaslope::calibration::smallMotionWarning(r.trials, "F"));
+  warnAboutTrials(casePath, slightBendNote(scene));
   return r.found ? kExitOk : kExitNonConvergence;
 }
 

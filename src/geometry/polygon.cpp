@@ -134,6 +134,60 @@ int removeCollinearVertices(std::vector<Vec2>& pts, double relativeTolerance) {
   return removed;
 }
 
+int insertPointsOnEdges(std::vector<Vec2>& pts, const std::vector<Vec2>& points, double tol) {
+  std::vector<Vec2> out;
+  int inserted = 0;
+  for (size_t k = 0; k < pts.size(); ++k) {
+    const Vec2 a = pts[k], b = pts[(k + 1) % pts.size()];
+    out.push_back(a);
+    std::vector<std::pair<double, Vec2>> on;
+    for (const Vec2& p : points) {
+      double t;
+      if (distanceToSegment(p, a, b, &t) > tol || (p - a).norm() <= tol || (p - b).norm() <= tol) continue;
+      on.push_back({t, p});
+    }
+    std::sort(on.begin(), on.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+    for (const auto& [t, p] : on)
+      if ((p - out.back()).norm() > tol) out.push_back(p), ++inserted;
+  }
+  pts = std::move(out);
+  return inserted;
+}
+
+std::vector<Vec2> unionAlongSharedEdges(const std::vector<Vec2>& a, const std::vector<Vec2>& b, double tol) {
+  const size_t na = a.size(), nb = b.size();
+  const auto same = [&](const Vec2& p, const Vec2& q) { return (p - q).norm() <= tol; };
+  // An edge of a (i → i+1) that b runs the other way (j+1 → j... as j → j+1 = i+1 → i).
+  for (size_t i = 0; i < na; ++i)
+    for (size_t j = 0; j < nb; ++j) {
+      if (!same(a[i], b[(j + 1) % nb]) || !same(a[(i + 1) % na], b[j])) continue;
+      // a from its vertex i+1 round to i, then b from its vertex j+1 round to j, each shared
+      // end once: the shared edge drops out.
+      std::vector<Vec2> u;
+      for (size_t k = 0; k < na; ++k) u.push_back(a[(i + 1 + k) % na]);
+      for (size_t k = 1; k + 1 < nb; ++k) u.push_back(b[(j + 1 + k) % nb]);
+      // Further shared edges next to this one fold back on themselves (… p, q, p …): remove them.
+      for (bool folded = true; folded && u.size() >= 3;) {
+        folded = false;
+        for (size_t k = 0; k < u.size() && u.size() >= 3; ++k) {
+          const size_t prev = (k + u.size() - 1) % u.size(), next = (k + 1) % u.size();
+          if (same(u[prev], u[next])) {
+            // Drop u[k] and one of its two equal neighbours.
+            const size_t first = std::min(k, next), second = std::max(k, next);
+            u.erase(u.begin() + static_cast<std::ptrdiff_t>(second));
+            u.erase(u.begin() + static_cast<std::ptrdiff_t>(first));
+            folded = true;
+            break;
+          }
+        }
+      }
+      const double area = signedArea(a) + signedArea(b);
+      if (u.size() >= 3 && isSimple(u) && std::abs(signedArea(u) - area) <= 1e-9 * std::abs(area)) return u;
+      return {};
+    }
+  return {};
+}
+
 void orientCounterClockwise(std::vector<Vec2>& pts) {
   if (signedArea(pts) < 0) std::reverse(pts.begin(), pts.end());
 }

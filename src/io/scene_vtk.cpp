@@ -29,6 +29,11 @@ std::vector<std::string> blockNames(const model::Scene& scene) {
   return out;
 }
 
+/// The grid's points in the case's own coordinates (model::Scene::origin).
+void inCaseCoordinates(VtkGrid& g, const model::Scene& scene) {
+  for (Vec2& p : g.points) p += scene.origin;
+}
+
 }  // namespace
 
 VtkGrid blocksGrid(const solver::Simulation& sim, const std::vector<Vec2>& initialCentroids) {
@@ -55,6 +60,7 @@ VtkGrid blocksGrid(const solver::Simulation& sim, const std::vector<Vec2>& initi
     numbersOf(stress).insert(numbersOf(stress).end(), {blk.stress[0], blk.stress[1], blk.stress[2]});
   }
   g.cellData = {id, material, fixed, displacement, velocity, rotation, spin, stress};
+  inCaseCoordinates(g, scene);
   std::vector<std::string> materials;
   for (const model::Material& m : scene.materials) materials.push_back(m.name);
   g.fieldData = {names("block_names", blockNames(scene)), names("material_names", materials)};
@@ -89,6 +95,7 @@ VtkGrid contactsGrid(const solver::Simulation& sim) {
     numbersOf(slip).push_back(c.slipDistance);
   }
   g.cellData = {state, normal, shear, bonded, joint, vertexBlock, edgeBlock, edgeToEdge, slip};
+  inCaseCoordinates(g, scene);
   std::vector<std::string> joints;
   for (const model::JointProperties& j : scene.joints) joints.push_back(j.name);
   g.fieldData = {names("joint_names", joints), names("block_names", blockNames(scene))};
@@ -108,6 +115,7 @@ VtkGrid waterGrid(const solver::Simulation& sim) {
     if (p.x() > lo && p.x() < hi) line.push_back(p);
   line.push_back({hi, water.headAt(hi)});
   g.addCell(VtkCellType::PolyLine, line);
+  inCaseCoordinates(g, scene);
   return g;
 }
 

@@ -32,6 +32,15 @@ bool isSimple(const std::vector<Vec2>& pts);
 /// against the one chord that replaces it, so a gentle curve is not flattened piece by piece).
 /// Returns how many were removed. The polygon must be simple, with at least three corners.
 int removeCollinearVertices(std::vector<Vec2>& pts, double relativeTolerance);
+/// Inserts, in order along each edge, every point of `points` that lies on the edge (within `tol`
+/// of it, not within `tol` of its ends): the vertices a neighbour's corners make on it. Returns
+/// how many were inserted.
+int insertPointsOnEdges(std::vector<Vec2>& pts, const std::vector<Vec2>& points, double tol);
+/// The union of two counter-clockwise polygons that share a stretch of boundary (edges that
+/// coincide vertex for vertex, within `tol`, run in opposite directions) and do not overlap: one
+/// simple polygon of area a + b, or empty if they share no edge or the union is not such a polygon
+/// (it would have a hole, or they touch elsewhere).
+std::vector<Vec2> unionAlongSharedEdges(const std::vector<Vec2>& a, const std::vector<Vec2>& b, double tol);
 /// Reverses the order if needed so that the signed area is positive.
 void orientCounterClockwise(std::vector<Vec2>& pts);
 /// Point in polygon (boundary counts as inside within tol).

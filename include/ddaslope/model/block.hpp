@@ -33,6 +33,8 @@ struct Block {
   double rotation = 0;
   /// Vertices on a straight edge that the reader removed (kCollinearTolerance), for `check`.
   int removedCollinearVertices = 0;
+  /// Fixed blocks of the case that the reader merged into this one (their ids), for `check`.
+  std::vector<std::string> mergedIds;
 
   Mat26 tAt(const Vec2& p) const { return displacementMatrix(moments.centroid, p); }
   /// Moves the vertices by D (exact rotation), recomputes the moments and adds r0 to rotation.

@@ -66,6 +66,10 @@ struct Scene {
   WaterTable water;  ///< no water unless its line is set
   SeismicLoad seismic;  ///< none unless set
   AnalysisSettings settings;
+  /// Where the case's coordinates were: every coordinate of a scene far from (0, 0) (a national
+  /// grid) is held relative to this point, so that a step's displacement is not lost in the
+  /// round-off of coordinates millions of metres large; outputs add it back (io/case_reader).
+  Vec2 origin{0, 0};
 
   int jointBetween(int a, int b) const;
   /// Half the larger side of the model's bounding box: Shi's w0.
