@@ -33,6 +33,8 @@ Run: python3 scripts/block_equilibrium.py CASE --joint sliding_surface --frictio
           [--without-corners [BLOCK ...]]   (no corner forces: of those blocks, or of any)
           [--kink-block-width M]            (a section case cut with another kink block width)
      python3 scripts/block_equilibrium.py CASE --joint sliding_surface --cohesion 50e3 --solve friction
+     python3 scripts/block_equilibrium.py CASE --solve fos
+          (the strength-reduction F: every joint's c and tan(phi) divided by F, as `ddaslope fos` does)
      python3 scripts/block_equilibrium.py CASE --solve seismic-coefficient --direction=-x
           (the largest horizontal coefficient the blocks stand: the yield acceleration k_y)
      (CASE with a "section": the script calls build/ddaslope cut; --ddaslope PATH to point elsewhere)
@@ -296,6 +298,24 @@ def critical_friction(model, joint, cohesion, width=1e-3):
     return hi
 
 
+def strength_reduction_factor(model, width=1e-6):
+    """The F of strength reduction (`ddaslope fos`) for these blocks: the largest F for which
+    c/F and atan(tan(phi)/F) on every joint still hold them (inf: beyond 100; 0: not even at 0.01)."""
+    def holds(f):
+        phi = lambda j: math.degrees(math.atan(math.tan(math.radians(model.joints[j]["friction_angle"])) / f))
+        c = lambda j: model.joints[j].get("cohesion", 0.0) / f
+        return model.feasible_or_min(None, phi, c, False)
+    lo, hi = 0.01, 100.0
+    if not holds(lo):
+        return 0.0
+    if holds(hi):
+        return math.inf
+    while hi - lo > width * lo:
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if holds(mid) else (lo, mid)
+    return 0.5 * (lo + hi)
+
+
 def yield_coefficient(model, direction, width=1e-6):
     """The largest horizontal coefficient along `direction` (+1: +x) the blocks can stand, with
     their strengths: the yield acceleration k_y in g (inf: beyond 2; -1: not even at 0)."""
@@ -319,7 +339,8 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("case")
     ap.add_argument("--joint", help="the joint to solve for (cohesion, friction)")
-    ap.add_argument("--solve", choices=["cohesion", "friction", "seismic-coefficient"], default="cohesion")
+    ap.add_argument("--solve", choices=["cohesion", "friction", "seismic-coefficient", "fos"], default="cohesion",
+                    help="fos: the strength-reduction factor, every joint's c and tan(phi) divided by F")
     ap.add_argument("--direction", choices=["+x", "-x"], default="+x",
                     help="seismic-coefficient: the direction of the horizontal load")
     ap.add_argument("--kh", type=float, help="horizontal seismic coefficient (+x), instead of the case's")
@@ -353,6 +374,16 @@ def main():
         else:
             print(f"{args.case}: largest horizontal seismic coefficient along {args.direction} the blocks can stand "
                   f"(k_v = {model.kv:g}): {text} g ({len(model.blocks)} blocks, {len(model.contacts)} contact points)")
+        return
+    if args.solve == "fos":
+        f = strength_reduction_factor(model)
+        if args.json:
+            print(json.dumps({"solve": "fos", "value": None if math.isinf(f) else f, "blocks": len(model.blocks),
+                              "contact_points": len(model.contacts)}))
+        else:
+            text = "beyond 100" if math.isinf(f) else f"{f:.6g}"
+            print(f"{args.case}: largest strength-reduction factor F at which the blocks can stand: {text} "
+                  f"({len(model.blocks)} blocks, {len(model.contacts)} contact points)")
         return
     if args.joint is None:
         sys.exit("block_equilibrium: --joint is needed to solve for cohesion or friction")

@@ -38,6 +38,19 @@ class BlockEquilibrium(unittest.TestCase):
         m = model("sliding_block_30deg.json")
         self.assertAlmostEqual(be.critical_friction(m, "interface", 0.0), 30, delta=1e-3)
 
+    def test_strength_reduction_factor_of_a_block_on_an_incline(self):
+        # Closed form (A2 block, c = 42 kPa, phi = 20 deg on 40 deg; B2 in reference/benchmarks.md):
+        # F solves (c/F) L + W cos a tan(phi)/F = W sin a, so F = (c L + W cos a tan phi) / (W sin a),
+        # 1.087 as the case's description says; the bisection narrows to 1e-6 of F.
+        m = model("cohesive_block_42kpa.json")
+        block = next(b for b in m.blocks if not b.get("fixed"))
+        area, _ = be.area_centroid([tuple(v) for v in block["vertices"]])
+        v = block["vertices"]
+        w, a = 2000 * 10 * area, math.radians(40)
+        want = (42e3 * math.dist(v[0], v[1]) + w * math.cos(a) * math.tan(math.radians(20))) / (w * math.sin(a))
+        self.assertAlmostEqual(want, 1.087, places=3)
+        self.assertAlmostEqual(be.strength_reduction_factor(m), want, delta=2e-6 * want)
+
     def test_yield_coefficient_of_a_block_on_an_incline(self):
         # Closed form (benchmarks.md §E): a block on alpha = 40 deg with phi = 40.1 deg stands a
         # horizontal coefficient toward the valley (-x here) up to tan(phi - alpha) = tan 0.1 deg;

@@ -95,6 +95,13 @@ void printKinkNotes(const ddaslope::model::Scene& scene) {
     else if (k.upslopeReach < 0.1 * k.reachingBlockHeight)
       std::printf("A block that thin (a kink block) leans on it little (docs/calibration.md, \"The chair-shaped "
                   "slide\")\n");
+    else if (k.blocksWithCorner >= 2)
+      std::printf("%d blocks meet there: a joint ends on the bend, so the block above has its corner in the notch and "
+                  "touches both faces. It cannot slide on along the upper face without lifting or bending, which a DDA "
+                  "block (uniform strain) cannot do, and F may then follow the contact stiffness: compare "
+                  "analysis.penalty_factor 10-2000 and the blocks' own bound (scripts/block_equilibrium.py). A kink "
+                  "block would make another block system here (docs/research/bilinear-slab.md)\n",
+                  k.blocksWithCorner);
     else
       std::printf("The block may lean on that corner, which limit-equilibrium slices cannot, with a force its width "
                   "sets. On a kink inside the sliding surface a thin block there (section.kink_block_width) takes "
@@ -120,6 +127,7 @@ bool touchesAnotherBlock(const ddaslope::model::Scene& scene, const ddaslope::mo
 /// if none.
 std::string slightBendNote(const ddaslope::model::Scene& scene) {
   int slight = 0;
+  double offLine = 0;
   std::string first;
   for (const auto& b : scene.blocks) {
     const size_t n = b.vertices.size();
@@ -127,6 +135,10 @@ std::string slightBendNote(const ddaslope::model::Scene& scene) {
       const ddaslope::Vec2 in = b.vertices[k] - b.vertices[(k + n - 1) % n], out = b.vertices[(k + 1) % n] - b.vertices[k];
       const double turnDeg = std::abs(std::atan2(ddaslope::cross(in, out), in.dot(out))) * 180 / M_PI;
       if (turnDeg >= scene.settings.edgeParallelToleranceDeg || !touchesAnotherBlock(scene, b, b.vertices[k])) continue;
+      // How far it lies off its neighbours' chord: the gap initial_contact_tolerance would have to
+      // count as touching for the reader to take it as on the line.
+      const ddaslope::Vec2 chord = b.vertices[(k + 1) % n] - b.vertices[(k + n - 1) % n];
+      offLine = std::max(offLine, std::abs(ddaslope::cross(chord, b.vertices[k] - b.vertices[(k + n - 1) % n])) / chord.norm());
       if (slight++ == 0) {
         char where[160];
         std::snprintf(where, sizeof where, "block %s at (%g, %g), %.3g°", b.id.c_str(),
@@ -139,8 +151,10 @@ std::string slightBendNote(const ddaslope::model::Scene& scene) {
   std::ostringstream m;
   m << slight << " vertices bend their block's outline by less than the edge-parallel tolerance ("
     << scene.settings.edgeParallelToleranceDeg << "°) but are not on a straight line (first: " << first
-    << "): each splits a face into contacts judged apart, whose cohesion may fail piecewise; straighten the edge "
-       "where the bend is not real (coordinates rounded in the file make such bends)";
+    << "): each splits a face into contacts judged apart, whose cohesion may fail piecewise. They lie up to "
+    << offLine << " m off a straight line; if that is rounding, `--set analysis.initial_contact_tolerance="
+    << std::ceil(2 * offLine / scene.modelHalfSize() * 1e9) / 1e9
+    << "` (gaps that count as touching at t = 0, as a fraction of w0) takes them as on it";
   return m.str();
 }
 

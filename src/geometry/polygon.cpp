@@ -86,7 +86,7 @@ bool isSimple(const std::vector<Vec2>& pts) {
   return true;
 }
 
-int removeCollinearVertices(std::vector<Vec2>& pts, double relativeTolerance) {
+int removeCollinearVertices(std::vector<Vec2>& pts, double relativeTolerance, double absoluteTolerance) {
   const size_t n = pts.size();
   if (n <= 3) return 0;
   const auto at = [&](size_t k) -> const Vec2& { return pts[k % n]; };
@@ -110,7 +110,8 @@ int removeCollinearVertices(std::vector<Vec2>& pts, double relativeTolerance) {
     for (size_t k = from + 1; k < to; ++k) {
       const Vec2 r = at(k) - a;
       const double along = r.dot(u);
-      if (std::abs(cross(u, r)) > relativeTolerance * len || along <= last || along >= len) return false;
+      if (std::abs(cross(u, r)) > std::max(relativeTolerance * len, absoluteTolerance) || along <= last || along >= len)
+        return false;
       last = along;
     }
     return true;

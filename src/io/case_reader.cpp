@@ -156,11 +156,17 @@ void mergeFixedBlocks(model::Scene& s) {
 }
 
 /// One face, one contact: vertices on a straight edge (T-junctions of a block-cutting program or
-/// a mesher, an edge split in CAD) are removed, so that the face meets its neighbour as one
-/// edge-to-edge contact whatever vertices it was drawn with (docs/contact-model.md).
+/// a mesher, an edge split in CAD; within kCollinearTolerance of the chord, or within the gap that
+/// counts as touching, initial_contact_tolerance · w0) are removed, so that the face meets its
+/// neighbour as one edge-to-edge contact whatever vertices it was drawn with
+/// (docs/contact-model.md).
 void normaliseOutlines(model::Scene& s) {
+  // A vertex as near the straight line as a gap that counts as touching at t = 0 is on it too:
+  // coordinates rounded in the file make such vertices, and the contact that closes across the
+  // rounding closes across the straightened edge as well.
+  const double touching = s.settings.initialContactTolerance * s.modelHalfSize();
   for (model::Block& b : s.blocks) {
-    const int removed = geometry::removeCollinearVertices(b.vertices, model::kCollinearTolerance);
+    const int removed = geometry::removeCollinearVertices(b.vertices, model::kCollinearTolerance, touching);
     b.removedCollinearVertices += removed;
     if (removed > 0) b.moments = geometry::computeMoments(b.vertices);
   }
@@ -561,15 +567,14 @@ model::Scene parseCase(const std::string& text, const std::string& file) {
   readJoints(r, doc, s, jointIds);
   readSection(r, doc, s, materialIds, jointIds);
   readBlocks(r, doc, s, materialIds);
-  normaliseOutlines(s);
   checkGeometry(r, s);
   readJointPairs(r, doc, s, jointIds);
   readPointsAndLoads(r, doc, s);
-  mergeFixedBlocks(s);
-  normaliseOutlines(s);  // the seams of merged blocks
   readWater(r, doc, s);
   readSeismic(r, doc, s);
   readAnalysis(r, doc, s);
+  mergeFixedBlocks(s);
+  normaliseOutlines(s);  // after the merge (its seams) and the settings (initial_contact_tolerance)
   readExpectations(r, doc, s);
   localiseOrigin(s);
   checkWorkload(s, file);

@@ -38,7 +38,7 @@ std::vector<ConcaveKink> concaveKinksUnderBlocks(const Scene& scene) {
       // Up the slope: towards the side whose edge rises more steeply from the kink.
       const Vec2 toPrev = (v[(i + n - 1) % n] - v[i]).normalized(), toNext = (v[(i + 1) % n] - v[i]).normalized();
       const double up = (toPrev.y() > toNext.y() ? toPrev : toNext).x() < 0 ? -1.0 : 1.0;
-      bool touched = false;
+      int touched = 0;
       double reach = 0, height = 0;
       for (const Block& b : scene.blocks) {
         if (b.fixed) continue;
@@ -50,9 +50,9 @@ std::vector<ConcaveKink> concaveKinksUnderBlocks(const Scene& scene) {
           lo = std::min(lo, p.y()), hi = std::max(hi, p.y());
         }
         if (here && farthest > reach) reach = farthest, height = hi - lo;
-        touched = touched || here;
+        touched += here;
       }
-      if (touched) kinks.push_back({static_cast<int>(f), v[i], bend, reach, height});
+      if (touched > 0) kinks.push_back({static_cast<int>(f), v[i], bend, reach, height, touched});
     }
   }
   return kinks;

@@ -28,10 +28,11 @@ PolygonMoments computeMoments(const std::vector<Vec2>& pts);
 /// True when no two non-adjacent edges touch and no two consecutive vertices coincide.
 bool isSimple(const std::vector<Vec2>& pts);
 /// Removes every vertex that lies on the straight line between the vertices kept on either side
-/// of it, within `relativeTolerance` of that chord's length (a run of such vertices is tested
-/// against the one chord that replaces it, so a gentle curve is not flattened piece by piece).
-/// Returns how many were removed. The polygon must be simple, with at least three corners.
-int removeCollinearVertices(std::vector<Vec2>& pts, double relativeTolerance);
+/// of it, within `relativeTolerance` of that chord's length or within `absoluteTolerance` (m),
+/// whichever is larger (a run of such vertices is tested against the one chord that replaces it,
+/// so a gentle curve is not flattened piece by piece). Returns how many were removed. The polygon
+/// must be simple, with at least three corners.
+int removeCollinearVertices(std::vector<Vec2>& pts, double relativeTolerance, double absoluteTolerance = 0);
 /// Inserts, in order along each edge, every point of `points` that lies on the edge (within `tol`
 /// of it, not within `tol` of its ends): the vertices a neighbour's corners make on it. Returns
 /// how many were inserted.

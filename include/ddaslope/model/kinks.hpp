@@ -16,6 +16,9 @@ struct ConcaveKink {
   /// vertex there reaches (m): the lever of the corner force it can lean on.
   double upslopeReach = 0;
   double reachingBlockHeight = 0;  ///< that block's vertical extent (m)
+  /// Free blocks with a vertex there: one is a block spanning the bend on a corner; two or more
+  /// meet at a joint that ends on the bend (a joint of the slope, not an accident of the cut).
+  int blocksWithCorner = 0;
 };
 
 /// Bends of 0.5° to 60° of a fixed block's surface (a sliding surface's kink, not a step of a
