@@ -49,7 +49,7 @@ struct CountedVerdict {
     const std::lock_guard<std::mutex> lock(mutex);
     undecidedInARow = r.undecided ? undecidedInARow + 1 : 0;
     trials.push_back({x, r, length > 1});
-    if (progress) report(x, r.stable);
+    if (progress) report(x, r.stable ? "stable" : r.undecided ? "undecided" : "fails");
     return r.stable;
   }
   /// The trials by value: the record does not depend on which thread finished first.
@@ -63,7 +63,7 @@ struct CountedVerdict {
  private:
   /// The tightest bracket so far (a stable and a failing trial closest together) and the runs a
   /// k-section still needs to narrow it to the width.
-  void report(double last, bool lastStable) {
+  void report(double last, const char* lastVerdict) {
     io::ProgressEvent e;
     e.done = static_cast<int>(trials.size());
     const TrialRecord* s = nullptr;
@@ -84,7 +84,7 @@ struct CountedVerdict {
       e.values = {{"stable_end", s->value}, {"failing_end", f->value}};
     } else {
       e.stage = "bracket";
-      std::snprintf(text, sizeof text, "%s %.6g %s", quantity, last, lastStable ? "stable" : "fails");
+      std::snprintf(text, sizeof text, "%s %.6g %s", quantity, last, lastVerdict);
       e.values = {{"last_trial", last}};
     }
     e.detail = text;

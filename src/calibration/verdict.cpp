@@ -264,8 +264,21 @@ TrialResult judgeStability(const model::Scene& scene, const VerdictSettings& set
     r.undecided = rule == VerdictRule::Undecided;
     r.reason = describe(rule);
     r.steps = static_cast<int>(monitorPath.time.size()) - 1;
+    if (rule != VerdictRule::AtRest && rule != VerdictRule::SlowingDown && rule != VerdictRule::StillMoving &&
+        rule != VerdictRule::Undecided) {
+      // Decided on a displacement (or no run): no window judged it, whatever an extension had.
+      r.decidedBy = r.movedMost;
+      r.lastWindowMotion = r.previousWindowMotion = r.noiseFloor = 0;
+    }
     for (size_t m = 0; m < monitors; ++m)
       r.finalSpeed = std::max(r.finalSpeed, sim.monitorVelocity(static_cast<int>(m)).norm());
+    // And every free block's fastest point: |v| at its centroid + |ω| times its reach.
+    for (int b : watch.blocks) {
+      const model::Block& blk = sim.scene().blocks[static_cast<size_t>(b)];
+      double reach = 0;
+      for (const Vec2& v : blk.vertices) reach = std::max(reach, (v - blk.moments.centroid).norm());
+      r.finalSpeed = std::max(r.finalSpeed, std::hypot(blk.velocity[0], blk.velocity[1]) + std::abs(blk.velocity[2]) * reach);
+    }
     if (atEnd) atEnd(sim, r);
     return r;
   };

@@ -71,7 +71,7 @@ struct TrialResult {
   std::string movedMost;           ///< the point that moved most: "monitor ID" or "block ID"
   std::string decidedBy;           ///< the point whose windows decided rule (b) or rest
   double failureDisplacement = 0;  ///< the threshold of rule (a) in force (m)
-  double finalSpeed = 0;           ///< largest monitor speed at the end of the run (m/s)
+  double finalSpeed = 0;           ///< largest speed of a monitor or a free block's point at the end (m/s)
   double lastWindowMotion = 0;     ///< net displacement over the last window, deciding point (m)
   double previousWindowMotion = 0; ///< over the window before (m)
   double noiseFloor = 0;           ///< that point's floor (m)
