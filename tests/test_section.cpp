@@ -8,6 +8,7 @@
 #include "ddaslope/geometry/cutting.hpp"
 #include "ddaslope/io/case_reader.hpp"
 #include "ddaslope/model/kinks.hpp"
+#include "test_io.hpp"
 #include "ddaslope/model/section.hpp"
 
 using namespace ddaslope;
@@ -143,4 +144,28 @@ TEST(Kinks, ConcaveBendsOfTheSlidingSurfaceUnderTheBlocks) {
   EXPECT_NEAR(toe.upslopeReach, 50, 1e-9);
   EXPECT_TRUE(model::concaveKinksUnderBlocks(io::readCase(dir + "cohesive_block_42kpa.json")).empty());
   EXPECT_TRUE(model::concaveKinksUnderBlocks(io::readCase(dir + "stepped_toppling.json")).empty());
+  // A block spanning the bend has a corner there alone; on the kink block's bend two blocks meet
+  // (the kink block and the one above), and on the toe's one.
+  EXPECT_EQ(kink.blocksWithCorner, 2);
+  EXPECT_EQ(toe.blocksWithCorner, 1);
+}
+
+// RS2 joint verification problem 9 (docs/research/bilinear-slab.md): the cross joint ends exactly
+// where the bedding bends 20° into the toe-breakout joint, so the slab and the toe wedge both have
+// a corner on that bend: a joint's end, not a block spanning it. The slab reaches 36.8 m up the
+// slope from it: not a thin kink block, so `check` and the searches say the answer may follow the
+// contact stiffness, and do not advise a kink block.
+TEST(Kinks, AJointEndingOnABendIsToldFromABlockSpanningIt) {
+  const std::string slab = std::string(DDASLOPE_SOURCE_DIR) + "/docs/research/bilinear_slab.json";
+  const auto kinks = model::concaveKinksUnderBlocks(io::readCase(slab));
+  ASSERT_EQ(kinks.size(), 1u);
+  EXPECT_NEAR(kinks[0].bendDeg, 20, 1e-6);
+  EXPECT_EQ(kinks[0].blocksWithCorner, 2);
+  std::string ignored;
+  const std::string check = clitest::captureCli("check " + slab, &ignored);
+  EXPECT_NE(check.find("a joint ends on the bend"), std::string::npos) << check;
+  EXPECT_EQ(check.find("section.kink_block_width"), std::string::npos) << check;
+  std::string warnings;
+  clitest::captureCli("fos " + slab + " --quiet", &warnings);
+  EXPECT_NE(warnings.find("may follow the contact stiffness"), std::string::npos) << warnings;
 }

@@ -178,6 +178,21 @@ void printOutlineNotes(const ddaslope::model::Scene& scene) {
   if (const std::string note = slightBendNote(scene); !note.empty()) std::printf("  note: %s\n", note.c_str());
 }
 
+/// A warning for the searches where a joint ends on a concave bend of the sliding surface (a
+/// corner in a notch: F may follow the contact stiffness, docs/research/bilinear-slab.md).
+std::string notchWarning(const ddaslope::model::Scene& scene) {
+  for (const auto& k : ddaslope::model::concaveKinksUnderBlocks(scene))
+    if (k.blocksWithCorner >= 2 && k.upslopeReach >= 0.1 * k.reachingBlockHeight) {
+      std::ostringstream m;
+      m << "a joint ends on a concave bend of " << scene.blocks[k.fixedBlock].id << " at (" << k.point.x() + scene.origin.x()
+        << ", " << k.point.y() + scene.origin.y() << "): a corner sits in the notch, and the answer may follow the "
+        << "contact stiffness; compare analysis.penalty_factor 10-2000 and scripts/block_equilibrium.py --solve fos "
+           "(`ddaslope check` says more)";
+      return m.str();
+    }
+  return "";
+}
+
 /// The seismic loading in force: the coefficients and the record's span and peaks.
 void printSeismicNote(const ddaslope::model::Scene& scene) {
   const ddaslope::model::SeismicLoad& q = scene.seismic;
@@ -438,6 +453,7 @@ int criticalCommand(const std::string& casePath, const Overrides& o, const Criti
   }
   warnAboutTrials(casePath, ddaslope::calibration::smallMotionWarning(r.trials, cohesion ? "c" : "φ"));
   warnAboutTrials(casePath, slightBendNote(scene));
+  warnAboutTrials(casePath, notchWarning(scene));
   return r.found ? kExitOk : kExitNonConvergence;
 }
 
@@ -575,6 +591,7 @@ int fosCommand(const std::string& casePath, const Overrides& o, const FosOptions
   }
   warnAboutTrials(casePath, ddaslope::calibration::smallMotionWarning(r.trials, "F"));
   warnAboutTrials(casePath, slightBendNote(scene));
+  warnAboutTrials(casePath, notchWarning(scene));
   return r.found ? kExitOk : kExitNonConvergence;
 }
 
