@@ -3,7 +3,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
 
+#include <nlohmann/json.hpp>
+
+#include "ddaslope/calibration/strength_search.hpp"
 #include "ddaslope/core/errors.hpp"
 #include "ddaslope/geometry/cutting.hpp"
 #include "ddaslope/io/case_reader.hpp"
@@ -15,12 +19,14 @@ using namespace ddaslope;
 
 namespace {
 /// A 100 m wide section: level ground at y = 20, a sliding surface from (10, 20) down to a flat
-/// seat at y = 5 and up to (90, 20): slide mass area = 80·15 − 2·(½·10·15) = 1050 m².
+/// seat at y = 5 and up to (90, 20): slide mass area = 80·15 − 2·(½·10·15) = 1050 m². Kink blocks
+/// only where a test gives their width (the automatic ones are tested with the chair).
 model::SectionSpec basin() {
   model::SectionSpec s;
   s.ground = {{0, 20}, {100, 20}};
   s.slidingSurface = {{10, 20}, {20, 5}, {80, 5}, {90, 20}};
   s.baseDepth = 10;
+  s.kinkBlockAuto = false;
   return s;
 }
 }  // namespace
@@ -168,4 +174,30 @@ TEST(Kinks, AJointEndingOnABendIsToldFromABlockSpanningIt) {
   std::string warnings;
   clitest::captureCli("fos " + slab + " --quiet", &warnings);
   EXPECT_NE(warnings.find("may follow the contact stiffness"), std::string::npos) << warnings;
+}
+
+// Sections without accidental corners (issue #38): with no kink_block_width the section is cut with
+// an automatic kink block (max(5e-3 w0, 2 × failure displacement): 2.875 m on the chair), so where
+// the joint set falls against the kink no longer moves the answer. Without it the chair's critical
+// cohesion at φ = 18° went 17.4 / 44.9 / 36.0 / 25.9 kPa at joint offsets 0 / 10 / 25 / 40 m; the
+// slices with the joints' friction need 48.5 / 48.5 / 48.9 / 48.9 kPa (scripts/chair_slide.py le,
+// docs/calibration.md), and the issue asks 10 %. The automatic block is not cut where an inclined
+// joint ends on the kink (the bilinear slab: 3 blocks) nor at a head scarp whose crown piece has no
+// other joint (Jiufengershan: 8 blocks, as with no kink block).
+TEST(Kinks, DefaultKinkBlockKeepsTheChairWithinTenPercentOfTheSlicesAtEveryJointOffset) {
+  const std::string dir = std::string(DDASLOPE_SOURCE_DIR) + "/";
+  for (const auto& [offset, slices] : {std::pair{0.0, 48.5e3}, {10.0, 48.5e3}, {25.0, 48.9e3}, {40.0, 48.9e3}}) {
+    std::ifstream in(dir + "cases/chair_slide.json");
+    nlohmann::json doc = nlohmann::json::parse(in);
+    doc["section"].erase("kink_block_width");
+    doc["section"]["joint_sets"][0]["origin"][0] = 500 - offset;  // the nearest joint `offset` m up the slope
+    const model::Scene scene = io::parseCase(doc.dump(), dir + "cases/chair_slide.json");
+    int joint = 0;
+    while (scene.joints[joint].name != "sliding_surface") ++joint;
+    const calibration::CriticalResult r = calibration::criticalCohesion(scene, joint, 18, 500);
+    ASSERT_TRUE(r.found) << "offset " << offset << ": " << r.message;
+    EXPECT_NEAR(r.critical, slices, 0.1 * slices) << "joint offset " << offset << " m";
+  }
+  EXPECT_EQ(io::readCase(dir + "docs/research/bilinear_slab.json").blocks.size(), 3u);
+  EXPECT_EQ(io::readCase(dir + "cases/jiufengershan.json").blocks.size(), 8u);
 }

@@ -131,6 +131,9 @@ Result& account(Result& r, CountedVerdict& v, std::chrono::steady_clock::time_po
   return r;
 }
 
+/// A range of mixed verdicts this narrow (against the value) is an answer, given as that range.
+constexpr double kMixedRangeTolerance = 0.01;
+
 /// Why a bracketing loop stopped on undecided verdicts.
 constexpr const char* kUndecidedBracket =
     "two trials in a row were undecided (small motions that neither grew nor stopped within the runs' extensions): "
@@ -192,17 +195,20 @@ void reviewTrials(Result& r, CountedVerdict& v, bool stableBelow, std::pair<doub
         if (!t.stable && o(x) > hs && o(x) < above) above = o(x), aboveValue = x;
       }
       r.review.contradiction = true;
-      // Trials that disagree by less than the precision asked for do not unsettle the answer,
-      // given over the whole mixed range.
-      r.found = hs - lfAny <= target * (1 + 1e-9);
+      // Trials that disagree by less than the precision asked for, or within a mixed range of 1 %
+      // of the value (DDA near a critical strength: which block gives way first), do not unsettle
+      // the answer, given over the whole mixed range.
+      const double mixed = std::abs(aboveValue - belowValue);
+      r.found = hs - lfAny <= target * (1 + 1e-9) ||
+                mixed <= kMixedRangeTolerance * std::max(std::abs(aboveValue), std::abs(belowValue));
       setAnswer(belowValue, aboveValue);
       std::ostringstream m;
       m << "verdicts contradict: stable at " << hsValue << " but " << (by.at(lfAnyValue).undecided ? "undecided" : "failing")
         << " at " << lfAnyValue << " (" << v.quantity << "), also when re-run " << kReRunLength << " times longer; ";
       if (r.found)
-        m << "they are closer than the bracket width asked for (" << target << "), so the answer is given over the "
-          << "range that holds them, [" << std::min(belowValue, aboveValue) << ", " << std::max(belowValue, aboveValue)
-          << "]";
+        m << "they are closer than the bracket width asked for (" << target << ") or than 1 % of the value, so the "
+          << "answer is given over the range that holds them, [" << std::min(belowValue, aboveValue) << ", "
+          << std::max(belowValue, aboveValue) << "]";
       else
         m << "the answer lies between " << belowValue << " and " << aboveValue << " and this search cannot say where "
           << "(see the trials)";

@@ -99,7 +99,15 @@ void readSection(const Reader& r, const json& doc, model::Scene& s, const std::m
     spec.slidingSurface = polyline("sliding_surface");
   }
   spec.baseDepth = r.number(r.required(j, p, "base_depth"), p + ".base_depth");
-  if (j.contains("kink_block_width")) spec.kinkBlockWidth = r.number(j.at("kink_block_width"), p + ".kink_block_width");
+  if (j.contains("kink_block_width")) {
+    spec.kinkBlockWidth = r.number(j.at("kink_block_width"), p + ".kink_block_width");
+    spec.kinkBlockAuto = false;
+  }
+  // The automatic kink block must outlast the verdict's failure displacement (read with the rest of
+  // the analysis, which checks it; here only its size matters).
+  if (doc.contains("analysis") && doc.at("analysis").is_object() && doc.at("analysis").contains("failure_displacement") &&
+      doc.at("analysis").at("failure_displacement").is_number())
+    spec.failureDisplacement = doc.at("analysis").at("failure_displacement").get<double>();
   if (j.contains("joints")) {
     const json& js = j.at("joints");
     if (!js.is_array()) r.fail(p + ".joints", "expected an array of joints [[x1, y1], [x2, y2]]");

@@ -94,6 +94,37 @@ double distanceToNearestJoint(const SectionSpec& s, const Vec2& p) {
   return nearest;
 }
 
+/// Whether a joint line inclined by more than 10° from the vertical passes through p (within tol).
+bool inclinedJointThrough(const SectionSpec& s, const Vec2& p, double tol) {
+  const auto inclined = [](const Vec2& d) { return std::abs(d.normalized().x()) > std::sin(degToRad(10)); };
+  for (const auto& [a, b] : s.joints) {
+    const Vec2 d = (b - a).normalized();
+    if (inclined(d) && std::abs(cross(d, p - a)) <= tol) return true;
+  }
+  for (const JointSet& js : s.jointSets) {
+    if (!(js.spacing > 0)) continue;
+    const double ang = degToRad(js.angleDeg);
+    const Vec2 d(std::cos(ang), std::sin(ang)), n(-d.y(), d.x());
+    const double o = n.dot(p - js.origin);
+    if (inclined(d) && std::abs(o - js.spacing * std::round(o / js.spacing)) <= tol) return true;
+  }
+  return false;
+}
+
+/// Whether the piece a kink block's vertical cut at `at` would split reaches the crown: the cut
+/// would leave the crown's piece bounded by nothing but the surface and the cut.
+bool crownPieceAbove(const std::vector<std::vector<Vec2>>& pieces, const Vec2& at, const Vec2& crown, double tol) {
+  for (const auto& piece : pieces) {
+    const geometry::Aabb box = geometry::boundingBox(piece);
+    if (at.x() <= box.lo.x() + tol || at.x() >= box.hi.x() - tol) continue;
+    if (geometry::lineCrossings(piece, Vec2(at.x(), at.y()), Vec2(0, 1)) < 2) continue;
+    // The piece just above the sliding surface at the cut.
+    if (!geometry::containsPoint(piece, at, 1e3 * tol)) continue;
+    return geometry::containsPoint(piece, crown, 1e3 * tol);
+  }
+  return false;
+}
+
 }  // namespace
 
 SectionBlocks cutSection(const SectionSpec& s) {
@@ -197,13 +228,31 @@ SectionBlocks cutSection(const SectionSpec& s) {
   }
   // A thin block up the slope of each concave kink: a block whose corner sits on a kink leans on
   // it with a force its width sets, which slices do not have (docs/calibration.md).
-  if (s.kinkBlockWidth < 0) fail("kink_block_width", "expected a width >= 0 m");
-  if (s.kinkBlockWidth > 0)
+  if (!s.kinkBlockAuto && s.kinkBlockWidth < 0) fail("kink_block_width", "expected a width >= 0 m");
+  // Not given: measured on the chair (joint offsets 0-40 m), Vajont, a bedding slide, Jiufengershan
+  // and a bilinear slab (docs/research/kink-blocks.md): 5e-3 w0 keeps every layout within 4.1 % of
+  // the slices; twice the failure displacement, or the slide squeezes the block out while settling.
+  const double w0 = 0.5 * std::max(s.ground.back().x() - s.ground.front().x(), highest - lowest + s.baseDepth);
+  const double width = s.kinkBlockAuto ? std::max(5e-3 * w0, 2 * (s.failureDisplacement > 0 ? s.failureDisplacement : 1e-3 * w0))
+                                       : s.kinkBlockWidth;
+  if (width > 0)
     for (const Vec2& k : concaveKinks(s.slidingSurface)) {
-      const Vec2 at(k.x() - s.kinkBlockWidth, groundAt(s.slidingSurface, k.x() - s.kinkBlockWidth));
+      const Vec2 at(k.x() - width, groundAt(s.slidingSurface, k.x() - width));
       // A joint already within half the width of the cut makes a block about that wide there; a
       // second cut beside it would leave a sliver (and hold every step to a tenth of it).
-      if (distanceToNearestJoint(s, at) < 0.5 * s.kinkBlockWidth) continue;
+      if (distanceToNearestJoint(s, at) < 0.5 * width) continue;
+      if (s.kinkBlockAuto) {
+        // An inclined joint ending on the kink is the slope's own geometry (a bilinear slab's
+        // release): a vertical kink block there makes another block system (F 0.59 against 1.04).
+        if (inclinedJointThrough(s, k, tol)) continue;
+        // Nor at a head scarp: a crown piece with no other joint would decide the verdict alone.
+        if (crownPieceAbove(pieces, at, crown, tol)) continue;
+        // Nor where the surface rises beyond the bend (a basin's far side): that is a buttress of
+        // the slope's own, not a corner the cut put there.
+        const auto next = std::find_if(s.slidingSurface.begin(), s.slidingSurface.end(),
+                                       [&](const Vec2& p) { return p.x() > k.x() + tol; });
+        if (next != s.slidingSurface.end() && next->y() > k.y() + tol) continue;
+      }
       cutAll(pieces, Vec2(at.x(), k.y()), Vec2(0, 1), "kink_block_width", minArea);
     }
   std::sort(pieces.begin(), pieces.end(), [](const auto& p, const auto& q) {

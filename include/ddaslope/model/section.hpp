@@ -22,8 +22,14 @@ struct SectionSpec {
   std::vector<std::pair<Vec2, Vec2>> joints;  ///< each extended to a line through the mass
   std::vector<JointSet> jointSets;
   /// Width (m) of the block cut just up the slope of each concave kink of the sliding surface by a
-  /// vertical joint; 0: no such joint (docs/case-format.md, "Section").
+  /// vertical joint; 0: no such joint (docs/case-format.md, "Section"). Used when given
+  /// (`kinkBlockAuto` false).
   double kinkBlockWidth = 0;
+  /// Not given: max(5e-3 w0, 2 × failureDisplacement), and no kink block where an inclined joint
+  /// ends on the kink, where the cut would leave the crown's piece without another joint, or where
+  /// the surface rises beyond the bend (docs/research/kink-blocks.md).
+  bool kinkBlockAuto = true;
+  double failureDisplacement = 0;  ///< the case's analysis.failure_displacement (0: its default)
 };
 
 struct SectionBlocks {
