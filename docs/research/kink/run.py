@@ -2,8 +2,9 @@
 """Driver for docs/research/kink-blocks.md: runs ddaslope critical / block_equilibrium one at a time,
 appends one JSON line per measurement to results.jsonl. Usage: run.py chair|vajont|jiuf|slab"""
 import json, subprocess, sys, time, os, shlex
-DDA = "/tmp/ddaslope.cc20658"
-MAIN = "/work/main"
+# The binary and the checkout it runs in: DDASLOPE (default build/ddaslope) and the repository root.
+MAIN = os.path.abspath(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", ".."))
+DDA = os.environ.get("DDASLOPE", os.path.join(MAIN, "build", "ddaslope"))
 OUT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "results.jsonl")
 PY = "/usr/bin/python3"
 
