@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Writes a case as another program or person might have written the same slope.
 
-Metamorphic variants for the invariance checks of issue #38: each changes how the slope is written,
+Metamorphic variants for the invariance checks: each changes how the slope is written,
 never what it is, so `ddaslope fos` and `ddaslope critical` must give the same answer.
 
   scripts/case_variants.py CASE OUT.json split [--parts N]     every edge split into N (2) equal parts

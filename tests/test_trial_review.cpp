@@ -32,6 +32,13 @@ model::Scene blockOnFrictionlessBase(double vx, double gx) {
   return io::parseCase(text, "block_on_frictionless_base");
 }
 
+/// The verdict of that scene against a failure displacement of `failure` m.
+TrialResult judgedOnFrictionlessBase(double vx, double gx, double failure) {
+  calibration::VerdictSettings v;
+  v.failureDisplacement = failure;
+  return calibration::judgeStability(blockOnFrictionlessBase(vx, gx), v);
+}
+
 /// A verdict for the search tests: stable below `critical`, failing above, with whatever the
 /// test adds on top; counts calls.
 struct FakeVerdict {
@@ -58,9 +65,7 @@ calibration::SearchSettings twoAtOnce() {
 // under 10 % of it, and neither growing nor stopping (Newton's first law: no force, no change). It
 // must be undecided after three extensions, not failure.
 TEST(SmallMotion, SteadyGlideIsUndecidedNotFailure) {
-  calibration::VerdictSettings v;
-  v.failureDisplacement = 1.0;
-  const TrialResult r = calibration::judgeStability(blockOnFrictionlessBase(0.01, 0), v);
+  const TrialResult r = judgedOnFrictionlessBase(0.01, 0, 1.0);
   EXPECT_TRUE(r.undecided) << r.reason;
   EXPECT_FALSE(r.stable);
   EXPECT_EQ(r.rule, calibration::VerdictRule::Undecided);
@@ -73,9 +78,7 @@ TEST(SmallMotion, SteadyGlideIsUndecidedNotFailure) {
 // a t²/2: 4.5 cm in 3 s, under 10 % of the 1 m failure displacement, but its speed over the last
 // window grows by 2 and then 1.5 from one extension to the next: failure, before the budget.
 TEST(SmallMotion, GrowingMotionIsFailureEvenWhenSmall) {
-  calibration::VerdictSettings v;
-  v.failureDisplacement = 1.0;
-  const TrialResult r = calibration::judgeStability(blockOnFrictionlessBase(0, 0.01), v);
+  const TrialResult r = judgedOnFrictionlessBase(0, 0.01, 1.0);
   EXPECT_FALSE(r.stable) << r.reason;
   EXPECT_FALSE(r.undecided);
   EXPECT_EQ(r.rule, calibration::VerdictRule::StillMoving);
@@ -87,13 +90,10 @@ TEST(SmallMotion, GrowingMotionIsFailureEvenWhenSmall) {
 // than 10 % of it, so the still-moving rule decides at once; against 4 mm, the block passes it at
 // t = √(2 · 0.004 / 0.01) = 0.894 s (rule (a)).
 TEST(SmallMotion, MotionLargeAgainstTheFailureDisplacementFailsAtOnce) {
-  calibration::VerdictSettings v;
-  v.failureDisplacement = 0.04;
-  const TrialResult moving = calibration::judgeStability(blockOnFrictionlessBase(0, 0.01), v);
+  const TrialResult moving = judgedOnFrictionlessBase(0, 0.01, 0.04);
   EXPECT_EQ(moving.rule, calibration::VerdictRule::StillMoving);
   EXPECT_EQ(moving.extensions, 0);
-  v.failureDisplacement = 0.004;
-  const TrialResult passed = calibration::judgeStability(blockOnFrictionlessBase(0, 0.01), v);
+  const TrialResult passed = judgedOnFrictionlessBase(0, 0.01, 0.004);
   EXPECT_EQ(passed.rule, calibration::VerdictRule::PassedDisplacement);
   EXPECT_NEAR(passed.timeReached, std::sqrt(2 * 0.004 / 0.01), 0.002);
 }

@@ -111,19 +111,22 @@ bool sameJoints(const model::Scene& s, int a, int b) {
 /// One ground, one contact: fixed blocks that share a stretch of boundary (a base split into
 /// pieces, or drawn as several blocks) are merged, where they meet every other block with the same
 /// joint. Fixed blocks have no unknowns and no contacts with one another, but a free block resting
-/// across their seam met each piece as its own edge-to-edge contact and had its cohesion judged in
-/// parts (the B2 block on a ramp cut under its middle: F 0.899 instead of 1.087). Monitors, loads
-/// and fixed points on a merged block move to the block it joined.
+/// across their seam would meet each piece as its own edge-to-edge contact and have its cohesion
+/// judged in parts (docs/contact-model.md). Monitors, loads and fixed points on a merged block move
+/// to the block it joined.
 void mergeFixedBlocks(model::Scene& s) {
   const double tol = 1e-9 * 2 * s.modelHalfSize();
-  for (bool merged = true; merged;) {
-    merged = false;
-    for (size_t i = 0; i < s.blocks.size() && !merged; ++i)
+  // Each fixed block takes in the fixed blocks after it that it can, one at a time (its outline
+  // grows with each), before the next is considered: no rescan of pairs already refused.
+  for (size_t i = 0; i < s.blocks.size(); ++i) {
+    if (!s.blocks[i].fixed) continue;
+    for (bool merged = true; merged;) {
+      merged = false;
       for (size_t j = i + 1; j < s.blocks.size() && !merged; ++j) {
-        if (!s.blocks[i].fixed || !s.blocks[j].fixed || !sameJoints(s, static_cast<int>(i), static_cast<int>(j)))
-          continue;
+        if (!s.blocks[j].fixed) continue;
         const geometry::Aabb bi = geometry::boundingBox(s.blocks[i].vertices), bj = geometry::boundingBox(s.blocks[j].vertices);
         if ((bi.lo.array() > bj.hi.array() + tol).any() || (bj.lo.array() > bi.hi.array() + tol).any()) continue;
+        if (!sameJoints(s, static_cast<int>(i), static_cast<int>(j))) continue;
         // Each piece's corners on the other's edges become vertices, so shared stretches coincide
         // vertex for vertex.
         std::vector<Vec2> a = s.blocks[i].vertices, b = s.blocks[j].vertices;
@@ -152,6 +155,7 @@ void mergeFixedBlocks(model::Scene& s) {
         s.blocks.erase(s.blocks.begin() + gone);
         merged = true;
       }
+    }
   }
 }
 
@@ -173,8 +177,8 @@ void normaliseOutlines(model::Scene& s) {
 }
 
 /// A scene far from (0, 0) against its size (national-grid coordinates: 5e6 m for a 30 m slope)
-/// is moved next to it (model::Scene::origin). There a coordinate's round-off, 1e-9 m, is 1 % of
-/// a slow step's displacement, and the toppling slope's F moved by 1.8 % (issue #38). The shift is
+/// is moved next to it (model::Scene::origin): there a coordinate's round-off, 1e-9 m, is a
+/// sizeable part of a slow step's displacement (docs/calibration.md). The shift is
 /// exact for the blocks (Sterbenz: every coordinate within a factor 2 of the origin's), so the
 /// case's coordinates come back unchanged in outputs. A scene within 64 of its own size of (0, 0)
 /// is left where it is.

@@ -229,9 +229,8 @@ SectionBlocks cutSection(const SectionSpec& s) {
   // A thin block up the slope of each concave kink: a block whose corner sits on a kink leans on
   // it with a force its width sets, which slices do not have (docs/calibration.md).
   if (!s.kinkBlockAuto && s.kinkBlockWidth < 0) fail("kink_block_width", "expected a width >= 0 m");
-  // Not given: measured on the chair (joint offsets 0-40 m), Vajont, a bedding slide, Jiufengershan
-  // and a bilinear slab (docs/research/kink-blocks.md): 5e-3 w0 keeps every layout within 4.1 % of
-  // the slices; twice the failure displacement, or the slide squeezes the block out while settling.
+  // Not given: a width chosen by measurement (docs/research/kink-blocks.md), at least twice the
+  // failure displacement, or the slide squeezes the block out while it settles.
   const double w0 = 0.5 * std::max(s.ground.back().x() - s.ground.front().x(), highest - lowest + s.baseDepth);
   const double width = s.kinkBlockAuto ? std::max(5e-3 * w0, 2 * (s.failureDisplacement > 0 ? s.failureDisplacement : 1e-3 * w0))
                                        : s.kinkBlockWidth;
@@ -243,7 +242,7 @@ SectionBlocks cutSection(const SectionSpec& s) {
       if (distanceToNearestJoint(s, at) < 0.5 * width) continue;
       if (s.kinkBlockAuto) {
         // An inclined joint ending on the kink is the slope's own geometry (a bilinear slab's
-        // release): a vertical kink block there makes another block system (F 0.59 against 1.04).
+        // release): a vertical kink block there makes another block system.
         if (inclinedJointThrough(s, k, tol)) continue;
         // Nor at a head scarp: a crown piece with no other joint would decide the verdict alone.
         if (crownPieceAbove(pieces, at, crown, tol)) continue;

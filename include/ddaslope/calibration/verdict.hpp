@@ -23,8 +23,7 @@ namespace ddaslope::calibration {
 ///     (net speed over the last window up by 10 % or more at each of two extensions of the run).
 /// A still-moving motion under 10 % of `failureDisplacement` that neither grows nor stops within
 /// three extensions of the run (each by its duration) is **undecided**: reported as such, never as
-/// failure (issue #38: contacts chattering at a T-junction moved 0.4 mm of a 105 mm failure
-/// displacement, and such trials were called failed).
+/// failure: a contact chattering at a T-junction moves a little and steadily, and is no failure.
 /// Motion is judged on net displacements over windows of simulated time, never on instantaneous
 /// speeds, so contact-spring vibration cannot trip it. The noise floor of a point is the larger
 /// of `restingSpeed` × window and 5 × the scatter of its path about a least-squares quadratic over
