@@ -116,12 +116,14 @@ TEST(StrengthReduction, SteppedToppingSlopeDoesNotDependOnSettings) {
     EXPECT_NEAR(r.factor, kLimitEquilibriumF, 0.03 * kLimitEquilibriumF) << v.label << " Δt " << s.settings.timeStep;
     // Issue #38: no trial is called failed on a motion under 10 % of the failure displacement
     // unless that motion grew over extensions of the run (two at least).
-    for (const calibration::TrialRecord& t : r.trials)
+    for (const calibration::TrialRecord& t : r.trials) {
       if (!t.result.stable && !t.result.undecided && t.result.converged &&
           t.result.rule != calibration::VerdictRule::MovedWhileSettling &&
-          t.result.maxDisplacement < 0.1 * t.result.failureDisplacement)
+          t.result.maxDisplacement < 0.1 * t.result.failureDisplacement) {
         EXPECT_GE(t.result.extensions, 2) << v.label << ": F = " << t.value << " failed after " << t.result.maxDisplacement
                                           << " m (" << calibration::name(t.result.rule) << ")";
+      }
+    }
     factors.push_back(r.factor);
   }
   const auto [lo, hi] = std::minmax_element(factors.begin(), factors.end());

@@ -83,7 +83,19 @@ int compareContactsCommand(bool deformable, const std::string& csvPath) {
 void printKinkNotes(const ddaslope::model::Scene& scene) {
   const double failure = scene.settings.failureDisplacement > 0 ? scene.settings.failureDisplacement
                                                                  : 1e-3 * scene.modelHalfSize();
+  const double near = 1e-6 * scene.modelHalfSize();
+  for (const auto& m : scene.movedJointEnds)
+    std::printf("  outlines: the joint between %s and %s ended on a concave bend of %s at (%g, %g); it is moved %.3g m up "
+                "the upper face%s, so that %s owns the bend and %s slides on without a corner in the notch "
+                "(docs/research/bilinear-slab.md; analysis.joint_end_offset 0 keeps it where it was drawn)\n",
+                scene.blocks[m.upper].id.c_str(), scene.blocks[m.lower].id.c_str(), scene.blocks[m.fixedBlock].id.c_str(),
+                m.kink.x() + scene.origin.x(), m.kink.y() + scene.origin.y(), m.shift.norm(),
+                m.parallel ? ", parallel to itself" : ", turning about its other end", scene.blocks[m.lower].id.c_str(),
+                scene.blocks[m.upper].id.c_str());
   for (const auto& k : ddaslope::model::concaveKinksUnderBlocks(scene)) {
+    if (std::any_of(scene.movedJointEnds.begin(), scene.movedJointEnds.end(),
+                    [&](const auto& m) { return (m.kink - k.point).norm() <= near; }))
+      continue;
     std::printf("  note: the surface of %s bends up by %.1f° at (%g, %g), where a block reaching %.3g m up the slope "
                 "has a corner. ",
                 scene.blocks[k.fixedBlock].id.c_str(), k.bendDeg, k.point.x() + scene.origin.x(),
@@ -99,8 +111,9 @@ void printKinkNotes(const ddaslope::model::Scene& scene) {
       std::printf("%d blocks meet there: a joint ends on the bend, so the block above has its corner in the notch and "
                   "touches both faces. It cannot slide on along the upper face without lifting or bending, which a DDA "
                   "block (uniform strain) cannot do, and F may then follow the contact stiffness: compare "
-                  "analysis.penalty_factor 10-2000 and the blocks' own bound (scripts/block_equilibrium.py). A kink "
-                  "block would make another block system here (docs/research/bilinear-slab.md)\n",
+                  "analysis.penalty_factor 10-2000 and the blocks' own bound (scripts/block_equilibrium.py). The reader "
+                  "moves such a joint up the upper face where one block lies on each face (analysis.joint_end_offset, "
+                  "here 0 or not possible); a kink block would make another block system (docs/research/bilinear-slab.md)\n",
                   k.blocksWithCorner);
     else
       std::printf("The block may lean on that corner, which limit-equilibrium slices cannot, with a force its width "

@@ -15,6 +15,7 @@
 #include "ddaslope/io/ground_motion.hpp"
 #include "ddaslope/io/input_file.hpp"
 #include "ddaslope/model/input_limits.hpp"
+#include "ddaslope/model/kinks.hpp"
 #include "ddaslope/model/presets.hpp"
 #include "section_reader.hpp"
 
@@ -176,6 +177,16 @@ void normaliseOutlines(model::Scene& s) {
   }
 }
 
+/// A joint ending on a concave bend of a fixed block is moved off it (model/kinks.hpp): by
+/// analysis.joint_end_offset, or by default by the automatic kink block's width, which measurement
+/// chose so that a slide cannot squeeze the block out while it settles (docs/research/kink-blocks.md).
+void moveJointEndsOffBends(model::Scene& s) {
+  const double w0 = s.modelHalfSize();
+  const double failure = s.settings.failureDisplacement > 0 ? s.settings.failureDisplacement : 1e-3 * w0;
+  const double offset = s.settings.jointEndOffset >= 0 ? s.settings.jointEndOffset : std::max(5e-3 * w0, 2 * failure);
+  s.movedJointEnds = model::moveJointEndsOffBends(s, offset);
+}
+
 /// A scene far from (0, 0) against its size (national-grid coordinates: 5e6 m for a 30 m slope)
 /// is moved next to it (model::Scene::origin): there a coordinate's round-off, 1e-9 m, is a
 /// sizeable part of a slow step's displacement (docs/calibration.md). The shift is
@@ -205,6 +216,7 @@ void localiseOrigin(model::Scene& s) {
   for (model::PointLoad& l : s.pointLoads) shift(l.point);
   for (model::FixedPoint& f : s.fixedPoints) shift(f.point);
   for (Vec2& p : s.water.line) p -= o;
+  for (model::MovedJointEnd& m : s.movedJointEnds) m.kink -= o;
   for (double& level : s.water.seriesLevels) level -= o.y();
 }
 
@@ -465,7 +477,7 @@ void readAnalysis(const Reader& r, const json& doc, model::Scene& s) {
                     "settle_dynamically",
                     "equilibrium_max_steps", "edge_parallel_tolerance", "initial_contact_tolerance",
                     "contact_state_tolerance", "contact_treatment", "failure_displacement", "resting_speed", "preset",
-                    "blocks", "strain_damping"});
+                    "blocks", "strain_damping", "joint_end_offset"});
   model::AnalysisSettings& st = s.settings;
   st.duration = r.numberIn(r.required(a, p, "duration"), p + ".duration", 0, limits::kMaxDuration, true, false,
                            "a duration in (0, 1e6] s");
@@ -487,6 +499,8 @@ void readAnalysis(const Reader& r, const json& doc, model::Scene& s) {
                                                                               : model::PlaneMode::Strain;
   st.rigidBlocks = r.choice(a, p, "blocks", "deformable", {"deformable", "rigid"}) == "rigid";
   st.failureDisplacement = r.optionalIn(a, p, "failure_displacement", 0, 0, 1e6, false, false, "a distance ≥ 0 m (0: 1e-3 of w0)");
+  st.jointEndOffset = r.optionalIn(a, p, "joint_end_offset", -1, 0, 1e6, false, false,
+                                  "a distance ≥ 0 m (absent: automatic)");
   st.restingSpeed = r.optionalIn(a, p, "resting_speed", 0, 0, 1e6, false, false, "a speed ≥ 0 m/s (0: automatic)");
   st.strainDamping = r.optionalIn(a, p, "strain_damping", st.strainDamping, 0, 100, false, false,
                                   "a fraction of critical in [0, 100]");
@@ -579,6 +593,7 @@ model::Scene parseCase(const std::string& text, const std::string& file) {
   readAnalysis(r, doc, s);
   mergeFixedBlocks(s);
   normaliseOutlines(s);  // after the merge (its seams) and the settings (initial_contact_tolerance)
+  moveJointEndsOffBends(s);
   readExpectations(r, doc, s);
   localiseOrigin(s);
   checkWorkload(s, file);

@@ -95,14 +95,15 @@ elif what == "vajont_thick":
              ["--joint", "sliding_surface", "--solve", "friction", "--cohesion", "0"], [])
     bound("vajont", dict(w="5% thickness per kink"), path, ["--joint", "sliding_surface", "--solve", "friction", "--cohesion", "0"])
 elif what == "slab":
-    case = "docs/research/bilinear_slab.json"
+    case = "cases/bilinear_slab.json"  # as drawn: the study predates moving the joint off the bend
     for w in [float(x) for x in sys.argv[2:]]:
         for sub in (["check"], ["cut", "--out", os.path.join(os.path.dirname(OUT), f"slab_cut_{w:g}")]):
-            cmd = [DDA] + sub[:1] + [case] + sub[1:] + ["--set", f"section.kink_block_width={w}"]
+            cmd = [DDA] + sub[:1] + [case] + sub[1:] + ["--set", f"section.kink_block_width={w}", "--set", "analysis.joint_end_offset=0"]
             p, dt = run(cmd)
             log(dict(item="slab", label=dict(w=w), kind=sub[0], stdout=p.stdout[-3000:], stderr=p.stderr[-1500:],
                      cmd=" ".join(cmd).replace(DDA, "$DDA")))
-        cmd = [DDA, "fos", case, "--json", "--quiet", "--threads", "1", "--set", f"section.kink_block_width={w}"]
+        cmd = [DDA, "fos", case, "--json", "--quiet", "--threads", "1", "--set", f"section.kink_block_width={w}",
+               "--set", "analysis.joint_end_offset=0"]
         p, dt = run(cmd)
         try:
             d = json.loads(p.stdout); rec = dict(fos=d.get("critical", d.get("fos")), runs=d.get("forward_runs"), review=d.get("review"), found=d.get("found"))

@@ -56,6 +56,12 @@ struct AnalysisSettings {
   /// far (m) after t = 0. 0: 1e-3 of w0. It must exceed the bounded transients of a stable scene
   /// (decimetres for a kilometre-scale slide of many blocks) and be reached by a failing one.
   double failureDisplacement = 0;
+  /// How far (m) a joint that ends on a concave bend of a fixed block is moved up the upper face,
+  /// so that the block below owns the bend (model/kinks.hpp, moveJointEndsOffBends). < 0:
+  /// automatic, max(5e-3 w0, 2 × the failure displacement), the automatic kink block's width; 0:
+  /// where it was drawn (the block above then has its corner in the notch, and F may follow the
+  /// contact stiffness: docs/research/bilinear-slab.md).
+  double jointEndOffset = -1;
   /// Verdict: a monitor still faster than this (m/s) at the end, and not slowing down, is
   /// failing. 0: 1e-4 of the failure displacement per second.
   double restingSpeed = 0;

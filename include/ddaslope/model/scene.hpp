@@ -37,6 +37,16 @@ struct FixedPoint {
   BlockPoint point;  ///< held at point.initial by a penalty spring
 };
 
+/// A joint that ended on a concave bend of a fixed block's surface, moved up the upper face
+/// (model/kinks.hpp, moveJointEndsOffBends).
+struct MovedJointEnd {
+  int fixedBlock = 0;
+  int upper = 0, lower = 0;  ///< the blocks on either side of the joint: on the upper face, on the lower
+  Vec2 kink{0, 0};
+  Vec2 shift{0, 0};          ///< of the joint's end, along the upper face (m)
+  bool parallel = true;      ///< the joint kept its direction (else it turned about its other end)
+};
+
 /// An expected value a shipped case carries with it (checked by the test suite and `run`).
 struct Expectation {
   std::string monitor{};
@@ -65,6 +75,8 @@ struct Scene {
   std::vector<Expectation> expectations;
   WaterTable water;  ///< no water unless its line is set
   SeismicLoad seismic;  ///< none unless set
+  /// Joints the reader moved off concave bends of a fixed block (analysis.joint_end_offset).
+  std::vector<MovedJointEnd> movedJointEnds;
   AnalysisSettings settings;
   /// Where the case's coordinates were: every coordinate of a scene far from (0, 0) (a national
   /// grid) is held relative to this point, so that a step's displacement is not lost in the
