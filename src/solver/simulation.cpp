@@ -1114,6 +1114,7 @@ HeldEquilibrium Simulation::holdEquilibrium() {
 void Simulation::bringToEquilibrium(const HeldEquilibrium* shared) {
   if (!scene_.settings.initialEquilibrium) {
     stats_.startedAtRest = false;  // not brought to rest: the analysis starts as the case is
+    startSlidingWhereBlocksMove();
     return;
   }
   std::vector<Vec6> initialVelocity;
@@ -1197,6 +1198,29 @@ void Simulation::bringToEquilibrium(const HeldEquilibrium* shared) {
   for (size_t b = 0; b < scene_.blocks.size(); ++b) scene_.blocks[b].velocity = initialVelocity[b];
   markActiveBlocks({});
   detectContacts(false);
+  startSlidingWhereBlocksMove();
+}
+
+// The equilibrium leaves every closed contact locked at rest. A block the case launches along a
+// contact (an initial velocity) would load that locked spring with a whole step's slip, a force
+// thousands of times its weight. The iteration does find the contact sliding, but from an iterate
+// thrown by that force, after cycles and Δt cuts whose spring forces brake the block and lift it
+// off its base (docs/accuracy.md). Such a contact slides from the start, against its relative
+// motion.
+void Simulation::startSlidingWhereBlocksMove() {
+  const double noise = scene_.settings.contactStateTolerance * w0_;
+  std::vector<Contact>& cs = contacts_.contacts();
+  for (size_t q = 0; q < cs.size(); ++q) {
+    Contact& c = cs[q];
+    if (c.state != ContactState::Locked) continue;
+    Vec12 v;
+    v.head<6>() = scene_.blocks[c.key().vertexBlock].velocity;
+    v.tail<6>() = scene_.blocks[c.key().edgeBlock].velocity;
+    const double slipInAStep = kinematics_[q].slip(v) * scene_.settings.timeStep;  // slip() is linear
+    if (std::abs(slipInAStep) <= noise) continue;
+    c.state = ContactState::Sliding;
+    c.slideDirection = slipInAStep > 0 ? 1 : -1;
+  }
 }
 
 bool Simulation::finished() const {

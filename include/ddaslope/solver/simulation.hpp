@@ -157,6 +157,8 @@ class Simulation {
  private:
   /// Settling: dynamic steps before t = 0 (velocity carried, loads at t = 0).
   enum class Regime { Analysis, HeldEquilibrium, Relaxation, Settling };
+  /// Locked contacts between blocks that the case sets moving along them start sliding.
+  void startSlidingWhereBlocksMove();
   /// How settle() ended: at a rest confirmed at the analysis Δt, at an unconfirmed one, with no
   /// static rest but no sign of failure either (stage 3 settles it), or failing.
   enum class Rest { Confirmed, Unconfirmed, Unsettled, NotFound };
