@@ -71,19 +71,37 @@ void addModelOptions(CLI::App* cmd, Overrides& o) {
       ->check(finiteIn(-2, 2, "a coefficient in [-2, 2]"));
 }
 
-/// "path=value" → an override; a malformed one is bad input.
+/// "path=value" → an override: a number, true or false, or a name (the case reader then checks
+/// it as it checks the file); a malformed one is bad input.
 ddaslope::io::CaseOverride parseSetting(const std::string& text) {
   const size_t eq = text.find('=');
-  double v = 0;
-  try {
-    if (eq == std::string::npos) throw std::invalid_argument("");
-    size_t used = 0;
-    v = std::stod(text.substr(eq + 1), &used);
-    if (used != text.size() - eq - 1 || !std::isfinite(v)) throw std::invalid_argument("");
-  } catch (const std::exception&) {
-    throw ddaslope::InputError("--set", text, "expected json.path=number (finite), e.g. joints.clay.friction_angle=20");
+  if (eq == std::string::npos || eq == 0 || eq + 1 == text.size())
+    throw ddaslope::InputError("--set", text,
+                               "expected json.path=value, e.g. joints.clay.friction_angle=20, "
+                               "analysis.settle_dynamically=false or analysis.blocks=rigid");
+  ddaslope::io::CaseOverride o{text.substr(0, eq), 0, std::nullopt, std::nullopt};
+  const std::string value = text.substr(eq + 1);
+  if (value == "true" || value == "false") {
+    o.flag = value == "true";
+    return o;
   }
-  return {text.substr(0, eq), v};
+  try {
+    size_t used = 0;
+    o.value = std::stod(value, &used);
+    if (used == value.size()) {
+      if (!std::isfinite(o.value))
+        throw ddaslope::InputError("--set", text, "expected a finite number, found " + value);
+      return o;
+    }
+  } catch (const std::invalid_argument&) {
+  } catch (const std::out_of_range&) {
+    throw ddaslope::InputError("--set", text, "expected a finite number, found " + value);
+  }
+  // Not a number: a name (a choice such as analysis.blocks=rigid), unless it starts like one.
+  if (value.find_first_of("0123456789+-.") == 0)
+    throw ddaslope::InputError("--set", text, "expected a number, true, false or a name, found " + value);
+  o.text = value;
+  return o;
 }
 
 /// Reads the case with the --set overrides and any extra ones (a sweep's value).
@@ -108,9 +126,15 @@ std::string settingsLine(const ddaslope::model::Scene& scene) {
                 s.rigidBlocks ? "rigid" : "deformable",
                 s.contactTreatment == ddaslope::model::ContactTreatment::Edge ? "edge" : "vertex",
                 jointKind(scene));
+  std::string line = buf;
+  // The solver path is a numerical choice the model's size makes unless the case names it.
+  const int unknowns = scene.freeUnknowns();
+  const bool large = ddaslope::model::largeSystemPath(s, unknowns);
+  std::snprintf(buf, sizeof buf, ", %s-system path (%s%d unknowns)", large ? "large" : "small",
+                s.systemPath == ddaslope::model::SystemPath::Auto ? "auto: " : "analysis.system_path; ", unknowns);
+  line += buf;
   // The seismic loading a result was found under: F and critical strengths under a record or a
   // coefficient are not the static ones.
-  std::string line = buf;
   const ddaslope::model::SeismicLoad& q = scene.seismic;
   if (q.kh != 0 || q.kv != 0) {
     std::snprintf(buf, sizeof buf, ", pseudo-static k_h %g, k_v %g", q.kh, q.kv);

@@ -477,7 +477,7 @@ void readAnalysis(const Reader& r, const json& doc, model::Scene& s) {
                     "settle_dynamically",
                     "equilibrium_max_steps", "edge_parallel_tolerance", "initial_contact_tolerance",
                     "contact_state_tolerance", "contact_treatment", "failure_displacement", "resting_speed", "preset",
-                    "blocks", "strain_damping", "joint_end_offset"});
+                    "blocks", "strain_damping", "joint_end_offset", "system_path"});
   model::AnalysisSettings& st = s.settings;
   st.duration = r.numberIn(r.required(a, p, "duration"), p + ".duration", 0, limits::kMaxDuration, true, false,
                            "a duration in (0, 1e6] s");
@@ -498,6 +498,8 @@ void readAnalysis(const Reader& r, const json& doc, model::Scene& s) {
   st.plane = r.choice(a, p, "plane", "strain", {"strain", "stress"}) == "stress" ? model::PlaneMode::Stress
                                                                               : model::PlaneMode::Strain;
   st.rigidBlocks = r.choice(a, p, "blocks", "deformable", {"deformable", "rigid"}) == "rigid";
+  const std::string path = r.choice(a, p, "system_path", "auto", {"auto", "small", "large"});
+  st.systemPath = path == "small" ? model::SystemPath::Small : path == "large" ? model::SystemPath::Large : model::SystemPath::Auto;
   st.failureDisplacement = r.optionalIn(a, p, "failure_displacement", 0, 0, 1e6, false, false, "a distance ≥ 0 m (0: 1e-3 of w0)");
   st.jointEndOffset = r.optionalIn(a, p, "joint_end_offset", -1, 0, 1e6, false, false,
                                   "a distance ≥ 0 m (absent: automatic)");
@@ -630,7 +632,10 @@ json* locate(json& doc, const std::string& path) {
     if (path[i] == '[') {
       const size_t close = path.find(']', i);
       if (close == std::string::npos || !at->is_array()) return nullptr;
-      const size_t k = std::stoul(path.substr(i + 1, close - i - 1));
+      const std::string index = path.substr(i + 1, close - i - 1);
+      // An index is digits (blocks[x] names nothing), and few enough to be a size.
+      if (index.empty() || index.size() > 9 || index.find_first_not_of("0123456789") != std::string::npos) return nullptr;
+      const size_t k = std::stoul(index);
       if (k >= at->size()) return nullptr;
       at = &(*at)[k];
       i = close + 1;
@@ -663,10 +668,14 @@ model::Scene readCase(const std::string& path, const std::vector<CaseOverride>& 
       const std::string key = dot == std::string::npos ? "" : o.jsonPath.substr(dot + 1);
       if (parent && parent->is_object() && !key.empty() && key.find('[') == std::string::npos) at = &(*parent)[key];
     }
-    if (!at || !(at->is_number() || at->is_null()))
-      throw InputError(path, o.jsonPath, "expected a number at this path of the case (to vary it), found none");
+    const std::string kind = o.flag ? "true or false" : o.text ? "a name" : "a number";
+    if (!at) throw InputError(path, o.jsonPath, "expected a value of the case at this path (to set it to " + kind + "), found none");
+    if (!(at->is_null() || (o.flag ? at->is_boolean() : o.text ? at->is_string() : at->is_number())))
+      throw InputError(path, o.jsonPath, "expected " + typeName(*at) + " here, as the case has it, found " + kind);
+    if (o.flag) *at = *o.flag;
+    else if (o.text) *at = *o.text;
     // A whole number stays an integer, so that integer settings accept it.
-    if (std::floor(o.value) == o.value && std::abs(o.value) < 9e15) *at = static_cast<long long>(o.value);
+    else if (std::floor(o.value) == o.value && std::abs(o.value) < 9e15) *at = static_cast<long long>(o.value);
     else *at = o.value;
   }
   return parseCase(doc.dump(), path);

@@ -195,7 +195,11 @@ void writeSummary(const fs::path& dir, const model::Scene& scene, const RunOptio
                    {"initial_contact_tolerance", s.initialContactTolerance},
                    {"contact_state_tolerance", s.contactStateTolerance},
                    {"failure_displacement", s.failureDisplacement},
-                   {"resting_speed", s.restingSpeed}};
+                   {"resting_speed", s.restingSpeed},
+                   {"system_path", s.systemPath == model::SystemPath::Auto    ? "auto"
+                                   : s.systemPath == model::SystemPath::Small ? "small"
+                                                                              : "large"},
+                   {"system_path_in_force", model::largeSystemPath(s, scene.freeUnknowns()) ? "large" : "small"}};
   const fs::path tmp = dir / "summary.json.tmp";
   {
     std::ofstream out(tmp);

@@ -9,6 +9,12 @@ int Scene::jointBetween(int a, int b) const {
   return it == pairJoints.end() ? defaultJoint : it->second;
 }
 
+int Scene::freeUnknowns() const {
+  int free = 0;
+  for (const Block& b : blocks) free += !b.fixed;
+  return (settings.rigidBlocks ? 3 : 6) * free;
+}
+
 double Scene::modelHalfSize() const {
   geometry::Aabb box = geometry::boundingBox(blocks.front().vertices);
   for (const Block& b : blocks) {

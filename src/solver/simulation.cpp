@@ -29,14 +29,6 @@ using contact::ContactState;
 
 namespace {
 
-/// Unknowns from which the factor follows contact state changes by update/downdate. At 3000
-/// (500 deformable bricks) a factorisation takes about 14 ms, at 12 000 about 140 ms, while an
-/// update costs 0.24 ms per spring changed at 18 000; the 500-brick equilibrium already drops from
-/// 0.77 to 0.21 s. From 1000 (issue #16): a wall of 203 or 495 deformable bricks started with
-/// gravity switched on at once changes states in ~5–10 iterations per step, and refactorising
-/// each took 2.4 and 24 s for 0.1 s simulated, following 0.58 and 5.0 s. No shipped case comes
-/// near it (the largest has 28 blocks).
-constexpr int kFactorFollowingMinUnknowns = 1000;
 /// Springs changed at once beyond which a new factorisation is cheaper than following them.
 /// Measured on a 3000-brick wall (18 000 unknowns): 0.24 ms per column against 260 ms per
 /// factorisation, a break-even near 1100; its equilibrium took 28.5 s with a limit of 400, 21.6 s
@@ -504,7 +496,7 @@ Simulation::Attempt Simulation::tryStep(double dt, Regime regime, bool freezeCyc
   // A large system's factor follows the contact state changes by low-rank update/downdate
   // (solver/factor_springs.hpp) instead of being redone; small systems refactorise, which is
   // cheap there and keeps their results as they were.
-  const bool followFactor = factorFollowing_ && matrix_.size() >= kFactorFollowingMinUnknowns;
+  const bool followFactor = factorFollowing_ && largeSystem();
   // Nested dissection orders a large wall's factor with less fill (1.45 against AMD's 1.55
   // million nonzeros at 2047 bricks) and a shallower tree, whose paths each update/downdate of a
   // spring walks. Small systems keep AMD, and their round-off.
@@ -1022,7 +1014,7 @@ void Simulation::polishRest(double staticDt) {
 }
 
 bool Simulation::largeSystem() const {
-  return (scene_.settings.rigidBlocks ? 3 : 6) * nActive_ >= kFactorFollowingMinUnknowns;
+  return model::largeSystemPath(scene_.settings, (scene_.settings.rigidBlocks ? 3 : 6) * nActive_);
 }
 
 std::pair<double, int> Simulation::fastestBlock(const Attempt& a) const {

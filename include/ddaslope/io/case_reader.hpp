@@ -1,5 +1,6 @@
 #pragma once
 // Reads a case file (JSON, docs/case-format.md) into a Scene. Only this layer sees JSON.
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -21,13 +22,18 @@ model::Scene parseCase(const std::string& text, const std::string& file);
 /// again after changing the settings (command-line overrides).
 void checkWorkload(const model::Scene& scene, const std::string& file);
 
-/// A number to put at a JSON path of the case before it is read ("materials.rock.young_modulus",
-/// "point_loads[0].rate[0]"): how a back-analysis varies any case value.
+/// A value to put at a JSON path of the case before it is read ("materials.rock.young_modulus",
+/// "point_loads[0].rate[0]", "analysis.settle_dynamically", "analysis.preset"): how a
+/// back-analysis varies any case value, and what `--set` does. A number unless `flag` or `text`
+/// is given.
 struct CaseOverride {
   std::string jsonPath;
   double value = 0;
+  std::optional<bool> flag;          ///< a boolean setting (true / false)
+  std::optional<std::string> text;   ///< a named choice ("rigid", "balanced")
 };
-/// Reads the case with overrides applied; a path that does not lead to a number is an InputError.
+/// Reads the case with overrides applied; a path that does not lead to a value of the override's
+/// kind (or to a key the case may add) is an InputError.
 model::Scene readCase(const std::string& path, const std::vector<CaseOverride>& overrides);
 
 /// For a case whose section is drawn (section.dxf): one line saying what the drawing gave (units,

@@ -8,6 +8,19 @@ enum class AnalysisMode { Dynamic, Static };
 enum class PlaneMode { Strain, Stress };
 /// How the two vertex-to-edge halves of an edge-to-edge contact are judged (docs/contact-model.md).
 enum class ContactTreatment { Edge, Vertex };
+/// How the linear system is solved while contact states change (docs/accuracy.md, "Small and
+/// large systems"). small: every state change refactorises the matrix (minimum-degree ordering),
+/// and each iterate is solved to round-off. large: the factor follows state changes by low-rank
+/// update/downdate (nested-dissection ordering), iterates are judged at a residual of 1e-8 with a
+/// few conjugate-gradient iterations on a stale factor, small law violations of cycling contacts
+/// are held while the scene settles, and the static relaxation of the initial equilibrium is
+/// skipped for dynamic settling. auto: large from kLargeSystemMinUnknowns unknowns.
+enum class SystemPath { Auto, Small, Large };
+
+/// Unknowns (6 per deformable block, 3 per rigid one) from which `auto` takes the large-system
+/// path: below it a refactorisation costs less than following the factor, above it refactorising
+/// every state change of a violent start dominates the run (docs/performance.md).
+inline constexpr int kLargeSystemMinUnknowns = 1000;
 
 struct AnalysisSettings {
   /// Simulated time (s), > 0.
@@ -95,6 +108,12 @@ struct AnalysisSettings {
   /// Initial gaps up to this fraction of w0 count as touching: the contact starts closed,
   /// bonded, and its spring's zero is at the initial gap.
   double initialContactTolerance = 1e-6;
+  SystemPath systemPath = SystemPath::Auto;
 };
+
+/// Whether a scene of `unknowns` free unknowns takes the large-system path under these settings.
+inline bool largeSystemPath(const AnalysisSettings& s, int unknowns) {
+  return s.systemPath == SystemPath::Large || (s.systemPath == SystemPath::Auto && unknowns >= kLargeSystemMinUnknowns);
+}
 
 }  // namespace ddaslope::model

@@ -86,6 +86,8 @@ struct Scene {
   int jointBetween(int a, int b) const;
   /// Half the larger side of the model's bounding box: Shi's w0.
   double modelHalfSize() const;
+  /// Unknowns of the free blocks: 6 each, 3 if rigid (what the solver path goes by).
+  int freeUnknowns() const;
   /// Normal penalty in use (explicit, or factor × max E).
   double normalPenalty() const;
   int blockIndex(const std::string& id) const;  ///< −1 when absent
