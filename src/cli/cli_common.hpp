@@ -52,7 +52,7 @@ void recordTrialStates(calibration::SearchSettings& s, const std::string& dir, c
 
 int jointIndex(const ddaslope::model::Scene& scene, const std::string& name, const std::string& casePath);
 
-/// Progress of a long command (issue #19): a line on stderr unless --quiet, a --json result or
+/// Progress of a long command: a line on stderr unless --quiet, a --json result or
 /// stderr not a terminal; JSON lines with --log-json FILE.
 struct ProgressOptions {
   bool quiet = false;

@@ -1,6 +1,6 @@
 #pragma once
 // `ddaslope probability CASE`: the probability of failure of a slope whose inputs are uncertain
-// (issue #18, docs/probability.md).
+// (docs/probability.md).
 #include <cstdint>
 #include <string>
 

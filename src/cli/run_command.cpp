@@ -29,7 +29,7 @@ void addRunOptions(CLI::App* run, std::string& casePath, Overrides& overrides, R
       ->check(finiteIn(1e-9, model::limits::kMaxDuration, "an interval in (0, 1e6] s"));
   // One run's contact search and judgement may share the cores (the result does not change). One
   // by default: measured on the 976- and 2047-brick walls, two threads did not make a step
-  // cheaper (README, Performance): a thread started per loop costs what the loop saves.
+  // cheaper (docs/performance.md): a thread started per loop costs what the loop saves.
   run->add_option("--threads", opt.threads, "threads of the run's contact search and judgement (same result for any)")
       ->capture_default_str()
       ->check(CLI::Range(1, 256));
@@ -69,7 +69,7 @@ int runCommand(const std::string& casePath, const Overrides& o, const RunCommand
   std::printf("  energy: %.4g J/m released (potential and load work), %.4g J/m dissipated; largest rise %.3g J/m "
               "since t = 0, %.3g J/m in one step\n",
               first.potential - last.potential + last.loadWork, first.mechanical() - last.mechanical(), gain, stepGain);
-  // Since the start: 1e-4 of the energy in play. In one step: 1e-3 (issue #14's bar; the friction
+  // Since the start: 1e-4 of the energy in play. In one step: 1e-3 (the bar of the energy test; the friction
   // sources docs/accuracy.md lists stay below 2e-4 in the Vajont run-out's impacts at Δt 1-10 ms).
   // A smaller Δt is not the cure.
   if (gain > 1e-4 * scale + floor || stepGain > 1e-3 * scale + floor)

@@ -3,7 +3,7 @@
 // (mass, elasticity, damping, fixed points) and a rank-one spring k·v·vᵀ per contact spring.
 // A product K·x then costs a gather, a dot product and a scatter per spring (24 multiply-adds
 // with six unknowns per block), where assembling K's entries costs 78 per spring plus the search
-// for their place. A large system needs K's entries only to factorise it (issue #16); between
+// for their place. A large system needs K's entries only to factorise it; between
 // factorisations, conjugate gradients and the residual check need only products.
 #include <vector>
 

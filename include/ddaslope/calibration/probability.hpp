@@ -1,5 +1,5 @@
 #pragma once
-// Probability of failure (issue #18, docs/probability.md), the pure parts: the standard normal,
+// Probability of failure (docs/probability.md), the pure parts: the standard normal,
 // counter-based random numbers, the marginal distributions, the sampling design (Monte Carlo or
 // Latin hypercube, correlated through a Gaussian copula), the Wilson score interval, the
 // reliability index, and the summary of a set of finished samples.

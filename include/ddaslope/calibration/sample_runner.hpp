@@ -1,5 +1,5 @@
 #pragma once
-// One sample of a probability study (issue #18): its forward run or search, and its result as
+// One sample of a probability study: its forward run or search, and its result as
 // bytes. The samples run on a task farm (core/task_farm.hpp: threads, or MPI ranks); a sample's
 // values depend on its index only and the summary is made from the samples sorted by index, so
 // the answer does not depend on the farm.

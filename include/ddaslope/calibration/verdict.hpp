@@ -13,7 +13,7 @@ namespace ddaslope::calibration {
 /// (0) it moved more than `failureDisplacement` while the scene came to rest before t = 0, once
 ///     its contacts could slip (stages 2 and 3 of the equilibrium; stage 1's elastic settlement
 ///     with every contact held does not count): a slope that gives way there and locks again
-///     metres further on has failed, even if it then stands (issue #14);
+///     metres further on has failed, even if it then stands;
 /// (a) it moves more than `failureDisplacement` from where it is at t = 0, after the equilibrium;
 ///     the run stops there: its verdict is certain; or
 /// (b) at the end of the run it is still moving: over the last quarter of the run its net

@@ -1,5 +1,5 @@
 #pragma once
-// Independent forward runs behind one interface (issue #18): a probability study's samples, a
+// Independent forward runs behind one interface: a probability study's samples, a
 // sweep's values, a critical curve's points. The caller lists the task indices; the farm runs
 // each exactly once on its workers and hands every result to a sink on the root process. One
 // process: a thread per worker. Under mpirun (when built with MPI): every rank runs its threads,

@@ -1,6 +1,6 @@
 #pragma once
 // Joining drawn pieces (lines, open polylines) end to end into one polyline: a ground surface
-// drawn in CAD as a run of separate LINEs is one line to the section (issue #19).
+// drawn in CAD as a run of separate LINEs is one line to the section.
 #include <vector>
 
 #include "ddaslope/core/types.hpp"

@@ -1,5 +1,5 @@
 #pragma once
-// A slope section drawn in CAD (issue #19): a DXF drawing whose named layers hold the ground,
+// A slope section drawn in CAD: a DXF drawing whose named layers hold the ground,
 // the sliding surface, the joints and the water line (docs/case-format.md, "Section from a
 // drawing"). io/dxf_section.cpp is the only file that includes dxflib.
 #include <string>

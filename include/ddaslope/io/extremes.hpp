@@ -1,5 +1,5 @@
 #pragma once
-// The extremes of issue #6 on the A4 sliding block (α = 30°, benchmarks.md): sizes from 1 mm to
+// The extremes on the A4 sliding block (α = 30°, benchmarks.md): sizes from 1 mm to
 // 1 km, a 1e-3 sliver, E from 1 MPa to 1 TPa, density 1000 to 5000, φ from 0° to 85°, c up to
 // 1e8 Pa, Δt from 1e-6 to 0.1 s. One list and one evaluation serve the test suite (which asserts)
 // and `ddaslope_accuracy --extremes` (which prints the closed-form errors for docs/accuracy.md).

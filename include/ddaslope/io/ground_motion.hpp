@@ -1,5 +1,5 @@
 #pragma once
-// Ground-motion records (issue #17): a PEER NGA .AT2 file (four header lines, the third naming
+// Ground-motion records: a PEER NGA .AT2 file (four header lines, the third naming
 // the units, the fourth NPTS and DT, then the accelerations in g) or a CSV with a time column
 // and one or two acceleration columns. Every defect is an InputError naming the case and JSON path
 // that referred to the record, the record file and its line.

@@ -1,5 +1,5 @@
 #pragma once
-// Reads a probability study (issue #18, docs/probability.md): a "probability" section in a case
+// Reads a probability study (docs/probability.md): a "probability" section in a case
 // file, or a probability job, a small file naming the case:
 //   {"case": "../../cases/planar_failure.json", "preset": "fast", "probability": {...}}
 // Plain data; calibration/ samples and runs it.

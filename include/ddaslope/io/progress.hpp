@@ -1,5 +1,5 @@
 #pragma once
-// Progress of a long command (issue #19): the searches, sweeps, back-analyses and probability
+// Progress of a long command: the searches, sweeps, back-analyses and probability
 // studies report events (what stage, how many trials of how many, the current bracket or best
 // misfit); ProgressLog shows them on one terminal line and/or writes them as JSON lines for
 // scripts and notebooks (--log-json FILE). Events never reach stdout, so results stay clean.

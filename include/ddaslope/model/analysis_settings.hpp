@@ -83,7 +83,7 @@ struct AnalysisSettings {
   /// 1e-9 of the largest contact force. Larger: fewer open-close iterations on unloaded
   /// contacts, a blunter strength threshold.
   double contactStateTolerance = 1e-12;
-  /// Budget of a run (issue #15): it stops with exit 3, a partial history and a summary saying
+  /// Budget of a run: it stops with exit 3, a partial history and a summary saying
   /// why after this many analysis steps (0: automatic, 100 × duration/Δt + 1000, which only a run
   /// whose Δt has collapsed reaches) or this many seconds of wall time (0: none).
   int maxSteps = 0;
@@ -99,7 +99,7 @@ struct AnalysisSettings {
   /// Stage 3 of the equilibrium (Simulation::bringToEquilibrium): a relaxed state that is not
   /// confirmed at rest at the analysis Δt settles dynamically (kinetic damping) before t = 0, so
   /// the analysis starts at rest. Off: the analysis may start with an out-of-balance force whose
-  /// release slides and softens joints (before issue #14's fix; kept for comparison).
+  /// release slides and softens joints (kept for comparison).
   bool settleDynamically = true;
   /// Largest number of static solves spent on the initial equilibrium.
   int equilibriumMaxSteps = 200;

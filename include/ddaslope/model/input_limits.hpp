@@ -1,7 +1,7 @@
 #pragma once
 // The physical and numerical ranges a case may ask for (docs/case-format.md, "Limits"). Outside
 // them a run would overflow, never end, or answer below the numbers' resolution; the reader and
-// the command line refuse such input with the range, instead of running it (issue #15).
+// the command line refuse such input with the range, instead of running it.
 
 namespace ddaslope::model::limits {
 

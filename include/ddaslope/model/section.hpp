@@ -1,6 +1,6 @@
 #pragma once
 // Blocks from a slope section: the slide mass between the ground and the sliding surface, cut
-// by internal joints, and a fixed base below (issue #5).
+// by internal joints, and a fixed base below.
 #include <string>
 #include <vector>
 

@@ -1,5 +1,5 @@
 #pragma once
-// Uncertain inputs of a case for a probability study (issue #18, docs/probability.md): numbers of
+// Uncertain inputs of a case for a probability study (docs/probability.md): numbers of
 // the case named by their JSON path, each with a distribution, the correlations between them, and
 // how they are sampled and judged. Plain data: io/probability_reader.cpp reads it,
 // calibration/probability.cpp samples it.

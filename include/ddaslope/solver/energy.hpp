@@ -1,5 +1,5 @@
 #pragma once
-// The mechanical energy of a scene, for the energy-balance check (issue #6: no spurious gain).
+// The mechanical energy of a scene, for the energy-balance check: no spurious gain.
 // Friction, the open-close law and the γ = 1 integrator only dissipate, so
 // kinetic + gravity potential + elastic − work of the other loads never rises in a correct run.
 #include <vector>

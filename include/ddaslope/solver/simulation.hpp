@@ -65,7 +65,7 @@ struct RunStatistics {
   double factorEntries = 0;        ///< entries of the Cholesky factor's L, last analysis
   long panelSubstitutions = 0;     ///< substitutions with the factor's panels (rounded or exact)
   double panelBytes = 0;           ///< bytes of the last panels built
-  /// Contact state changes between open-close iterates (issue #16's profile of sudden loading):
+  /// Contact state changes between open-close iterates (the profile of sudden loading, docs/performance.md):
   /// between locked and sliding, and between open and closed (locked or sliding).
   long stickSlipChanges = 0;
   long openCloseChanges = 0;

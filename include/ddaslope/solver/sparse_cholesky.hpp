@@ -87,7 +87,7 @@ class SparseCholesky {
   /// size, the 976-brick quiet wall (`ddaslope_bench --anchor-rows 31`, 0.58 million entries,
   /// 6.9 MB) took 1.75 ms per step with them against 1.26 without (one CG iteration per step), and
   /// the 2047-brick rigid wall (0.36 million) 2.77 against 2.48 ms. From 1.1 million entries
-  /// (13 MB; rigid, 5076 bricks) the rounded panels win (README, *Performance*).
+  /// (13 MB; rigid, 5076 bricks) the rounded panels win (docs/performance.md).
   static constexpr double kPanelMinEntries = 1e6;
 
  private:
