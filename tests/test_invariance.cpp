@@ -356,8 +356,8 @@ TEST(Invariance, RoundedCoordinatesAreStraightWithinTheTouchingTolerance) {
 TEST(Invariance, FactorOfSafetyDoesNotDependOnTheSolverPath) {
   for (const char* name : {"planar_failure.json", "toppling_slope.json", "stepped_toppling.json", "bilinear_slab.json"}) {
     const std::string path = kCases + name;
-    const double small = fos(io::readCase(path, {{"analysis.system_path", 0, std::nullopt, "small"}}));
-    const double large = fos(io::readCase(path, {{"analysis.system_path", 0, std::nullopt, "large"}}));
+    const double small = fos(io::readCase(path, {io::CaseOverride::name("analysis.system_path", "small")}));
+    const double large = fos(io::readCase(path, {io::CaseOverride::name("analysis.system_path", "large")}));
     EXPECT_NEAR(large, small, 0.01 * small) << name;
   }
   model::InclineSpec spec{40, 10, 5, 20, 0, 2000, 10};

@@ -79,7 +79,7 @@ ddaslope::io::CaseOverride parseSetting(const std::string& text) {
     throw ddaslope::InputError("--set", text,
                                "expected json.path=value, e.g. joints.clay.friction_angle=20, "
                                "analysis.settle_dynamically=false or analysis.blocks=rigid");
-  ddaslope::io::CaseOverride o{text.substr(0, eq), 0, std::nullopt, std::nullopt};
+  ddaslope::io::CaseOverride o(text.substr(0, eq), 0);
   const std::string value = text.substr(eq + 1);
   if (value == "true" || value == "false") {
     o.flag = value == "true";

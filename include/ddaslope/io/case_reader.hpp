@@ -2,6 +2,7 @@
 // Reads a case file (JSON, docs/case-format.md) into a Scene. Only this layer sees JSON.
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "ddaslope/model/scene.hpp"
@@ -27,6 +28,18 @@ void checkWorkload(const model::Scene& scene, const std::string& file);
 /// back-analysis varies any case value, and what `--set` does. A number unless `flag` or `text`
 /// is given.
 struct CaseOverride {
+  CaseOverride() = default;
+  CaseOverride(std::string path, double number) : jsonPath(std::move(path)), value(number) {}
+  static CaseOverride boolean(std::string path, bool b) {
+    CaseOverride o(std::move(path), 0);
+    o.flag = b;
+    return o;
+  }
+  static CaseOverride name(std::string path, std::string n) {
+    CaseOverride o(std::move(path), 0);
+    o.text = std::move(n);
+    return o;
+  }
   std::string jsonPath;
   double value = 0;
   std::optional<bool> flag;          ///< a boolean setting (true / false)
