@@ -28,8 +28,8 @@ void addRunOptions(CLI::App* run, std::string& casePath, Overrides& overrides, R
       ->needs(vtk)
       ->check(finiteIn(1e-9, model::limits::kMaxDuration, "an interval in (0, 1e6] s"));
   // One run's contact search and judgement may share the cores (the result does not change). One
-  // by default: measured on the 976- and 2047-brick walls, two threads did not make a step
-  // cheaper (docs/performance.md): a thread started per loop costs what the loop saves.
+  // by default: with the pair cache the work they share is small, and on large walls two threads
+  // did not make a step measurably cheaper (docs/performance.md, "Threads").
   run->add_option("--threads", opt.threads, "threads of the run's contact search and judgement (same result for any)")
       ->capture_default_str()
       ->check(CLI::Range(1, 256));

@@ -23,9 +23,9 @@ bool overlap(const Grown& p, const Grown& q) {
 /// Uniform-grid broad phase: each grown box goes into the cells it covers, and a pair is tested
 /// in the one cell where the lower-left corner of their common cells lies (no pair twice). A
 /// sweep along x alone tests every block of a tall column of blocks against each other: in a
-/// square wall of N bricks, N^1.5 tests (the 2047-brick wall's 0.5 ms per step); the grid tests
-/// each block against its neighbours. Returns false (nothing found) where the grid cannot be built:
-/// boxes that are not finite, which the sweep handles.
+/// square wall of N bricks, N^1.5 tests; the grid tests each block against its neighbours.
+/// Returns false (nothing found) where the grid cannot be built: boxes that are not finite, which
+/// the sweep handles.
 bool gridPairs(const std::vector<geometry::Aabb>& boxes, const std::vector<bool>& fixed, double margin,
                std::vector<BlockPair>& found) {
   const size_t n = boxes.size();

@@ -611,7 +611,7 @@ void checkWorkload(const model::Scene& s, const std::string& file) {
       << " steps, more than the 1e7 a run may take: shorten analysis.duration or lengthen the time step";
     throw InputError(file, "analysis.duration", m.str());
   }
-  // About 10 µs per block and step (the 1000-block wall: 8.5 ms per step, bench/): 1e10 is a day.
+  // About 10 µs per block and step on one core (docs/performance.md): 1e10 is a day.
   const double work = steps * static_cast<double>(s.blocks.size());
   if (!(work <= 1e10)) {
     m << steps << " steps of " << s.blocks.size() << " blocks (" << work

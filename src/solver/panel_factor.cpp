@@ -127,19 +127,17 @@ using detail::PanelArrays;
 using detail::triangleRowOffset;
 
 /// How far ahead of the substitutions' reading a large factor's entries are asked for
-/// (Prefetch). build/ddaslope_substitution_bench at 19 951 bricks, AVX (2026-11-25), before the
-/// chunked back pass: medians of 11.0–11.2 ms at 1 KB, 11.1–11.3 at 2 KB, 10.7–11.3 at 4 KB;
-/// within each other's spread, the largest kept (the most time for a miss to arrive). The
-/// kernels tell the prefetcher where they are once per four rows forward and once per chunk
-/// backward, so a wide panel's look-ahead runs up to a group or chunk further (20 and 81 KB at the
-/// widest, 1272 columns).
+/// (Prefetch). Look-aheads of 1, 2 and 4 KB timed within each other's spread on a factor many
+/// times the cache; the largest is kept (the most time for a miss to arrive; docs/performance.md,
+/// "Measurements behind the solver's constants"). The kernels tell the prefetcher where they are
+/// once per four rows forward and once per chunk backward, so a wide panel's look-ahead runs up
+/// to a group or chunk further.
 constexpr std::size_t kPrefetchAheadBytes = 4096;
 /// Rows per chunk of the back substitution's column sums (transposedProduct): a chunk of a wide
-/// panel is read from memory once and then from L1 for each sixteen columns, where whole panels
-/// (up to megabytes at 19 951 bricks) were read from L2 or memory once per sixteen columns. The
-/// same bench: medians of 9.7–10.4 ms with 8 rows, 10.1–10.3 with 16, 10.4–10.6 with 32,
-/// 10.7–11.2 unchunked. 8 and 16 within each other's spread: 16 carries the sums through memory
-/// half as often.
+/// panel is read from memory once and then from L1 for each sixteen columns, where a whole panel
+/// (up to megabytes in a large factor) would be read from L2 or memory once per sixteen columns.
+/// Chunks of 8 and 16 rows timed within each other's spread, ahead of 32 rows and of no chunks
+/// (docs/performance.md): 16 carries the sums through memory half as often as 8.
 constexpr int kBackChunkRows = 16;
 
 namespace portable {

@@ -29,16 +29,16 @@ using contact::ContactState;
 
 namespace {
 
-/// Springs changed at once beyond which a new factorisation is cheaper than following them.
-/// Measured on a 3000-brick wall (18 000 unknowns): 0.24 ms per column against 260 ms per
-/// factorisation, a break-even near 1100; its equilibrium took 28.5 s with a limit of 400, 21.6 s
-/// with 800, 22.8 s with none, and 55.8 s refactorising every change.
+/// Springs changed at once beyond which a new factorisation is cheaper than following them. Each
+/// changed spring is one column of update/downdate; on a large wall about a thousand columns cost
+/// one factorisation, and a limit a little below that break-even settled the wall fastest
+/// (docs/performance.md, "Measurements behind the solver's constants").
 constexpr size_t kMaxFactorModificationRank = 800;
 /// CG iterations with a stale factor before a large system refactorises (see tryStep).
 constexpr int kLargeSystemCgIterations = 4;
-// Relative residual to which a large system solves while its contact states change (tryStep):
-// one CG iteration with a factor that follows the states (1e-4 → 2e-9 in the 976-brick wall
-// under sudden gravity), against two for the full 1e-12.
+// Relative residual to which a large system solves while its contact states change (tryStep; the
+// states are judged again on the next solution): one CG iteration with a factor that follows the
+// states reaches it, against two for the full 1e-12.
 constexpr double kJudgingResidual = 1e-8;
 /// Stage 3's budget, in steps per analysis.equilibrium_max_steps (200 by default: 4000 steps).
 constexpr int kSettlingStepsPerEquilibriumStep = 20;
@@ -59,8 +59,8 @@ class Stopwatch {
 
 // The step's contact kinematics, edited in place by one attempt and restored when it ends. A
 // contact that locks within the attempt re-anchors its shear spring (its kinematics change); a
-// cut Δt retries from the step's own. A copy of them all per attempt moved 2 MB at 976 bricks
-// (4 MB at 2047) for the few contacts that lock.
+// cut Δt retries from the step's own. A copy of them all per attempt would move every contact's
+// kinematics (megabytes in a large wall) for the few contacts that lock.
 class AttemptKinematics {
  public:
   explicit AttemptKinematics(std::vector<assembly::ContactKinematics>& step) : step_(step) {}
@@ -322,22 +322,20 @@ double Simulation::slidingResistance(const Contact& c) const {
 }
 
 std::vector<double> Simulation::slidingFriction(const std::vector<Contact>& cs) const {
-  // Why the ends of a sliding edge share its friction equally. Each end's own N tan φ makes the
-  // friction follow the difference of the two normal forces, which the block's rotation and shear
-  // strain set, and that difference stretches a deformable block along the edge (Poisson's ratio
-  // turns the stretch into a normal squeeze, which changes the normal forces again). This
-  // non-symmetric coupling is a flutter instability of steady sliding. A 10 x 10 m block on a 40°
-  // plane with ν = 0.25 and φ = 39.9° grows oscillations at 69/s and walks down the slope like an
-  // inchworm: 0.28 m in 2 s against the closed form's 0.0455 m (docs/accuracy.md, "Friction
-  // flutter"). Spread evenly, the friction depends on the sum of the normal forces only and the
-  // loop is cut. The two ends' forces lie on the edge, so a rigid block's motion is the same either
-  // way; only a deformable block's stretch along the edge, ∫ x τ dx, loses the friction gradient.
-  // Only deformable blocks under the edge treatment share. There the pair is one contact judged
-  // against the strength of the whole; the vertex treatment (original DDA) judges each end against
-  // its own strength, which must then be the friction it meets. Rigid blocks have no strain for
-  // the loop to run through (they do not flutter), and keep per-end friction: a pair that sticks
-  // keeps the shear it slid with, and a shared half on a heel that then lifts would drop half the
-  // edge's friction at once (the toppling slope's rigid F fell from 0.891 to 0.784 so).
+  // The ends of a sliding edge share its friction equally. With each end's own N tan φ the friction
+  // follows the difference of the normal forces, which the block's rotation and shear strain set;
+  // that difference stretches a deformable block along the edge, and Poisson's ratio turns the
+  // stretch into a normal squeeze that changes the normal forces again. This non-symmetric coupling
+  // is a flutter instability of steady sliding, which walks a block down a slope it should creep
+  // along (docs/accuracy.md, "Strain damping and friction flutter"). Shared, the friction depends
+  // on the sum of the normal forces only and the loop is cut; both forces lie on the edge, so a
+  // rigid block moves the same either way, and only a deformable block's stretch along the edge,
+  // ∫ x τ dx, loses the friction gradient. Only deformable blocks under the edge treatment share,
+  // where the pair is one contact judged against the whole edge's strength: the vertex treatment
+  // (original DDA) judges each end against its own, which must then be the friction it meets.
+  // Rigid blocks do not flutter (no strain for the loop to run through) and keep per-end friction:
+  // a pair that sticks keeps the shear it slid with, and a shared half on a heel that then lifts
+  // would drop half the edge's friction at once.
   std::vector<double> friction(cs.size(), 0.0);
   for (size_t q = 0; q < cs.size(); ++q)
     if (cs[q].state == ContactState::Sliding) friction[q] = slidingResistance(cs[q]);
@@ -474,12 +472,13 @@ Simulation::Attempt Simulation::tryStep(double dt, Regime regime, bool freezeCyc
   // its law; the states cycle (open → locked → sliding → open, period 2-4) and cutting Δt does
   // not end it. Holding such a contact in its state is an error in its law; it is accepted
   // early (before any cut) only while that error is below this fraction of the largest contact
-  // force of the iterate (violation() below). (Shi's DDA lets every contact stay closed up to a
-  // separation of 2e-7·w0: in a 203-brick wall, w0 = 5 m, a tension of 1e5 N where the largest
-  // force is 1.8e5 N.) A hold must not anchor a block either: a locked contact kept closed in
-  // tension counts its whole shear (its strength is nil), or a block sliding on a plane is held
-  // by its unloaded heel and topples (BenchmarkA7). Contacts whose law a hold would break by
-  // more still cut Δt, and are frozen unconditionally only after two cuts, as before.
+  // force of the iterate (violation() below). (Shi's DDA keeps every contact closed up to a
+  // separation of 2e-7·w0, so that a contact can carry a tension of the order of the largest
+  // contact force: docs/performance.md, "Known limitations".) A hold must not anchor a block
+  // either: a locked contact kept closed in tension counts its whole shear (its strength is nil),
+  // or a block sliding on a plane is held by its unloaded heel and topples (BenchmarkA7). Contacts
+  // whose law a hold would break by more still cut Δt, and are frozen unconditionally only after
+  // two cuts.
   constexpr double kHeldViolation = 1e-2;
   std::vector<int> flips(a.contacts.size(), 0);
   // Round-off guard: the larger of the penalty force of a round-off displacement and 1e-9 of the
@@ -495,11 +494,10 @@ Simulation::Attempt Simulation::tryStep(double dt, Regime regime, bool freezeCyc
   StateCycleDetector cycles;
   // A large system's factor follows the contact state changes by low-rank update/downdate
   // (solver/factor_springs.hpp) instead of being redone; small systems refactorise, which is
-  // cheap there and keeps their results as they were.
+  // cheap there and keeps the round-off that the shipped cases' documented results carry.
   const bool followFactor = factorFollowing_ && largeSystem();
-  // Nested dissection orders a large wall's factor with less fill (1.45 against AMD's 1.55
-  // million nonzeros at 2047 bricks) and a shallower tree, whose paths each update/downdate of a
-  // spring walks. Small systems keep AMD, and their round-off.
+  // Nested dissection orders a large wall's factor with less fill than AMD and a shallower tree,
+  // whose paths each update/downdate of a spring walks. Small systems keep AMD, and their round-off.
   linearSolver_.setOrdering(followFactor ? FillOrdering::NestedDissection : FillOrdering::MinimumDegree);
   linearSolver_.setSimplicialSolves(followFactor);
   linearSolver_.setPanelSolves(followFactor && panelSolves_);
@@ -508,19 +506,19 @@ Simulation::Attempt Simulation::tryStep(double dt, Regime regime, bool freezeCyc
   const AssembledSystem assembledSystem(matrix_);
   const SystemOperator& system = followFactor ? static_cast<const SystemOperator&>(lazySystem) : assembledSystem;
   // The right-hand side is a sum of forces that nearly cancel in a scene at rest (weights against
-  // contact preloads and stresses: 3e7 N of terms for a 0.2 N sum in a 2047-brick wall), so it is
-  // known only to the round-off of those terms. A large system's solve stops there instead of at
-  // a residual 1e-12 of the sum, which only conjugate-gradient iterations on round-off reached
-  // (one per step from 2000 bricks up). Small systems keep the strict rule and their results.
+  // contact preloads and stresses: in a large wall the terms are some eight orders of magnitude
+  // above their sum), so it is known only to the round-off of those terms. A large system's solve
+  // stops there instead of at a residual 1e-12 of the sum, which only conjugate-gradient
+  // iterations on round-off would reach. Small systems keep the strict rule and their results.
   const bool residualAtRoundOff = followFactor;
-  // With that looser target a factor far from K (an equilibrium's, 7 iterations per step in the
-  // 976-brick rigid wall) would converge within the 8 iterations that used to fail and send it
-  // back to a factorisation, and stay in use. A near-exact factor (one that follows the states)
-  // converges in 0-3: a large system redoes a factor that needs more than 4.
+  // With that looser target a factor far from K (an equilibrium's) would converge within the
+  // small systems' budget of CG iterations, which it misses at the strict target (and is then
+  // redone), and stay in use at several iterations per step. A near-exact factor (one that follows
+  // the states) converges in 0-3: a large system redoes a factor that needs more than 4.
   linearSolver_.setMaxIterations(followFactor ? kLargeSystemCgIterations : LinearSolverSettings{}.maxIterations);
   // A factor made for other block terms (the equilibrium's static steps, without strain damping,
-  // at the analysis Δt) stays within CG's budget at 3 iterations per step for the whole run (the
-  // 495-brick wall): it is redone at once instead.
+  // at the analysis Δt) would stay within CG's budget at a few iterations per step for the whole
+  // run: it is redone at once instead.
   const FactorBlockTerms blockTerms{dt, (regime == Regime::Analysis || regime == Regime::Settling) &&
                                             scene_.settings.mode == model::AnalysisMode::Dynamic};
   if (followFactor && linearSolver_.hasFactor() && !blockTerms.sameAs(factorBlockTerms_)) {
@@ -560,8 +558,8 @@ Simulation::Attempt Simulation::tryStep(double dt, Regime regime, bool freezeCyc
       addForce(c, s, v);
       if (residualAtRoundOff) addMagnitude(c, s, v);
     };
-    // K's springs and b's contact terms in one pass over the contacts (read from memory, not
-    // the cache, at 20 000 blocks), each in the contacts' order as before.
+    // K's springs and b's contact terms in one pass over the contacts (a large scene's contacts
+    // are read from memory, not the cache), each summed in the contacts' order.
     const std::vector<double> friction = slidingFriction(a.contacts);
     for (size_t q = 0; q < a.contacts.size(); ++q) {
       const Contact& c = a.contacts[q];
@@ -580,8 +578,8 @@ Simulation::Attempt Simulation::tryStep(double dt, Regime regime, bool freezeCyc
         addTerm(c, -c.slideDirection * friction[q], kin[q].shearStep());
       }
     }
-    // A large system assembles K only if a factorisation asks for it; a small one at once,
-    // which keeps its products (and results) as they were.
+    // A large system assembles K only if a factorisation asks for it; a small one at once, and
+    // multiplies by the assembled K, whose round-off the shipped cases' documented results carry.
     if (stiffnessChanged) {
       if (followFactor)
         lazySystem.changed();
@@ -915,12 +913,11 @@ bool Simulation::settleDynamically() {
   const int budget = kSettlingStepsPerEquilibriumStep * scene_.settings.equilibriumMaxSteps;
   const bool dynamic = scene_.settings.mode == model::AnalysisMode::Dynamic;
   // Releasing the held contacts sets a large scene ringing as a sudden load does, and its
-  // lightly loaded contacts cycle at any Δt: settling the 5076-brick wall from every contact
-  // held cut Δt 88 times in its first 62 steps, down to 9e-5 s. A large system holds a contact
-  // whose cycling breaks its law by little, as its analysis steps do (tryStep, kHeldViolation):
-  // the same wall then settles in 143 steps without a cut. A step that held one never confirms
-  // rest. Small systems and static analyses keep the strict rule: in a throwaway trial, holding
-  // moved the planar multi-block slide's critical cohesion from 116.8 to 118.4 kPa.
+  // lightly loaded contacts cycle at any Δt, so that the settling cuts Δt again and again. A large
+  // system holds a contact whose cycling breaks its law by little, as its analysis steps do
+  // (tryStep, kHeldViolation), and settles without those cuts. A step that held one never
+  // confirms rest. Small systems and static analyses keep the strict rule: held contacts moved a
+  // slope at its strength to another verdict (docs/performance.md, "Tried and dropped").
   const bool holdSmallViolations = largeSystem() && dynamic;
   // The travel of stage 2 counts: the two stages together may not move like a failing scene.
   double travel = relaxationTravel_, lastKinetic = 0;
@@ -1135,15 +1132,14 @@ void Simulation::bringToEquilibrium(const HeldEquilibrium* shared) {
     const model::Scene heldScene = scene_;
     const contact::ContactSet heldContacts = contacts_;
     // A large system settles dynamically (stage 3) straight from stage 1's state. Each static
-    // step of stage 2 costs a factorisation per open-close iteration (17-30 of them per step, Δt
-    // changing), and a static step cannot settle a contact held at its friction limit: its
-    // inertia is only a regulariser (1e-8 of the contact stiffness), so a block whose driving
-    // force its friction just balances is all but free. The 19 951-brick wall's relaxation
-    // reached 2e-6 g in 15 static steps of about a minute each, then its top rows crept 0.1-0.5
-    // mm a step until one brick slid 15 m in one; the 5076-brick wall took 76 s to settle so,
-    // 24 s straight from stage 1. Small systems keep stage 2: their steps are cheap, and the
-    // shipped cases' figures were made with it. So does a static analysis, whose stage 3 has no
-    // kinetic damping. Should stage 3 fail, the analysis starts from stage 1's state.
+    // step of stage 2 costs a factorisation per open-close iteration (Δt changing, and a large
+    // scene's steps take tens of iterations), and a static step cannot settle a contact held at
+    // its friction limit: its inertia is only a regulariser (1e-8 of the contact stiffness), so a
+    // block whose driving force its friction just balances is all but free, and a large wall
+    // creeps under the relaxation instead of coming to rest. Small systems keep stage 2: their
+    // steps are cheap, and the shipped cases' figures were made with it. So does a static
+    // analysis, whose stage 3 has no kinetic damping. Should stage 3 fail, the analysis starts
+    // from stage 1's state.
     const bool skipStaticRelaxation = scene_.settings.settleDynamically && largeSystem() &&
                                       scene_.settings.mode == model::AnalysisMode::Dynamic;
     Rest rest = Rest::Unsettled;
@@ -1255,7 +1251,7 @@ StepRecord Simulation::advance() {
       time_ = (dt == remaining) ? scene_.settings.duration : time_ + dt;
       // A step accepted only by freezing cycling contacts was not cured by its cuts: the next
       // starts from the Δt before them, or a cycle met at rest would shrink Δt step after step
-      // without end (it reached 1e-9 s in the Vajont trigger run).
+      // without end.
       stepSize_.accepted(dt, cuts > 0 && !a.frozeContacts);
       ++stats_.steps;
       stats_.cuts += cuts;

@@ -3,34 +3,33 @@
 // solves a large quiet run makes with one factor.
 //
 // Why: a large system's step is one forward and back substitution, which streams the whole
-// factor, and the factor of the 2047-brick wall (1.45 million entries, 17.4 MB with CHOLMOD's row
-// indices) no longer stays in the cache between steps. The bench's --probe-solve-cache measures
-// it: each substitution takes 2.4–3.1 ms as the steps run, 1.5–2.0 ms repeated at once, while the
-// 976-brick factor (6.9 MB) takes 0.34 and 0.29. A panel stores one row pattern for a run of
-// columns that share it (a block's unknowns are coupled to the same blocks) and the run's
-// entries in single precision: 4 bytes per entry instead of 12, so the 2047-brick factor takes
-// 6.3 MB and stays in the cache (1.0 ms per substitution). The solve accumulates in double
-// precision; D stays in double. The factor is then that of a matrix within about 1e-7 of K, which
-// makes it a preconditioner, not a solver: conjugate gradients (linear_solver.hpp) check every
-// solution against K itself and iterate to the same tolerance as before (0.07 iterations per
-// quiet step at 2047 bricks, one where the smaller 976-brick factor is used: hence the size
-// threshold, SparseCholesky::kPanelMinEntries).
+// factor, and from about a million entries (12 bytes each with CHOLMOD's row indices) the rest of
+// a step pushes the factor out of the cache before the next one: a substitution as the steps run
+// then takes markedly longer than one repeated at once (the bench's --probe-solve-cache times
+// both; docs/performance.md). A panel stores one row pattern for a run of columns that share it
+// (a block's unknowns are coupled to the same blocks) and the run's entries in single precision:
+// 4 bytes per entry instead of 12: a third of the bytes to stream, so that a factor just too
+// large for the cache fits it again. The solve accumulates in double precision; D stays in
+// double. The factor is then that of a matrix within about 1e-7 of K, which makes it a
+// preconditioner, not a solver: conjugate gradients (linear_solver.hpp) check every solution
+// against K itself and iterate to the same tolerance as with the exact factor. On a large factor
+// that costs a CG iteration now and then; on a smaller one, which stays in the cache anyway, one
+// per step: hence the size threshold, SparseCholesky::kPanelMinEntries.
 //
 // The substitutions (src/solver/panel_kernels.inc) sum in four double-precision lanes with
 // several sums in flight: four rows at a time forward, sixteen columns per pass over a panel's
 // rows backward, four triangle rows per update. A sum split into lanes rounds differently from one
 // summed in order, but the split is fixed, so the solve is deterministic. The kernels are compiled
 // twice, for SSE2 (every x86-64 processor) and for AVX (chosen where the processor has it, without
-// FMA): both split the same way and return the same bits (tests/test_panel_factor.cpp). The
-// bench's --probe-solve-cache, one substitution as the steps run (repeated at once):
-//   2047 bricks: 1.40–1.61 (1.21–1.34) ms in order, 1.15–1.25 (0.83–0.88) SSE2, 0.75–0.92 (0.52–0.63) AVX
-//   5076 bricks: 6.0 (6.0) ms in order, 3.7–5.0 (3.0–4.7) SSE2, 3.2–3.9 (2.7–3.6) AVX
-// The rest is waiting for memory. A factor larger than the cache is laid out so that each pass
-// reads its entries as one run (PanelArrays: the back substitution forward through them, the
-// forward substitution back) and asked for a few kilobytes ahead of the reading (Prefetch): the
-// hardware prefetcher alone followed neither the back substitution's panels, read back to front
-// (it took 1.7 times the forward pass in a perf profile of the 19 951-brick step), nor a wide
-// panel's rows. build/ddaslope_substitution_bench times one substitution of the wall's factor.
+// FMA): both split the same way and return the same bits (tests/test_panel_factor.cpp). Lanes
+// make a substitution faster than one summed in order, AVX faster than SSE2 (docs/performance.md,
+// "Measurements behind the solver's constants"); the rest is waiting for memory. A factor larger
+// than the cache is laid out so that each pass reads its entries as one run (PanelArrays: the
+// back substitution forward through them, the forward substitution back) and asked for a few
+// kilobytes ahead of the reading (Prefetch): the hardware prefetcher alone followed neither the
+// back substitution's panels, read back to front (the back pass then cost well over the forward
+// one), nor a wide panel's rows. build/ddaslope_substitution_bench times one substitution of the
+// wall's factor.
 
 #include <vector>
 
@@ -121,14 +120,13 @@ class PanelFactor {
   /// The same bits either way.
   enum class Prefetch { Auto, Always, Never };
   void setPrefetch(Prefetch p) { prefetch_ = p; }
-  /// Entries from which a factor is taken to be read from memory in a step, not from the cache.
-  /// Measured with build/ddaslope_substitution_bench (medians of 20, AVX, prefetch off → on; the
-  /// bench's back-to-back solves find a factor smaller than the cache warm, 2026-11-25 04:50 UTC):
-  /// the 2047-brick factor's 5.8 MB lose (0.32 → 0.37 ms per substitution), the 5076-brick
-  /// 17.6 MB break even there (1.09 → 1.11 ms) and gain in a step, where the contacts' arrays
-  /// share the cache (the prefetch's first form: 1.9 → 1.6 ms), 19 951 bricks' 90 MB gain most
-  /// (12.8 → 9.1 ms). The threshold lies between the first two, at half the 32 MB last-level
-  /// cache of the machine measured.
+  /// Bytes of entries from which a factor is taken to be read from memory in a step, not from
+  /// the cache. Asking ahead slows a factor well within the cache; one about half the cache breaks
+  /// even in back-to-back solves (which find a factor smaller than the cache warm) and gains in a
+  /// step, where the contacts' arrays share the cache; one many times the cache gains most
+  /// (build/ddaslope_substitution_bench times each with and without; docs/performance.md,
+  /// "Measurements behind the solver's constants"). The threshold lies between the first two, at
+  /// half the 32 MB last-level cache of the machine measured.
   static constexpr double kPrefetchMinBytes = 16e6;
   /// Bytes of L's entries.
   double entryBytes() const;

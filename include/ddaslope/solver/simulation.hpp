@@ -137,17 +137,20 @@ class Simulation {
   Vec2 monitorVelocity(int m) const;
   /// Receives one line per equilibrium step and per Δt cut (diagnostics; off by default).
   void setLog(std::function<void(const std::string&)> log) { log_ = std::move(log); }
-  /// Off: every contact state change of a large system refactorises, as before the factor
-  /// followed them by update/downdate (for comparisons: the bench, the tests).
+  /// On (the default): a large system's factor follows its contact state changes by
+  /// update/downdate. Off: a large system's steps solve as a small system's do (tryStep), every
+  /// such change refactorising, for comparisons in the bench (--refactorise-only) and the tests.
   void setFactorFollowing(bool on) { factorFollowing_ = on; }
-  /// Off: every block pair's contacts are searched at every detection, as before the pair cache
-  /// (contact/pair_cache.hpp) reused them (for comparisons: the bench, the tests).
+  /// On (the default): a block pair's narrow-phase decisions are reused while its blocks move less
+  /// than the search certified (contact/pair_cache.hpp). Off: every pair is searched at every
+  /// detection, for comparisons in the bench (--no-pair-cache) and the tests.
   void setPairCache(bool on) { pairCacheOn_ = on; }
   /// Diagnostics: each solve's first substitution also repeated at once and both timed
   /// (LinearSolver::setCacheProbe; RunStatistics::probe*). The run is unchanged.
   void setSolveCacheProbe(bool on) { linearSolver_.setCacheProbe(on); }
-  /// Off: large systems substitute with CHOLMOD's double-precision factor only, as before the
-  /// panels, rounded or exact (solver/panel_factor.hpp; for comparisons: the bench, the tests).
+  /// On (the default): large systems substitute with the factor's panels, rounded or exact, once
+  /// they pay (solver/panel_factor.hpp). Off: with CHOLMOD's double-precision factor only, for
+  /// comparisons in the bench (--double-factor-only) and the tests.
   void setPanelSolves(bool on) { panelSolves_ = on; }
   /// Threads this run's contact search, linearisation and contact judgement may use (1 by
   /// default: a search runs its forward runs side by side instead). The result does not depend

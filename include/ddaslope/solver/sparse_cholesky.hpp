@@ -46,7 +46,8 @@ class SparseCholesky {
   void setOrdering(FillOrdering o);
   /// Solve with a simplicial LDLᵀ copy of each new factor (the form update/downdate needs
   /// anyway) instead of the supernodal factor: with Debian's reference BLAS its single
-  /// right-hand-side solve is a third faster (0.79 against 1.19 ms at 5856 unknowns).
+  /// right-hand-side solve is faster (docs/performance.md, "Measurements behind the solver's
+  /// constants").
   void setSimplicialSolves(bool on) { simplicialSolves_ = on; }
   /// With simplicial solves: once the factor (as last modified) has served kSolvesBeforePanels
   /// solves (kSolvesBeforeRoundedPanels for rounded panels), substitute with its panels (solver/panel_factor.hpp) instead: from kPanelMinEntries
@@ -73,21 +74,16 @@ class SparseCholesky {
   static constexpr int kSolvesBeforePanels = 8;
   /// The same for rounded panels (factors of kPanelMinEntries and more, read from memory): the
   /// regrouping costs about two of CHOLMOD's double-precision substitutions and each substitution
-  /// through the panels saves four fifths of one, so they pay after 2.2–2.5 solves
-  /// (build/ddaslope_substitution_bench, 2026-11-25: regrouping 4.8 / 20 / 89 ms, CHOLMOD 9.5 / 45
-  /// ms, panels 1.3 / 9.5 ms at 5076 / 19 951 bricks; at 2047 CHOLMOD's 2.4–3.1 ms in a step, from
-  /// ddaslope_bench --probe-solve-cache, against the panels' 0.35–0.5). The
-  /// 19 951-brick wall's first 100 steps after its equilibrium solved in 14.6 ms per step against
-  /// 15.7 with 8; gravity at step 1 on 2047 bricks took 21.0–22.4 s with 2 against 22.1–22.2 with
-  /// 8, interleaved (3 was not run interleaved with 8). (Exact panels keep 8: with 2, that start on
-  /// 976 bricks took 4.28–4.64 s against 4.10–4.22, its factors changing after a few solves each.)
+  /// through the panels saves four fifths of one, so they pay after two to three solves
+  /// (build/ddaslope_substitution_bench times both). Exact panels keep kSolvesBeforePanels: under
+  /// a sudden start smaller factors change after a few solves each, and regrouping them after two
+  /// made that start slower (docs/performance.md, "Measurements behind the solver's constants").
   static constexpr int kSolvesBeforeRoundedPanels = 3;
   /// Smaller factors stay in the cache from one step to the next, where exact panels are solved
-  /// as fast and need no conjugate-gradient iteration. In a build that rounded panels at every
-  /// size, the 976-brick quiet wall (`ddaslope_bench --anchor-rows 31`, 0.58 million entries,
-  /// 6.9 MB) took 1.75 ms per step with them against 1.26 without (one CG iteration per step), and
-  /// the 2047-brick rigid wall (0.36 million) 2.77 against 2.48 ms. From 1.1 million entries
-  /// (13 MB; rigid, 5076 bricks) the rounded panels win (docs/performance.md).
+  /// as fast and need no conjugate-gradient iteration: rounded panels made the quiet walls with
+  /// factors under a million entries slower (one CG iteration per step), and won from the
+  /// smallest factor measured above it (docs/performance.md, "Measurements behind the solver's
+  /// constants").
   static constexpr double kPanelMinEntries = 1e6;
 
  private:

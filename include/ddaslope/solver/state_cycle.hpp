@@ -3,11 +3,11 @@
 // contact states: once the states of all contacts repeat with a period P (a contact that opens
 // under the solution with it closed and closes under the one with it open, or load passed around
 // a ring of contacts at the friction limit), the remaining iterations only retrace the cycle
-// and the step will be cut at the iteration limit anyway. Seen on a 2000-brick wall: periods
-// 2 and 4 reached by iteration 6-9 of 30, two thirds of its open-close work. Three full repeats
-// are required: in the Vajont run-out, 2597 cycles so detected all ran to the limit, while with
-// two repeats 1 of 2644 broke out and converged (the state vector is not the whole iteration
-// state: normal forces and lock positions ride along).
+// and the step will be cut at the iteration limit anyway. Cycles of short period set in within
+// the first third of the iterations allowed: stopping them saves most of the work they would cost.
+// Three full repeats are required: after two, a cycle can still, rarely, break out and converge
+// (the state vector is not the whole iteration state: normal forces and lock positions ride
+// along); docs/performance.md, "Measurements behind the solver's constants", has the counts.
 #include <cstdint>
 #include <deque>
 #include <vector>
