@@ -20,8 +20,8 @@ namespace {
 using nlohmann::json;
 using model::DistributionKind;
 
-/// A study of more samples than this is refused: a million forward runs is weeks of one core
-/// even at 4 ms each, and a Latin hypercube keeps N integers per input.
+/// A study of more samples than this is refused: a million forward runs of a real slope (seconds
+/// each) is weeks of one core, and a Latin hypercube keeps N integers per input.
 constexpr long long kMaxSamples = 1000000;
 /// A truncated normal keeping less of its normal than this has bounds far out in a tail: almost
 /// surely a unit slip (kPa for Pa).
