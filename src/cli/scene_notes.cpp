@@ -1,0 +1,175 @@
+#include "scene_notes.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+#include "ddaslope/geometry/polygon.hpp"
+#include "ddaslope/io/ground_motion.hpp"
+#include "ddaslope/model/kinks.hpp"
+
+namespace ddaslope::cli {
+namespace {
+
+/// Whether point p of block `own` lies on or near (1e-3 w0) the outline of another block.
+bool touchesAnotherBlock(const ddaslope::model::Scene& scene, const ddaslope::model::Block& own, const ddaslope::Vec2& p) {
+  const double near = 1e-3 * scene.modelHalfSize();
+  for (const auto& b : scene.blocks) {
+    if (&b == &own || (b.fixed && own.fixed)) continue;
+    for (size_t k = 0; k < b.vertices.size(); ++k)
+      if (ddaslope::geometry::distanceToSegment(p, b.vertices[k], b.vertices[(k + 1) % b.vertices.size()], nullptr) <= near)
+        return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+/// A note per concave kink of the sliding surface with a block on it: there the block model leans on
+/// a corner that limit-equilibrium slices cannot, so their critical strengths differ.
+void printKinkNotes(const ddaslope::model::Scene& scene) {
+  const double failure = scene.settings.failureDisplacement > 0 ? scene.settings.failureDisplacement
+                                                                 : 1e-3 * scene.modelHalfSize();
+  const double near = 1e-6 * scene.modelHalfSize();
+  for (const auto& m : scene.movedJointEnds)
+    std::printf("  outlines: the joint between %s and %s ended on a concave bend of %s at (%g, %g); it is moved %.3g m up "
+                "the upper face%s, so that %s owns the bend and %s slides on without a corner in the notch "
+                "(docs/research/bilinear-slab.md; analysis.joint_end_offset 0 keeps it where it was drawn)\n",
+                scene.blocks[m.upper].id.c_str(), scene.blocks[m.lower].id.c_str(), scene.blocks[m.fixedBlock].id.c_str(),
+                m.kink.x() + scene.origin.x(), m.kink.y() + scene.origin.y(), m.shift.norm(),
+                m.parallel ? ", parallel to itself" : ", turning about its other end", scene.blocks[m.lower].id.c_str(),
+                scene.blocks[m.upper].id.c_str());
+  for (const auto& k : ddaslope::model::concaveKinksUnderBlocks(scene)) {
+    if (std::any_of(scene.movedJointEnds.begin(), scene.movedJointEnds.end(),
+                    [&](const auto& m) { return (m.kink - k.point).norm() <= near; }))
+      continue;
+    std::printf("  note: the surface of %s bends up by %.1f° at (%g, %g), where a block reaching %.3g m up the slope "
+                "has a corner. ",
+                scene.blocks[k.fixedBlock].id.c_str(), k.bendDeg, k.point.x() + scene.origin.x(),
+                k.point.y() + scene.origin.y(), k.upslopeReach);
+    if (k.upslopeReach <= failure)
+      std::printf("That is no more than the verdict's failure displacement (%.3g m): a slide can squeeze the block out "
+                  "and rest on the next corner without being called failing. Make it wider (docs/case-format.md, "
+                  "\"Kink blocks\")\n", failure);
+    else if (k.upslopeReach < 0.1 * k.reachingBlockHeight)
+      std::printf("A block that thin (a kink block) leans on it little (docs/calibration.md, \"The chair-shaped "
+                  "slide\")\n");
+    else if (k.blocksWithCorner >= 2)
+      std::printf("%d blocks meet there: a joint ends on the bend, so the block above has its corner in the notch and "
+                  "touches both faces. It cannot slide on along the upper face without lifting or bending, which a DDA "
+                  "block (uniform strain) cannot do, and F may then follow the contact stiffness: compare "
+                  "analysis.penalty_factor 10-2000 and the blocks' own bound (scripts/block_equilibrium.py). The reader "
+                  "moves such a joint up the upper face where one block lies on each face (analysis.joint_end_offset, "
+                  "here 0 or not possible); a kink block would make another block system (docs/research/bilinear-slab.md)\n",
+                  k.blocksWithCorner);
+    else
+      std::printf("The block may lean on that corner, which limit-equilibrium slices cannot, with a force its width "
+                  "sets. On a kink inside the sliding surface a thin block there (section.kink_block_width) takes "
+                  "most of that away (docs/calibration.md, \"The chair-shaped slide\"; scripts/block_equilibrium.py "
+                  "gives these blocks' own bound)\n");
+  }
+}
+
+/// The vertices the reader kept that bend a face touching another block by less than the
+/// edge-parallel tolerance: the face then meets its neighbour as two contacts judged apart. Empty
+/// if none.
+std::string slightBendNote(const ddaslope::model::Scene& scene) {
+  int slight = 0;
+  double offLine = 0;
+  std::string first;
+  for (const auto& b : scene.blocks) {
+    const size_t n = b.vertices.size();
+    for (size_t k = 0; k < n; ++k) {
+      const ddaslope::Vec2 in = b.vertices[k] - b.vertices[(k + n - 1) % n], out = b.vertices[(k + 1) % n] - b.vertices[k];
+      const double turnDeg = std::abs(std::atan2(ddaslope::cross(in, out), in.dot(out))) * 180 / M_PI;
+      if (turnDeg >= scene.settings.edgeParallelToleranceDeg || !touchesAnotherBlock(scene, b, b.vertices[k])) continue;
+      // How far it lies off its neighbours' chord: the gap initial_contact_tolerance would have to
+      // count as touching for the reader to take it as on the line.
+      const ddaslope::Vec2 chord = b.vertices[(k + 1) % n] - b.vertices[(k + n - 1) % n];
+      offLine = std::max(offLine, std::abs(ddaslope::cross(chord, b.vertices[k] - b.vertices[(k + n - 1) % n])) / chord.norm());
+      if (slight++ == 0) {
+        char where[160];
+        std::snprintf(where, sizeof where, "block %s at (%g, %g), %.3g°", b.id.c_str(),
+                      b.vertices[k].x() + scene.origin.x(), b.vertices[k].y() + scene.origin.y(), turnDeg);
+        first = where;
+      }
+    }
+  }
+  if (slight == 0) return "";
+  std::ostringstream m;
+  m << slight << " vertices bend their block's outline by less than the edge-parallel tolerance ("
+    << scene.settings.edgeParallelToleranceDeg << "°) but are not on a straight line (first: " << first
+    << "): each splits a face into contacts judged apart, whose cohesion may fail piecewise. They lie up to "
+    << offLine << " m off a straight line; if that is rounding, `--set analysis.initial_contact_tolerance="
+    << std::ceil(2 * offLine / scene.modelHalfSize() * 1e9) / 1e9
+    << "` (gaps that count as touching at t = 0, as a fraction of w0) takes them as on it";
+  return m.str();
+}
+
+/// What the reader did to the blocks' outlines, and the vertices it kept that bend a face so little
+/// that the face still meets its neighbour as two contacts judged apart.
+void printOutlineNotes(const ddaslope::model::Scene& scene) {
+  int removed = 0, blocks = 0;
+  for (const auto& b : scene.blocks) removed += b.removedCollinearVertices, blocks += b.removedCollinearVertices > 0;
+  if (removed > 0)
+    std::printf("  outlines: %d vertices on straight edges removed from %d block(s) (T-junctions and split edges: each "
+                "face meets its neighbour as one contact, docs/contact-model.md)\n",
+                removed, blocks);
+  for (const auto& b : scene.blocks)
+    if (!b.mergedIds.empty()) {
+      std::string ids;
+      for (const std::string& id : b.mergedIds) ids += (ids.empty() ? "" : ", ") + id;
+      std::printf("  fixed blocks %s merged into %s: they share boundary and meet every block with the same joint, so "
+                  "a block across their seam meets them as one contact (docs/contact-model.md)\n",
+                  ids.c_str(), b.id.c_str());
+    }
+  if (const std::string note = slightBendNote(scene); !note.empty()) std::printf("  note: %s\n", note.c_str());
+}
+
+/// A warning for the searches where a joint ends on a concave bend of the sliding surface (a
+/// corner in a notch: F may follow the contact stiffness, docs/research/bilinear-slab.md).
+std::string notchWarning(const ddaslope::model::Scene& scene) {
+  for (const auto& k : ddaslope::model::concaveKinksUnderBlocks(scene))
+    if (k.blocksWithCorner >= 2 && k.upslopeReach >= 0.1 * k.reachingBlockHeight) {
+      std::ostringstream m;
+      m << "a joint ends on a concave bend of " << scene.blocks[k.fixedBlock].id << " at (" << k.point.x() + scene.origin.x()
+        << ", " << k.point.y() + scene.origin.y() << "): a corner sits in the notch, and the answer may follow the "
+        << "contact stiffness; compare analysis.penalty_factor 10-2000 and scripts/block_equilibrium.py --solve fos "
+           "(`ddaslope check` says more)";
+      return m.str();
+    }
+  return "";
+}
+
+/// The seismic loading in force: the coefficients and the record's span and peaks.
+void printSeismicNote(const ddaslope::model::Scene& scene) {
+  const ddaslope::model::SeismicLoad& q = scene.seismic;
+  if (q.kh != 0 || q.kv != 0)
+    std::printf("  pseudo-static seismic load: k_h = %g (a force along %s), k_v = %g (%s), from the initial equilibrium on\n",
+                q.kh, q.kh < 0 ? "-x" : "+x", q.kv, q.kv < 0 ? "downward" : "upward");
+  if (!q.ground.active()) return;
+  double ph = 0, pv = 0;
+  for (double a : q.ground.horizontal) ph = std::max(ph, std::abs(a));
+  for (double a : q.ground.vertical) pv = std::max(pv, std::abs(a));
+  std::printf("  ground-motion record: %zu samples over t = %g-%g s of the analysis, peak %.4g m/s² (%.3g g) horizontal",
+              q.ground.times.size(), q.ground.times.front(), q.ground.times.back(), ph, ph / ddaslope::io::kStandardGravity);
+  if (!q.ground.vertical.empty()) std::printf(", %.4g m/s² (%.3g g) vertical", pv, pv / ddaslope::io::kStandardGravity);
+  std::printf("\n");
+  // What a user may not expect of a record (docs/seismic.md).
+  const ddaslope::Vec2 first = q.ground.at(q.ground.times.front());
+  if (first.norm() > 1e-3 * std::max(ph, pv))
+    std::printf("  note: the record starts at %.4g m/s², not 0: a step load, which rings the contact springs; taper it in\n",
+                first.norm());
+  if (q.ground.times.front() >= scene.settings.duration)
+    std::printf("  note: the record starts at t = %g s, after the analysis ends (analysis.duration %g s): it never acts\n",
+                q.ground.times.front(), scene.settings.duration);
+  double sample = INFINITY;
+  for (size_t k = 1; k < q.ground.times.size(); ++k) sample = std::min(sample, q.ground.times[k] - q.ground.times[k - 1]);
+  if (scene.settings.timeStep > sample * (1 + 1e-6))  // the samples' times carry their text's round-off
+    std::printf("  note: Δt %g s is longer than the record's sampling (%g s): each step applies the record's mean over "
+                "the step, so content above %.3g Hz is averaged out\n",
+                scene.settings.timeStep, sample, 0.5 / scene.settings.timeStep);
+}
+
+}  // namespace ddaslope::cli

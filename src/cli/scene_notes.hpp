@@ -1,0 +1,24 @@
+#pragma once
+// What the reader made of a case and what the user should know before trusting an answer:
+// outline normalisation, concave kinks, joints ending on bends, the seismic loading in force.
+#include <string>
+
+#include "ddaslope/model/scene.hpp"
+
+namespace ddaslope::cli {
+
+/// A note per concave kink of a fixed block's surface with a block on it, and per joint the reader
+/// moved off a bend.
+void printKinkNotes(const model::Scene& scene);
+/// What the reader did to the blocks' outlines, and the vertices it kept that bend a face so little
+/// that the face still meets its neighbour as two contacts judged apart.
+void printOutlineNotes(const model::Scene& scene);
+/// The vertices that bend a touching face by less than the edge-parallel tolerance; empty if none.
+std::string slightBendNote(const model::Scene& scene);
+/// A warning for the searches where a joint ends on a concave bend (a corner in a notch); empty if
+/// none.
+std::string notchWarning(const model::Scene& scene);
+/// The seismic loading in force: the coefficients and the record's span and peaks.
+void printSeismicNote(const model::Scene& scene);
+
+}  // namespace ddaslope::cli

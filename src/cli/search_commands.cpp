@@ -1,0 +1,383 @@
+#include "search_commands.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+
+#include "ddaslope/calibration/strength_search.hpp"
+#include "ddaslope/calibration/trial_report.hpp"
+#include "ddaslope/core/byte_record.hpp"
+#include "ddaslope/core/errors.hpp"
+#include "ddaslope/core/task_farm.hpp"
+#include "ddaslope/io/case_reader.hpp"
+#include "ddaslope/io/json_record.hpp"
+#include "ddaslope/io/line_plot.hpp"
+#include "scene_notes.hpp"
+
+namespace ddaslope::cli {
+namespace {
+
+int curveCommand(const std::string& casePath, const ddaslope::model::Scene& scene, int joint, const CriticalOptions& opt) {
+  double lo = 0, hi = 0;
+  int n = 0;
+  if (std::sscanf(opt.curve.c_str(), "%lf:%lf:%d", &lo, &hi, &n) != 3 || n < 2 || lo < 0 || hi >= 90 || lo >= hi)
+    throw ddaslope::InputError("--curve", "", "expected φmin:φmax:n with 0 ≤ φmin < φmax < 90 and n ≥ 2, found \"" + opt.curve + "\"");
+  const auto log = startProgress("critical --curve", opt.progress, opt.json);
+  ddaslope::calibration::SearchSettings s;
+  s.threads = opt.threads;
+  s.progress = ddaslope::io::sinkOf(log.get());
+  const auto t0 = std::chrono::steady_clock::now();
+  const std::unique_ptr<ddaslope::TaskFarm> farm = ddaslope::makeTaskFarm(opt.threads);
+  const auto curve =
+      ddaslope::calibration::criticalCurve(scene, joint, lo, hi, n, opt.width > 0 ? opt.width : 10, s, farm.get());
+  if (!farm->isRoot()) return kExitOk;  // the root writes
+  log->finish(true, std::to_string(n) + " points");
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  std::filesystem::create_directories(opt.outDir);
+  const std::string csv = opt.outDir + "/critical_curve.csv", png = opt.outDir + "/critical_curve.png";
+  std::FILE* f = std::fopen((csv + ".tmp").c_str(), "w");
+  if (!f) throw ddaslope::InputError(csv, "", "cannot write the file");
+  std::fprintf(f, "friction_angle_deg,critical_cohesion_pa,failing_pa,stable_pa,found,forward_runs\n");
+  ddaslope::io::PlotSeries series{"critical cohesion (" + opt.joint + ")", {}, {}, true};
+  int runs = 0;
+  bool all = true;
+  for (const auto& p : curve) {
+    const auto& r = p.cohesion;
+    std::fprintf(f, "%g,%.6g,%.6g,%.6g,%d,%d\n", p.frictionDeg, r.critical, r.failingEnd, r.stableEnd, r.found, r.runs);
+    series.x.push_back(p.frictionDeg);
+    series.y.push_back(r.found ? r.critical / 1e3 : NAN);
+    runs += r.runs;
+    all &= r.found;
+  }
+  std::fclose(f);
+  std::filesystem::rename(csv + ".tmp", csv);
+  ddaslope::io::writePng({"Critical strength: " + casePath, "friction angle φ (°)", "critical cohesion c (kPa)", {series}}, png);
+  if (opt.json) {
+    ddaslope::io::JsonRecord j;
+    std::vector<double> phis, cs;
+    for (const auto& p : curve) phis.push_back(p.frictionDeg), cs.push_back(p.cohesion.critical);
+    j.set("case", casePath).set("joint", opt.joint).set("friction_angle_deg", phis).set("critical_cohesion_pa", cs);
+    j.set("all_found", all).set("forward_runs", runs).set("wall_time_s", wall).set("csv", csv).set("png", png);
+    std::printf("%s\n", j.dump().c_str());
+  } else {
+    for (const auto& p : curve)
+      std::printf("  φ = %6.2f°  c_cr = %10.1f Pa%s%s\n", p.frictionDeg, p.cohesion.critical,
+                  p.cohesion.message.empty() ? "" : "  ", p.cohesion.message.c_str());
+    std::printf("%d forward runs, %.2f s wall; wrote %s and %s\n", runs, wall, csv.c_str(), png.c_str());
+  }
+  return all ? kExitOk : kExitNonConvergence;
+}
+
+/// Where a search's --vtk went (text output).
+void printTrialStatesNote(const std::string& dir, int runs) {
+  if (!dir.empty())
+    std::printf("  wrote %s: blocks.pvd, contacts.pvd: the final state of each of the %d trials, at the value it tried\n",
+                dir.c_str(), runs);
+}
+
+/// Verdict warnings go to stderr, so a --json result on stdout stays clean.
+void warnAboutTrials(const std::string& casePath, const std::string& warning) {
+  if (!warning.empty()) std::fprintf(stderr, "ddaslope: warning: %s: %s\n", casePath.c_str(), warning.c_str());
+}
+
+/// The yield seismic coefficient k_y (critical --solve seismic-coefficient): along the direction
+/// asked, or along both (auto), the smaller being the slope's.
+int seismicCoefficientCommand(const std::string& casePath, const ddaslope::model::Scene& scene,
+                              const CriticalOptions& opt) {
+  // Options of the strength searches mean nothing here: refuse them rather than ignore them.
+  for (const auto& [given, name] : {std::pair{!opt.joint.empty(), "--joint"}, std::pair{opt.friction >= 0, "--friction"},
+                                    std::pair{opt.cohesion >= 0, "--cohesion"}, std::pair{!opt.curve.empty(), "--curve"}})
+    if (given)
+      throw ddaslope::InputError(name, "", "not used by --solve seismic-coefficient (set strengths with --set, e.g. "
+                                           "joints.NAME.friction_angle=30)");
+  if (scene.seismic.kh != 0)
+    throw ddaslope::InputError(casePath, "seismic.k_h",
+                               "the search sets k_h itself; remove it from the case or the command (--kh)");
+  if (scene.seismic.ground.active() && !opt.json)
+    std::fprintf(stderr, "ddaslope: note: %s: the ground-motion record is not used: k_y belongs to the slope\n", casePath.c_str());
+  ddaslope::model::Scene searched = scene;  // what the trials run: no record, k_h their own
+  searched.seismic.ground = {};
+  const auto log = startProgress("critical --solve seismic-coefficient", opt.progress, opt.json);
+  ddaslope::calibration::SearchSettings s;
+  s.threads = opt.threads;
+  s.progress = ddaslope::io::sinkOf(log.get());
+  recordTrialStates(s, opt.vtkDir, scene);
+  std::vector<std::pair<std::string, ddaslope::calibration::CriticalResult>> results;
+  for (const char* d : {"+x", "-x"})
+    if (opt.direction == "auto" || opt.direction == d)
+      results.emplace_back(d, ddaslope::calibration::criticalSeismicCoefficient(scene, d[0] == '-' ? -1 : 1, opt.width, s));
+  log->finish(true, std::to_string(results.size()) + " directions searched");
+  // The slope's yield coefficient: the smaller of those found.
+  size_t best = 0;
+  for (size_t k = 1; k < results.size(); ++k)
+    if (results[k].second.found && (!results[best].second.found || results[k].second.critical < results[best].second.critical))
+      best = k;
+  const auto& [direction, r] = results[best];
+  int runs = 0;
+  double wall = 0;
+  for (const auto& [d, x] : results) runs += x.runs, wall += x.wallTime;
+  if (opt.json) {
+    ddaslope::io::JsonRecord j;
+    j.set("case", casePath).set("solve", opt.solve).set("direction", direction).set("k_v", scene.seismic.kv);
+    j.set("found", r.found).set("critical", r.critical).set("unit", "g");
+    j.set("failing_at", r.failingEnd).set("stable_at", r.stableEnd);
+    j.set("forward_runs", runs).set("wall_time_s", wall).set("message", r.message);
+    j.set("settings", settingsLine(searched));
+    ddaslope::calibration::appendReview(j, r.review);
+    ddaslope::calibration::appendTrials(j, r.trials, "k_h");
+    if (!opt.vtkDir.empty()) j.set("vtk", opt.vtkDir);
+    std::printf("%s\n", j.dump().c_str());
+  } else {
+    for (const auto& [d, x] : results) {
+      if (x.found)
+        std::printf("yield seismic coefficient k_y along %s (k_v = %g): %.6g g (failing at %.6g, stable at %.6g)%s\n",
+                    d.c_str(), scene.seismic.kv, x.critical, x.failingEnd, x.stableEnd,
+                    results.size() > 1 && &x == &r ? "  <- the slope's" : "");
+      if (x.found && !x.message.empty()) std::printf("  %s\n", x.message.c_str());
+      if (!x.found)
+        std::printf("along %s: none: %s\n", d.c_str(), x.message.c_str());
+    }
+    if (r.found)
+      std::printf("  (a force k_y·m·g along %s; a ground acceleration of k_y·g along %s)\n", direction.c_str(),
+                  direction == "+x" ? "-x" : "+x");
+    std::printf("%d forward runs, %.2f s wall; %s\n", runs, wall, settingsLine(searched).c_str());
+    printTrialStatesNote(opt.vtkDir, runs);
+  }
+  if (!r.found)
+    std::fprintf(stderr, "ddaslope: %s: no yield seismic coefficient found after %d forward runs: %s\n", casePath.c_str(),
+                 runs, r.message.c_str());
+  warnAboutTrials(casePath, ddaslope::calibration::smallMotionWarning(r.trials, "k_h"));
+  return r.found ? kExitOk : kExitNonConvergence;
+}
+
+
+}  // namespace
+
+int criticalCommand(const std::string& casePath, const Overrides& o, const CriticalOptions& opt) {
+  ddaslope::model::Scene scene = loadCase(casePath, o);
+  applyOverrides(scene, o, casePath);
+  if (!opt.vtkDir.empty() && !opt.curve.empty())
+    throw ddaslope::InputError("--vtk", opt.vtkDir, "writes the trials of one search, not of a curve's searches (drop --curve)");
+  if (opt.solve == "seismic-coefficient") return seismicCoefficientCommand(casePath, scene, opt);
+  if (opt.joint.empty()) throw ddaslope::InputError("--joint", "", "expected the joint to search (--joint NAME)");
+  const int joint = jointIndex(scene, opt.joint, casePath);
+  if (!opt.curve.empty()) return curveCommand(casePath, scene, joint, opt);
+  const auto log = startProgress("critical", opt.progress, opt.json);
+  ddaslope::calibration::SearchSettings s;
+  s.threads = opt.threads;
+  s.progress = ddaslope::io::sinkOf(log.get());
+  recordTrialStates(s, opt.vtkDir, scene);
+  const bool cohesion = opt.solve == "cohesion";
+  const ddaslope::model::JointProperties& jp = scene.joints[joint];
+  const double phi = opt.friction >= 0 ? opt.friction : ddaslope::radToDeg(jp.frictionAngle);
+  const double c = opt.cohesion >= 0 ? opt.cohesion : jp.cohesion;
+  if (opt.friction >= 90) throw ddaslope::InputError("--friction", "", "expected an angle in [0, 90) degrees");
+  const auto r = cohesion ? ddaslope::calibration::criticalCohesion(scene, joint, phi, opt.width > 0 ? opt.width : 10, s)
+                          : ddaslope::calibration::criticalFriction(scene, joint, c, opt.width > 0 ? opt.width : 0.01, s);
+  log->finish(r.found, r.found ? "critical " + opt.solve + " " + std::to_string(r.critical) : r.message);
+  const char* unit = cohesion ? "Pa" : "degrees";
+  if (opt.json) {
+    ddaslope::io::JsonRecord j;
+    j.set("case", casePath).set("joint", opt.joint).set("solve", opt.solve).set("found", r.found);
+    if (cohesion) j.set("friction_angle_deg", phi); else j.set("cohesion_pa", c);
+    j.set("critical", r.found ? r.critical : NAN).set("unit", unit).set("bracket", std::vector<double>{r.failingEnd, r.stableEnd});
+    j.set("forward_runs", r.runs).set("wall_time_s", r.wallTime).set("message", r.message);
+    j.set("settings", settingsLine(scene));
+    ddaslope::calibration::appendReview(j, r.review);
+    ddaslope::calibration::appendTrials(j, r.trials, cohesion ? "cohesion_pa" : "friction_angle_deg");
+    if (!opt.vtkDir.empty()) j.set("vtk", opt.vtkDir);
+    std::printf("%s\n", j.dump().c_str());
+  } else if (r.found) {
+    std::printf("critical %s of joint '%s' %s: %.6g %s (failing at %.6g, stable at %.6g)%s%s\n", opt.solve.c_str(),
+                opt.joint.c_str(),
+                (cohesion ? "at φ = " + std::to_string(phi) + "°" : "at c = " + std::to_string(c) + " Pa").c_str(),
+                r.critical, unit, r.failingEnd, r.stableEnd, r.message.empty() ? "" : ": ", r.message.c_str());
+    std::printf("%d forward runs, %.2f s wall; %s\n", r.runs, r.wallTime, settingsLine(scene).c_str());
+    printTrialStatesNote(opt.vtkDir, r.runs);
+  } else {
+    std::fprintf(stderr, "ddaslope: %s: no critical %s found after %d forward runs: %s\n", casePath.c_str(),
+                 opt.solve.c_str(), r.runs, r.message.c_str());
+  }
+  warnAboutTrials(casePath, ddaslope::calibration::smallMotionWarning(r.trials, cohesion ? "c" : "φ"));
+  warnAboutTrials(casePath, slightBendNote(scene));
+  warnAboutTrials(casePath, notchWarning(scene));
+  return r.found ? kExitOk : kExitNonConvergence;
+}
+
+namespace {
+
+ddaslope::calibration::FactorOfSafetyResult factorFor(const ddaslope::model::Scene& scene, const std::string& casePath,
+                                                      const FosOptions& opt, ddaslope::io::ProgressSink progress = {}) {
+  std::vector<int> joints;
+  for (const auto& n : opt.joints) joints.push_back(jointIndex(scene, n, casePath));
+  ddaslope::calibration::SearchSettings s;
+  s.threads = opt.threads;
+  s.progress = std::move(progress);
+  recordTrialStates(s, opt.vtkDir, scene);
+  return ddaslope::calibration::factorOfSafety(scene, joints, opt.width, s);
+}
+
+/// F at n values of one case number (e.g. the reservoir level): CSV and PNG in opt.outDir.
+int fosSweep(const std::string& casePath, const Overrides& o, const FosOptions& opt) {
+  const size_t eq = opt.sweep.find('=');
+  double lo = 0, hi = 0;
+  int n = 0;
+  if (eq == std::string::npos || std::sscanf(opt.sweep.c_str() + eq + 1, "%lf:%lf:%d", &lo, &hi, &n) != 3 || n < 2 ||
+      n > 1000 || !std::isfinite(lo) || !std::isfinite(hi))
+    throw ddaslope::InputError("--sweep", opt.sweep, "expected json.path=min:max:n with finite min, max and 2 ≤ n ≤ 1000");
+  const std::string path = opt.sweep.substr(0, eq);
+  const std::string csv = opt.outDir + "/fos_sweep.csv", png = opt.outDir + "/fos_sweep.png";
+  // The values are independent searches (one thread each, so a value's F is the same on any
+  // farm), spread over the threads, or the ranks under mpirun.
+  struct Point {
+    ddaslope::calibration::FactorOfSafetyResult fos;
+    bool done = false;
+  };
+  std::vector<Point> points(static_cast<size_t>(n));
+  std::vector<int> indices(static_cast<size_t>(n));
+  for (int i = 0; i < n; ++i) indices[i] = i;
+  const auto valueAt = [&](int i) { return lo + (hi - lo) * i / (n - 1); };
+  FosOptions single = opt;
+  single.threads = 1;
+  const auto log = startProgress("fos --sweep", opt.progress, false);
+  int finished = 0;
+  const std::unique_ptr<ddaslope::TaskFarm> farm = ddaslope::makeTaskFarm(opt.threads);
+  farm->run(
+      indices,
+      [&](int i) {
+        ddaslope::model::Scene scene = loadCase(casePath, o, {{path, valueAt(i)}});
+        applyOverrides(scene, o, casePath);
+        const auto r = factorFor(scene, casePath, single);
+        ddaslope::BytePacker b;
+        b.put(r.found).put(r.factor).put(r.stableEnd).put(r.failingEnd).put(r.runs).put(r.wallTime).put(r.message);
+        return b.bytes();
+      },
+      [&](int i, const ddaslope::TaskResult& bytes) {
+        ddaslope::ByteUnpacker b(bytes);
+        auto& r = points[i].fos;
+        r.found = b.get<bool>();
+        r.factor = b.get<double>();
+        r.stableEnd = b.get<double>();
+        r.failingEnd = b.get<double>();
+        r.runs = b.get<int>();
+        r.wallTime = b.get<double>();
+        r.message = b.getString();
+        points[i].done = true;
+        if (log->active())
+          log->report({"points", ++finished, n,
+                       path + " = " + std::to_string(valueAt(i)) + ": F " + (r.found ? std::to_string(r.factor) : "not found"),
+                       {{"value", valueAt(i)}, {"factor_of_safety", r.found ? r.factor : NAN}}});
+      });
+  if (!farm->isRoot()) return kExitOk;  // the root writes
+  log->finish(true, std::to_string(n) + " values");
+  for (int i = 0; i < n; ++i) {
+    const auto& r = points[i].fos;
+    std::printf("  %s = %-10g F = %s (%d forward runs, %.1f s)\n", path.c_str(), valueAt(i),
+                r.found ? std::to_string(r.factor).c_str() : r.message.c_str(), r.runs, r.wallTime);
+  }
+  std::filesystem::create_directories(opt.outDir);
+  std::ofstream out(csv + ".tmp");
+  out << path << ",factor_of_safety,stable_at,failing_at,found,forward_runs,wall_time_s\n";
+  ddaslope::io::PlotSeries series{"F", {}, {}, true};
+  bool all = true;
+  for (int i = 0; i < n; ++i) {
+    const auto& r = points[i].fos;
+    const double v = valueAt(i);
+    out << v << "," << r.factor << "," << r.stableEnd << "," << r.failingEnd << "," << r.found << "," << r.runs << ","
+        << r.wallTime << "\n";
+    series.x.push_back(v);
+    series.y.push_back(r.found ? r.factor : NAN);
+    all &= r.found;
+  }
+  out.close();
+  std::filesystem::rename(csv + ".tmp", csv);
+  ddaslope::io::writePng({"Strength-reduction factor of safety: " + casePath, path, "F", {series}}, png);
+  std::printf("wrote %s and %s\n", csv.c_str(), png.c_str());
+  return all ? kExitOk : kExitNonConvergence;
+}
+
+
+}  // namespace
+
+int fosCommand(const std::string& casePath, const Overrides& o, const FosOptions& opt) {
+  if (!opt.vtkDir.empty() && !opt.sweep.empty())
+    throw ddaslope::InputError("--vtk", opt.vtkDir, "writes the trials of one search, not of a sweep's searches (drop --sweep)");
+  if (!opt.sweep.empty()) return fosSweep(casePath, o, opt);
+  ddaslope::model::Scene scene = loadCase(casePath, o);
+  applyOverrides(scene, o, casePath);
+  const auto log = startProgress("fos", opt.progress, opt.json);
+  const auto r = factorFor(scene, casePath, opt, ddaslope::io::sinkOf(log.get()));
+  log->finish(r.found, r.found ? "F " + std::to_string(r.factor) : r.message);
+  if (opt.json) {
+    ddaslope::io::JsonRecord j;
+    // No answer, no number: the bracket and the message say what is known.
+    j.set("case", casePath).set("found", r.found).set("factor_of_safety", r.found ? r.factor : NAN);
+    j.set("bracket", std::vector<double>{r.stableEnd, r.failingEnd}).set("width", opt.width);
+    j.set("forward_runs", r.runs).set("rounds", r.rounds).set("wall_time_s", r.wallTime).set("message", r.message);
+    j.set("settings", settingsLine(scene));
+    ddaslope::calibration::appendReview(j, r.review);
+    ddaslope::calibration::appendTrials(j, r.trials, "factor");
+    if (!opt.vtkDir.empty()) j.set("vtk", opt.vtkDir);
+    std::printf("%s\n", j.dump().c_str());
+  } else if (r.found) {
+    std::printf("factor of safety (strength reduction on %s): %.4f (stable at %.4f, failing at %.4f)\n",
+                opt.joints.empty() ? "all joints" : "the named joints", r.factor, r.stableEnd, r.failingEnd);
+    if (!r.message.empty()) std::printf("  %s\n", r.message.c_str());
+    std::printf("%d forward runs in %d rounds of %d, %.2f s wall; %s\n", r.runs, r.rounds, opt.threads, r.wallTime,
+                settingsLine(scene).c_str());
+    printTrialStatesNote(opt.vtkDir, r.runs);
+  } else {
+    std::fprintf(stderr, "ddaslope: %s: no factor of safety found after %d forward runs: %s\n", casePath.c_str(),
+                 r.runs, r.message.c_str());
+  }
+  warnAboutTrials(casePath, ddaslope::calibration::smallMotionWarning(r.trials, "F"));
+  warnAboutTrials(casePath, slightBendNote(scene));
+  warnAboutTrials(casePath, notchWarning(scene));
+  return r.found ? kExitOk : kExitNonConvergence;
+}
+
+void addCriticalOptions(CLI::App* cmd, std::string& casePath, Overrides& overrides, CriticalOptions& opt) {
+  cmd->add_option("case", casePath, "case file (JSON)")->required();
+  cmd->add_option("--joint", opt.joint, "joint to search (cohesion, friction)");
+  cmd->add_option("--solve", opt.solve,
+                       "cohesion or friction of the joint, or seismic-coefficient: the yield acceleration k_y (in g)")
+      ->check(CLI::IsMember({"cohesion", "friction", "seismic-coefficient"}))
+      ->capture_default_str();
+  cmd->add_option("--direction", opt.direction,
+                       "seismic-coefficient: the direction of the horizontal force (+x, -x, or auto: both, the smaller wins)")
+      ->check(CLI::IsMember({"+x", "-x", "auto"}))
+      ->capture_default_str();
+  cmd->add_option("--friction", opt.friction, "friction angle (degrees) while solving for cohesion (default: the case's)")
+      ->check(finiteIn(0, 89.9, "a friction angle in [0, 89.9] degrees"));
+  cmd->add_option("--cohesion", opt.cohesion, "cohesion (Pa) while solving for friction (default: the case's)")
+      ->check(finiteIn(0, 1e12, "a cohesion in [0, 1e12] Pa"));
+  // Widths below 1e-6 would ask the bisection for more digits than the verdict has.
+  cmd->add_option("--width", opt.width, "final bracket width (Pa, degrees or g; default 10 Pa, 0.01° or 1e-3 of k_y)")
+      ->check(finiteIn(1e-6, 1e12, "a width in [1e-6, 1e12]"));
+  cmd->add_option("--threads", opt.threads, "forward runs at once")->capture_default_str()->check(CLI::Range(1, 256));
+  addModelOptions(cmd, overrides);
+  cmd->add_flag("--json", opt.json, "print the result as JSON");
+  addProgressOptions(cmd, opt.progress);
+  cmd->add_option("--curve", opt.curve, "φmin:φmax:n: the critical (c, φ) curve as CSV and PNG in --out");
+  cmd->add_option("--out", opt.outDir, "output directory for --curve")->capture_default_str();
+  cmd->add_option("--vtk", opt.vtkDir, "write each trial's final state as a VTK series in this folder (ParaView)");
+}
+
+void addFosOptions(CLI::App* cmd, std::string& casePath, Overrides& overrides, FosOptions& opt) {
+  cmd->add_option("case", casePath, "case file (JSON)")->required();
+  cmd->add_option("--joints", opt.joints, "joints to reduce (default: all)")->delimiter(',');
+  cmd->add_option("--width", opt.width, "final bracket width of F")->capture_default_str()
+      ->check(finiteIn(1e-4, 1, "a width of F in [1e-4, 1]"));
+  cmd->add_option("--threads", opt.threads, "trial factors per round, run at once")->capture_default_str()->check(CLI::Range(1, 256));
+  cmd->add_option("--sweep", opt.sweep, "json.path=min:max:n: F at n values of one case number (CSV and PNG in --out)");
+  cmd->add_option("--out", opt.outDir, "output directory for --sweep")->capture_default_str();
+  cmd->add_option("--vtk", opt.vtkDir, "write each trial's final state as a VTK series in this folder (ParaView)");
+  addModelOptions(cmd, overrides);
+  cmd->add_flag("--json", opt.json, "print the result as JSON");
+  addProgressOptions(cmd, opt.progress);
+}
+
+}  // namespace ddaslope::cli
