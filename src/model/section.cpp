@@ -125,9 +125,13 @@ bool crownPieceAbove(const std::vector<std::vector<Vec2>>& pieces, const Vec2& a
   return false;
 }
 
-}  // namespace
+/// How large the section is, and the tolerance its points are compared with.
+struct Extent {
+  double size = 0, tol = 0, lowest = 0, highest = 0;
+};
 
-SectionBlocks cutSection(const SectionSpec& s) {
+/// The section's lines checked (each message names its JSON path), and their extent.
+Extent checkLines(const SectionSpec& s) {
   if (s.ground.size() < 2) fail("ground", "expected at least two points");
   if (s.joints.size() > static_cast<size_t>(limits::kMaxBlocks))
     fail("joints", "expected at most " + std::to_string(limits::kMaxBlocks) + " joints");
@@ -165,6 +169,13 @@ SectionBlocks cutSection(const SectionSpec& s) {
     }
   if (!(s.baseDepth > 0)) fail("base_depth", "expected a depth > 0 m");
 
+  return {size, tol, lowest, highest};
+}
+
+/// The slide mass (ground from crown to toe, back along the sliding surface) and the base below.
+std::pair<std::vector<Vec2>, std::vector<Vec2>> massAndBase(const SectionSpec& s, const Extent& e) {
+  const double tol = e.tol, lowest = e.lowest;
+  const Vec2 crown = s.slidingSurface.front(), toe = s.slidingSurface.back();
   const double crownAt = positionOnPolyline(s.ground, crown, tol), toeAt = positionOnPolyline(s.ground, toe, tol);
   const auto betweenCrownAndToe = [&](size_t i) {
     return groundVertexAfter(s.ground, i, crown, crownAt, tol) && groundVertexBefore(s.ground, i, toe, toeAt, tol);
@@ -191,8 +202,13 @@ SectionBlocks cutSection(const SectionSpec& s) {
   base = geometry::cleanPolygon(base, tol);
   if (base.size() < 3 || !geometry::isSimple(base)) fail("ground", "the base below the ground and sliding surface is not a simple polygon");
 
-  // Internal joints cut the mass.
-  std::vector<std::vector<Vec2>> pieces{mass};
+  return {mass, base};
+}
+
+/// Internal joints, single and in sets, cut the mass's pieces.
+void cutByJoints(std::vector<std::vector<Vec2>>& pieces, const SectionSpec& s, const Extent& e,
+                 const std::vector<Vec2>& mass) {
+  const double tol = e.tol, size = e.size;
   const double minArea = 1e-9 * size * size;
   for (size_t i = 0; i < s.joints.size(); ++i) {
     const Vec2 d = s.joints[i].second - s.joints[i].first;
@@ -226,8 +242,13 @@ SectionBlocks cutSection(const SectionSpec& s) {
     const long first = static_cast<long>(std::ceil(lo / js.spacing)), last = static_cast<long>(std::floor(hi / js.spacing));
     for (long k = first; k <= last; ++k) cutAll(pieces, js.origin + (k * js.spacing) * n, d, path, minArea);
   }
-  // A thin block up the slope of each concave kink: a block whose corner sits on a kink leans on
-  // it with a force its width sets, which slices do not have (docs/calibration.md).
+}
+
+/// A thin block up the slope of each concave kink: a block whose corner sits on a kink leans on
+/// it with a force its width sets, which slices do not have (docs/calibration.md).
+void cutKinkBlocks(std::vector<std::vector<Vec2>>& pieces, const SectionSpec& s, const Extent& e) {
+  const double tol = e.tol, lowest = e.lowest, highest = e.highest, minArea = 1e-9 * e.size * e.size;
+  const Vec2 crown = s.slidingSurface.front();
   if (!s.kinkBlockAuto && s.kinkBlockWidth < 0) fail("kink_block_width", "expected a width >= 0 m");
   // Not given: a width chosen by measurement (docs/research/kink-blocks.md), at least twice the
   // failure displacement, or the slide squeezes the block out while it settles.
@@ -242,7 +263,8 @@ SectionBlocks cutSection(const SectionSpec& s) {
       if (distanceToNearestJoint(s, at) < 0.5 * width) continue;
       if (s.kinkBlockAuto) {
         // An inclined joint ending on the kink is the slope's own geometry (a bilinear slab's
-        // release): a vertical kink block there makes another block system.
+        // release, which the reader moves off the bend: model/kinks.hpp): a vertical kink block
+        // there would make another block system.
         if (inclinedJointThrough(s, k, tol)) continue;
         // Nor at a head scarp: a crown piece with no other joint would decide the verdict alone.
         if (crownPieceAbove(pieces, at, crown, tol)) continue;
@@ -254,6 +276,16 @@ SectionBlocks cutSection(const SectionSpec& s) {
       }
       cutAll(pieces, Vec2(at.x(), k.y()), Vec2(0, 1), "kink_block_width", minArea);
     }
+}
+
+}  // namespace
+
+SectionBlocks cutSection(const SectionSpec& s) {
+  const Extent e = checkLines(s);
+  const auto [mass, base] = massAndBase(s, e);
+  std::vector<std::vector<Vec2>> pieces{mass};
+  cutByJoints(pieces, s, e, mass);
+  cutKinkBlocks(pieces, s, e);
   std::sort(pieces.begin(), pieces.end(), [](const auto& p, const auto& q) {
     return geometry::computeMoments(p).centroid.x() < geometry::computeMoments(q).centroid.x();
   });
