@@ -100,17 +100,8 @@ void readPrecision(const JobReader& r, const json& doc, BackanalysisJob& job) {
   }
 }
 
-}  // namespace
-
-BackanalysisJob readJob(const std::string& path) {
-  const JobReader r(path);
-  const json doc = readJsonFile(path);
-  r.onlyKeys(doc, "", {"description", "case", "parameters", "observations", "optimiser", "grid_points", "threads",
-                       "preset", "blocks", "brittle_joints", "precision"});
-  BackanalysisJob job;
-  job.jobPath = path;
-  job.casePath = r.resolve(r.string(r.required(doc, "", "case"), "case")).string();
-
+/// The parameters searched: a joint property or any case number by JSON path, with bounds.
+void readParameters(const JobReader& r, const json& doc, BackanalysisJob& job) {
   const json& params = r.required(doc, "", "parameters");
   if (!params.is_array() || params.empty()) r.fail("parameters", "expected a non-empty array");
   for (size_t i = 0; i < params.size(); ++i) {
@@ -142,7 +133,10 @@ BackanalysisJob readJob(const std::string& path) {
     }
     job.parameters.push_back(s);
   }
+}
 
+/// What the search fits: monitor series, a factor of safety, a run-out.
+void readObservations(const JobReader& r, const json& doc, BackanalysisJob& job) {
   const json& obs = r.required(doc, "", "observations");
   if (!obs.is_array() || obs.empty()) r.fail("observations", "expected a non-empty array");
   for (size_t i = 0; i < obs.size(); ++i) {
@@ -180,7 +174,10 @@ BackanalysisJob readJob(const std::string& path) {
     }
     job.observations.push_back(o);
   }
+}
 
+/// The optimiser, the precision study and the misfit grid.
+void readSearch(const JobReader& r, const json& doc, BackanalysisJob& job) {
   if (doc.contains("optimiser")) {
     const json& o = doc.at("optimiser");
     r.onlyKeys(o, "optimiser", {"global", "local", "global_evaluations", "local_evaluations", "xtol_rel"});
@@ -207,7 +204,10 @@ BackanalysisJob readJob(const std::string& path) {
                            " points: expected 2 or more per parameter and at most 100000 in all, found " +
                            std::to_string(job.gridPoints) + " per parameter");
   }
-  if (doc.contains("threads")) job.threads = static_cast<int>(r.number(doc.at("threads"), "threads"));
+}
+
+/// The accuracy and model choices the job imposes on its case (preset, blocks, brittle joints).
+void readModelChoices(const JobReader& r, const json& doc, BackanalysisJob& job) {
   model::SettingsOverride own;
   own.origin = "job ";
   if (doc.contains("preset")) {
@@ -226,6 +226,23 @@ BackanalysisJob readJob(const std::string& path) {
     own.brittleJoints = doc.at("brittle_joints").get<bool>();
   }
   job.model.push_back(own);
+}
+
+}  // namespace
+
+BackanalysisJob readJob(const std::string& path) {
+  const JobReader r(path);
+  const json doc = readJsonFile(path);
+  r.onlyKeys(doc, "", {"description", "case", "parameters", "observations", "optimiser", "grid_points", "threads",
+                       "preset", "blocks", "brittle_joints", "precision"});
+  BackanalysisJob job;
+  job.jobPath = path;
+  job.casePath = r.resolve(r.string(r.required(doc, "", "case"), "case")).string();
+  readParameters(r, doc, job);
+  readObservations(r, doc, job);
+  readSearch(r, doc, job);
+  if (doc.contains("threads")) job.threads = static_cast<int>(r.number(doc.at("threads"), "threads"));
+  readModelChoices(r, doc, job);
   return job;
 }
 
