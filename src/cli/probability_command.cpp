@@ -14,13 +14,20 @@
 #include "ddaslope/core/errors.hpp"
 #include "ddaslope/core/task_farm.hpp"
 #include "ddaslope/io/probability_reader.hpp"
-#include "probability_files.hpp"
+#include "ddaslope/io/probability_files.hpp"
 
 namespace ddaslope::cli {
 namespace {
 
 namespace fs = std::filesystem;
 using calibration::SampleResult;
+using io::checkFingerprint;
+using io::exactText;
+using io::SampleTable;
+using io::settingsFingerprint;
+using io::summaryJson;
+using io::writeAtomically;
+using io::writePictures;
 
 /// The study as the command line changes it: --samples, --seed, --measure, --sampling.
 io::ProbabilityJob readStudy(const std::string& path, const ProbabilityOptions& opt) {

@@ -10,7 +10,7 @@
 #include "ddaslope/calibration/probability.hpp"
 #include "ddaslope/io/probability_reader.hpp"
 
-namespace ddaslope::cli {
+namespace ddaslope::io {
 
 /// The shortest text that reads back as the same double ("" for NaN): resumed samples and fresh
 /// ones then give the same summary bit for bit.
@@ -47,7 +47,7 @@ class SampleTable {
 /// probability_settings.json's text: the case's digest, the study's settings (the sample count
 /// only for a Latin hypercube, whose strata depend on it: a Monte Carlo study may be extended)
 /// and the settings every forward run uses.
-std::string settingsFingerprint(const io::ProbabilityJob& job, const std::vector<std::string>& caseSettings,
+std::string settingsFingerprint(const ProbabilityJob& job, const std::vector<std::string>& caseSettings,
                                 const std::string& settingsLine);
 
 /// Refuses (InputError) a resumed study whose probability_settings.json differs from `expected`,
@@ -58,13 +58,13 @@ void checkFingerprint(const std::string& path, const std::string& expected);
 void writeAtomically(const std::string& path, const std::string& text);
 
 /// The summary as JSON: no run times and no thread counts, so equal samples give equal bytes.
-std::string summaryJson(const io::ProbabilityJob& job, const calibration::ProbabilitySummary& s,
+std::string summaryJson(const ProbabilityJob& job, const calibration::ProbabilitySummary& s,
                         const std::string& settingsLine, bool complete);
 
 /// pf_convergence.png, and samples_plane.png (two inputs, cohesion and friction angle when
 /// both are inputs, coloured by outcome) and fos_histogram.png (fos measure). Returns the names
 /// written.
-std::vector<std::string> writePictures(const io::ProbabilityJob& job, const calibration::ProbabilitySummary& s,
+std::vector<std::string> writePictures(const ProbabilityJob& job, const calibration::ProbabilitySummary& s,
                                        const std::vector<calibration::SampleResult>& sorted, const std::string& dir);
 
-}  // namespace ddaslope::cli
+}  // namespace ddaslope::io

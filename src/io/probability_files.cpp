@@ -1,4 +1,4 @@
-#include "probability_files.hpp"
+#include "ddaslope/io/probability_files.hpp"
 
 #include <algorithm>
 #include <charconv>
@@ -13,7 +13,7 @@
 #include "ddaslope/io/json_record.hpp"
 #include "ddaslope/io/line_plot.hpp"
 
-namespace ddaslope::cli {
+namespace ddaslope::io {
 namespace {
 
 namespace fs = std::filesystem;
@@ -325,4 +325,4 @@ std::vector<std::string> writePictures(const io::ProbabilityJob& job, const cali
   return written;
 }
 
-}  // namespace ddaslope::cli
+}  // namespace ddaslope::io
