@@ -6,119 +6,22 @@
 #include <limits>
 
 #include "ddaslope/geometry/polygon.hpp"
+#include "narrow_phase_certifier.hpp"
 
 namespace ddaslope::contact {
 namespace {
 
+using detail::Certifier;
+using detail::Poly;
+using detail::SkipChain;
+using detail::allNonNegativeSlack;
+using detail::convexSlack;
+using detail::gapRate;
+using detail::nearestSlack;
+
 /// Entrances of a corner-to-corner contact whose gaps differ by less than this fraction of the
 /// search distance count as equally open.
 constexpr double kGapTieFraction = 1e-3;
-
-struct Poly {
-  int block;
-  const std::vector<Vec2>& p;
-  int n() const { return static_cast<int>(p.size()); }
-  /// Vertex k, for k from −1 to n (every caller steps at most one past either end): a wrap
-  /// without the two divisions of a general modulo, which the hot loops below paid per access.
-  int wrap(int k) const { return k < 0 ? k + n() : k >= n() ? k - n() : k; }
-  const Vec2& at(int k) const { return p[static_cast<size_t>(wrap(k))]; }
-  bool convex(int k) const { return cross(at(k) - at(k - 1), at(k + 1) - at(k)) > 0; }
-};
-
-/// Records how far each decision of one search is from changing (SearchMargin); inert without
-/// a margin, so that a search that certifies nothing pays for nothing.
-class Certifier {
- public:
-  Certifier(SearchMargin* m, const Poly& A, const Poly& B) : m_(m) {
-    if (!m_) return;
-    double shortest = INFINITY, extent = 0;
-    bool finite = true;
-    for (const Poly* P : {&A, &B})
-      for (int k = 0; k < P->n(); ++k) {
-        shortest = std::min(shortest, (P->at(k + 1) - P->at(k)).norm());
-        extent = std::max(extent, P->at(k).cwiseAbs().maxCoeff());
-        finite = finite && std::isfinite(P->at(k).x()) && std::isfinite(P->at(k).y());
-      }
-    unitRate = 5 / shortest;
-    cornerRate = 4 * 0.01 * shortest;
-    // Every quantity is computed from coordinates as large as `extent`, so it is known only to a
-    // few units of round-off of them: a decision closer than that to its threshold is a tie.
-    noise_ = 64 * std::numeric_limits<double>::epsilon() * extent;
-    hold(finite && shortest > 0 ? 0.01 * shortest : 0);
-  }
-  /// The slack the search certifies: none if a decision was within round-off of changing.
-  ~Certifier() {
-    if (m_ && !(m_->slack > noise_)) m_->slack = 0;
-  }
-  bool on() const { return m_ != nullptr; }
-  /// A decision that must not change, `slack` (m of vertex motion) from changing.
-  void hold(double slack) {
-    if (m_) m_->slack = std::min(m_->slack, slack);
-  }
-  /// known(k), recorded.
-  bool ask(const std::function<bool(const ContactKey&)>& known, const ContactKey& k) {
-    const bool answer = known(k);
-    if (m_) {
-      if (m_->askedCount < static_cast<int>(m_->asked.size()))
-        m_->asked[static_cast<size_t>(m_->askedCount++)] = {k, answer};
-      else
-        m_->tooManyQuestions = true;
-    }
-    return answer;
-  }
-  /// Rate of change of a unit edge direction per metre of vertex motion (SearchMargin).
-  double unitRate = 0;
-  /// The second-order part of a corner's cross product: 4δ² with δ at most its cap.
-  double cornerRate = 0;
-
- private:
-  SearchMargin* m_;
-  double noise_ = 0;
-};
-
-/// "Skip if T1 || T2 || …", tested in order. A skip holds while its first true test stays true;
-/// going on (to a contact) holds while every test stays false. A slack is computed only when
-/// the search certifies.
-class SkipChain {
- public:
-  explicit SkipChain(Certifier& c) : c_(c) {}
-  template <class Slack>
-  bool skipIf(bool test, const Slack& slack) {
-    if (!c_.on()) return test;
-    if (test) {
-      c_.hold(slack());
-      return true;
-    }
-    pending_ = std::min(pending_, slack());
-    return false;
-  }
-  /// A contact came out of the tests: each must stay false.
-  void passed() { c_.hold(pending_); }
-
- private:
-  Certifier& c_;
-  double pending_ = INFINITY;
-};
-
-/// The slack of "every d ≥ 0" (each d changing at `rate`): the smallest d if all are, else the
-/// largest shortfall (any negative d that stays negative keeps the answer).
-double allNonNegativeSlack(std::initializer_list<double> d, double rate) {
-  double smallest = INFINITY, shortfall = 0;
-  for (double x : d) {
-    smallest = std::min(smallest, x);
-    if (x < 0) shortfall = std::max(shortfall, -x);
-  }
-  return (smallest >= 0 ? smallest : shortfall) / rate;
-}
-
-/// The slack of V.convex(k): its cross product over the rate 2(|e1| + |e2|) + 4δ².
-double convexSlack(const Poly& V, int k, const Certifier& cert) {
-  const Vec2 e1 = V.at(k) - V.at(k - 1), e2 = V.at(k + 1) - V.at(k);
-  return std::abs(cross(e1, e2)) / (2 * (e1.norm() + e2.norm()) + cert.cornerRate);
-}
-
-/// How fast the gap of vertex p on the edge from a changes: 2 + |p − a| · the unit rate.
-double gapRate(const Vec2& p, const Vec2& a, const Certifier& cert) { return 2 + (p - a).norm() * cert.unitRate; }
 
 /// How well the line of edge e (of poly E) separates the corner at vertex v of poly V:
 /// the smallest outward component of the corner's two unit edge directions.
@@ -251,15 +154,6 @@ int nearestVertex(const Vec2& p, const Poly& B) {
   return nearest;
 }
 
-/// The slack of nearestVertex's choice: the margin of every other vertex's distance over the
-/// nearest one's (each distance changes at rate 2).
-double nearestSlack(const Vec2& p, const Poly& B, int nearest) {
-  const double dn = (p - B.at(nearest)).norm();
-  double slack = INFINITY;
-  for (int q = 0; q < B.n(); ++q)
-    if (q != nearest) slack = std::min(slack, std::abs((p - B.at(q)).norm() - dn) / 4);
-  return slack;
-}
 
 void vertexToVertex(const Poly& A, const Poly& B, const Region& region, const NarrowPhaseSettings& s,
                     const std::function<bool(const ContactKey&)>& known, Certifier& cert,
