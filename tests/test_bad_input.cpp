@@ -526,13 +526,15 @@ TEST(CaseReader, NoTimeStepMeansTheBalancedPreset) {
 // The command line's model options win over the case and over a back-analysis job's own, in the
 // order preset, time step (a --time-step after --preset keeps the preset's g2 and penalty).
 TEST(SettingsOverride, CommandLineWinsInOrder) {
-  model::Scene s = io::parseCase(minimal().dump(), "case.json");
   model::SettingsOverride o;
   o.preset = "fast";
   o.timeStep = 0.004;
   o.blocks = "rigid";
   o.contactTreatment = "vertex";
-  o.apply(s);
+  json d = minimal();
+  d["analysis"]["time_step"] = 0.001;  // the case's own, and its own g2: the command line wins
+  d["analysis"]["max_displacement_ratio"] = 0.002;
+  const model::Scene s = io::parseCase(d.dump(), "case.json", io::caseOverridesFor(o));
   EXPECT_EQ(s.settings.timeStep, 0.004);
   EXPECT_EQ(s.settings.maxDisplacementRatio, 0.01);  // fast's g2
   EXPECT_EQ(s.settings.penaltyFactor, 10);           // fast's penalty factor

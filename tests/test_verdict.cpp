@@ -107,8 +107,7 @@ TEST(StrengthReduction, SteppedToppingSlopeDoesNotDependOnSettings) {
   variants.push_back({"rigid", with("", 0, "rigid", "")});
   std::vector<double> factors;
   for (const Variant& v : variants) {
-    model::Scene s = io::readCase(kStepped);
-    v.o.apply(s);
+    const model::Scene s = io::readCase(kStepped, io::caseOverridesFor(v.o));
     calibration::SearchSettings settings;
     settings.threads = v.threads;
     const calibration::FactorOfSafetyResult r = calibration::factorOfSafety(s, {}, 0.005, settings);

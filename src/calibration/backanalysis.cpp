@@ -90,12 +90,12 @@ void judgeConstraint(const io::BackanalysisJob& job, BackanalysisResult& r) {
 }  // namespace
 
 model::Scene sceneAt(const io::BackanalysisJob& job, const std::vector<double>& x) {
-  std::vector<io::CaseOverride> overrides;
+  std::vector<io::CaseOverride> overrides = job.caseOverrides;
   for (size_t i = 0; i < x.size(); ++i)
-    if (!job.parameters[i].jsonPath.empty()) overrides.push_back({job.parameters[i].jsonPath, x[i]});
-  overrides.insert(overrides.begin(), job.caseOverrides.begin(), job.caseOverrides.end());
+    if (!job.parameters[i].jsonPath.empty()) overrides.emplace_back(job.parameters[i].jsonPath, x[i]);
+  for (const model::SettingsOverride& o : job.model)
+    for (auto& m : io::caseOverridesFor(o)) overrides.push_back(std::move(m));
   model::Scene s = io::readCase(job.casePath, overrides);
-  for (const model::SettingsOverride& o : job.model) o.apply(s);
   for (size_t i = 0; i < x.size(); ++i) {
     const io::ParameterSpec& p = job.parameters[i];
     if (p.joint.empty()) continue;

@@ -54,7 +54,6 @@ int compareContactsCommand(bool deformable, const std::string& csvPath) {
 
 int checkCommand(const std::string& casePath, const Overrides& o) {
   ddaslope::model::Scene scene = loadCase(casePath, o);
-  applyOverrides(scene, o, casePath);
   const ddaslope::solver::Simulation sim(scene);
   int closed = 0;
   for (const auto& c : sim.contacts().contacts()) closed += c.closed();

@@ -104,17 +104,23 @@ ddaslope::io::CaseOverride parseSetting(const std::string& text) {
   return o;
 }
 
-/// Reads the case with the --set overrides and any extra ones (a sweep's value).
+/// Reads the case with every override of the command line in one pass: --set, any extra ones (a
+/// sweep's value, a study's sample and its job's model choices), the model options, --duration.
 ddaslope::model::Scene loadCase(const std::string& casePath, const Overrides& o,
                                 std::vector<ddaslope::io::CaseOverride> extra) {
-  for (const auto& s : o.settings) extra.push_back(parseSetting(s));
-  return ddaslope::io::readCase(casePath, extra);
-}
-
-void applyOverrides(ddaslope::model::Scene& scene, const Overrides& o, const std::string& casePath) {
-  o.model.apply(scene);
-  if (o.duration > 0) scene.settings.duration = o.duration;
-  ddaslope::io::checkWorkload(scene, casePath);
+  std::vector<ddaslope::io::CaseOverride> all;
+  for (const auto& s : o.settings) all.push_back(parseSetting(s));
+  all.insert(all.end(), extra.begin(), extra.end());
+  for (auto& m : ddaslope::io::caseOverridesFor(o.model)) all.push_back(std::move(m));
+  ddaslope::model::Scene scene = ddaslope::io::readCase(casePath, all);
+  // `run --duration` shortens a run after the case is read: the case's expected values at later
+  // times stay valid (reported as not reached), and the shorter run's workload needs no new check.
+  if (o.duration > 0 && o.duration < scene.settings.duration) scene.settings.duration = o.duration;
+  else if (o.duration > 0) {
+    scene.settings.duration = o.duration;
+    ddaslope::io::checkWorkload(scene, casePath);
+  }
+  return scene;
 }
 
 /// The settings every forward run of a command uses, and where Δt came from.

@@ -36,11 +36,11 @@ void addModelOptions(CLI::App* cmd, Overrides& o);
 /// "path=value" → an override; a malformed one is bad input.
 ddaslope::io::CaseOverride parseSetting(const std::string& text);
 
-/// Reads the case with the --set overrides and any extra ones (a sweep's value).
+/// Reads the case with every override of the command line in one pass, in order: --set, the
+/// extra ones (a sweep's value, a study's sample and its job's model choices), the model options
+/// (--preset, --time-step, --blocks, --contact-treatment, --brittle-joints); then run's --duration.
 ddaslope::model::Scene loadCase(const std::string& casePath, const Overrides& o,
                                 std::vector<ddaslope::io::CaseOverride> extra = {});
-
-void applyOverrides(ddaslope::model::Scene& scene, const Overrides& o, const std::string& casePath);
 
 /// The settings every forward run of a command uses, and where Δt came from.
 std::string settingsLine(const ddaslope::model::Scene& scene);

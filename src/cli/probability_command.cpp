@@ -49,11 +49,9 @@ struct SceneMaker {
   const Overrides& overrides;
   model::Scene operator()(const std::vector<double>& values) const {
     std::vector<io::CaseOverride> extra;
-    for (size_t i = 0; i < values.size(); ++i) extra.push_back({job.spec.inputs[i].path, values[i]});
-    model::Scene scene = loadCase(job.casePath, overrides, extra);
-    job.model.apply(scene);
-    applyOverrides(scene, overrides, job.casePath);
-    return scene;
+    for (size_t i = 0; i < values.size(); ++i) extra.emplace_back(job.spec.inputs[i].path, values[i]);
+    for (auto& m : io::caseOverridesFor(job.model)) extra.push_back(std::move(m));
+    return loadCase(job.casePath, overrides, extra);
   }
 };
 
@@ -202,9 +200,7 @@ int probabilityCommand(const std::string& path, const Overrides& o, const Probab
   const model::ProbabilitySpec& spec = job.spec;
   refuseFixedInputs(job, o);
   const SceneMaker make{job, o};
-  model::Scene reference = loadCase(job.casePath, o);
-  job.model.apply(reference);
-  applyOverrides(reference, o, job.casePath);
+  const model::Scene reference = loadCase(job.casePath, o, io::caseOverridesFor(job.model));
   calibration::SampleSettings settings;
   settings.measure = spec.measure;
   settings.fosWidth = spec.fosWidth;

@@ -37,7 +37,6 @@ void addRunOptions(CLI::App* run, std::string& casePath, Overrides& overrides, R
 
 int runCommand(const std::string& casePath, const Overrides& o, const RunCommandOptions& c) {
   model::Scene scene = loadCase(casePath, o);
-  applyOverrides(scene, o, casePath);
   const std::string& outDir = c.outDir;
   io::RunOptions opt;
   opt.outputDir = outDir;

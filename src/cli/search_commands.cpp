@@ -158,7 +158,6 @@ int seismicCoefficientCommand(const std::string& casePath, const ddaslope::model
 
 int criticalCommand(const std::string& casePath, const Overrides& o, const CriticalOptions& opt) {
   ddaslope::model::Scene scene = loadCase(casePath, o);
-  applyOverrides(scene, o, casePath);
   if (!opt.vtkDir.empty() && !opt.curve.empty())
     throw ddaslope::InputError("--vtk", opt.vtkDir, "writes the trials of one search, not of a curve's searches (drop --curve)");
   if (opt.solve == "seismic-coefficient") return seismicCoefficientCommand(casePath, scene, opt);
@@ -249,7 +248,6 @@ int fosSweep(const std::string& casePath, const Overrides& o, const FosOptions& 
       indices,
       [&](int i) {
         ddaslope::model::Scene scene = loadCase(casePath, o, {{path, valueAt(i)}});
-        applyOverrides(scene, o, casePath);
         const auto r = factorFor(scene, casePath, single);
         ddaslope::BytePacker b;
         b.put(r.found).put(r.factor).put(r.stableEnd).put(r.failingEnd).put(r.runs).put(r.wallTime).put(r.message);
@@ -307,7 +305,6 @@ int fosCommand(const std::string& casePath, const Overrides& o, const FosOptions
     throw ddaslope::InputError("--vtk", opt.vtkDir, "writes the trials of one search, not of a sweep's searches (drop --sweep)");
   if (!opt.sweep.empty()) return fosSweep(casePath, o, opt);
   ddaslope::model::Scene scene = loadCase(casePath, o);
-  applyOverrides(scene, o, casePath);
   const auto log = startProgress("fos", opt.progress, opt.json);
   const auto r = factorFor(scene, casePath, opt, ddaslope::io::sinkOf(log.get()));
   log->finish(r.found, r.found ? "F " + std::to_string(r.factor) : r.message);

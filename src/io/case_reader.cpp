@@ -532,33 +532,83 @@ json* locate(json& doc, const std::string& path) {
 
 }  // namespace
 
-model::Scene readCase(const std::string& path, const std::vector<CaseOverride>& overrides) {
-  json doc = readJsonFile(path);
-  for (const CaseOverride& o : overrides) {
-    json* at = locate(doc, o.jsonPath);
-    if (!at) {
-      // A key the case leaves at its default (analysis.open_close_max_iterations) may be set too:
-      // it is added to its object, and the reader then checks it like any other key.
-      const size_t dot = o.jsonPath.rfind('.');
-      json* parent = dot == std::string::npos ? nullptr : locate(doc, o.jsonPath.substr(0, dot));
-      // So may a top-level object the case leaves out altogether (seismic.k_h on a static case).
-      const std::string parentPath = dot == std::string::npos ? "" : o.jsonPath.substr(0, dot);
-      if (!parent && !parentPath.empty() && parentPath.find_first_of(".[") == std::string::npos && doc.is_object())
-        parent = &(doc[parentPath] = json::object());
-      const std::string key = dot == std::string::npos ? "" : o.jsonPath.substr(dot + 1);
-      if (parent && parent->is_object() && !key.empty() && key.find('[') == std::string::npos) at = &(*parent)[key];
-    }
-    const std::string kind = o.flag ? "true or false" : o.text ? "a name" : "a number";
-    if (!at) throw InputError(path, o.jsonPath, "expected a value of the case at this path (to set it to " + kind + "), found none");
-    if (!(at->is_null() || (o.flag ? at->is_boolean() : o.text ? at->is_string() : at->is_number())))
-      throw InputError(path, o.jsonPath, "expected " + typeName(*at) + " here, as the case has it, found " + kind);
-    if (o.flag) *at = *o.flag;
-    else if (o.text) *at = *o.text;
-    // A whole number stays an integer, so that integer settings accept it.
-    else if (std::floor(o.value) == o.value && std::abs(o.value) < 9e15) *at = static_cast<long long>(o.value);
-    else *at = o.value;
+namespace {
+
+/// Puts one override into the case's JSON (a path without `*`).
+void applyOverride(json& doc, const std::string& path, const CaseOverride& o, const std::string& jsonPath) {
+  json* at = locate(doc, jsonPath);
+  const size_t dot = jsonPath.rfind('.');
+  if (o.erase) {
+    json* parent = dot == std::string::npos ? &doc : locate(doc, jsonPath.substr(0, dot));
+    if (parent && parent->is_object()) parent->erase(jsonPath.substr(dot + 1));
+    return;
   }
-  return parseCase(doc.dump(), path);
+  if (!at) {
+    // A key the case leaves at its default (analysis.open_close_max_iterations) may be set too:
+    // it is added to its object, and the reader then checks it like any other key.
+    json* parent = dot == std::string::npos ? nullptr : locate(doc, jsonPath.substr(0, dot));
+    // So may a top-level object the case leaves out altogether (seismic.k_h on a static case).
+    const std::string parentPath = dot == std::string::npos ? "" : jsonPath.substr(0, dot);
+    if (!parent && !parentPath.empty() && parentPath.find_first_of(".[") == std::string::npos && doc.is_object())
+      parent = &(doc[parentPath] = json::object());
+    const std::string key = dot == std::string::npos ? "" : jsonPath.substr(dot + 1);
+    if (parent && parent->is_object() && !key.empty() && key.find('[') == std::string::npos) at = &(*parent)[key];
+  }
+  const std::string kind = o.flag ? "true or false" : o.text ? "a name" : "a number";
+  if (!at) throw InputError(path, jsonPath, "expected a value of the case at this path (to set it to " + kind + "), found none");
+  if (!(at->is_null() || (o.flag ? at->is_boolean() : o.text ? at->is_string() : at->is_number())))
+    throw InputError(path, jsonPath, "expected " + typeName(*at) + " here, as the case has it, found " + kind);
+  if (o.flag) *at = *o.flag;
+  else if (o.text) *at = *o.text;
+  // A whole number stays an integer, so that integer settings accept it.
+  else if (std::floor(o.value) == o.value && std::abs(o.value) < 9e15) *at = static_cast<long long>(o.value);
+  else *at = o.value;
+}
+
+}  // namespace
+
+model::Scene readCase(const std::string& path, const std::vector<CaseOverride>& overrides) {
+  return parseCase(readInputFile(path, kMaxJsonFileBytes), path, overrides);
+}
+
+model::Scene parseCase(const std::string& text, const std::string& path, const std::vector<CaseOverride>& overrides) {
+  json doc = parseJsonText(text, path);
+  std::string origin;
+  for (const CaseOverride& o : overrides) {
+    const size_t star = o.jsonPath.find(".*.");
+    if (star == std::string::npos) {
+      applyOverride(doc, path, o, o.jsonPath);
+    } else {
+      // Every key of the object before the star (every joint).
+      const json* object = locate(doc, o.jsonPath.substr(0, star));
+      if (object && object->is_object())
+        for (const auto& item : object->items())
+          applyOverride(doc, path, o, o.jsonPath.substr(0, star) + "." + item.key() + o.jsonPath.substr(star + 2));
+    }
+    if (o.jsonPath == "analysis.time_step" || o.jsonPath == "analysis.preset") origin = o.origin;
+  }
+  model::Scene scene = parseCase(doc.dump(), path);
+  if (!origin.empty()) scene.settings.timeStepOrigin = origin;
+  return scene;
+}
+
+std::vector<CaseOverride> caseOverridesFor(const model::SettingsOverride& o) {
+  std::vector<CaseOverride> out;
+  if (!o.preset.empty()) {
+    // The preset sets these from the model's size; the case's own values give way to it.
+    for (const char* key : {"time_step", "max_displacement_ratio", "penalty_factor", "penalty"})
+      out.push_back(CaseOverride::removal(std::string("analysis.") + key));
+    out.push_back(CaseOverride::name("analysis.preset", o.preset));
+    out.back().origin = o.origin + "preset " + o.preset;
+  }
+  if (o.timeStep > 0) {
+    out.emplace_back("analysis.time_step", o.timeStep);
+    out.back().origin = o.origin + "time-step";
+  }
+  if (!o.blocks.empty()) out.push_back(CaseOverride::name("analysis.blocks", o.blocks));
+  if (!o.contactTreatment.empty()) out.push_back(CaseOverride::name("analysis.contact_treatment", o.contactTreatment));
+  if (o.brittleJoints) out.emplace_back("joints.*.weakening_distance", 0);
+  return out;
 }
 
 std::string expandSection(const std::string& path) {

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "ddaslope/model/scene.hpp"
+#include "ddaslope/model/settings_override.hpp"
 
 namespace ddaslope::io {
 
@@ -40,13 +41,31 @@ struct CaseOverride {
     o.text = std::move(n);
     return o;
   }
+  static CaseOverride removal(std::string path) {
+    CaseOverride o(std::move(path), 0);
+    o.erase = true;
+    return o;
+  }
+  /// A path may hold one `*` standing for every key of an object ("joints.*.weakening_distance").
   std::string jsonPath;
   double value = 0;
   std::optional<bool> flag;          ///< a boolean setting (true / false)
   std::optional<std::string> text;   ///< a named choice ("rigid", "balanced")
+  bool erase = false;                ///< remove the key, so that its default applies
+  /// Where the time step came from when this sets analysis.time_step or analysis.preset
+  /// ("--time-step", "job preset fast"); empty: the case key's own name.
+  std::string origin;
 };
-/// Reads the case with overrides applied; a path that does not lead to a value of the override's
-/// kind (or to a key the case may add) is an InputError.
+
+/// The model choices of a command line or a job (preset, time step, blocks, contact treatment,
+/// brittle joints) as overrides of the case, in that order: a preset wins over the case's own
+/// time step, g2 and penalty (their keys are removed), an explicit time step over a preset.
+std::vector<CaseOverride> caseOverridesFor(const model::SettingsOverride& o);
+/// parseCase with overrides applied, in order, to its JSON before it is read (readCase's rules).
+model::Scene parseCase(const std::string& text, const std::string& file, const std::vector<CaseOverride>& overrides);
+/// Reads the case with overrides applied, in order, to its JSON before it is read, so that every
+/// value is checked, and the workload judged, once; a path that does not lead to a value of the
+/// override's kind (or to a key the case may add) is an InputError.
 model::Scene readCase(const std::string& path, const std::vector<CaseOverride>& overrides);
 
 /// For a case whose section is drawn (section.dxf): one line saying what the drawing gave (units,

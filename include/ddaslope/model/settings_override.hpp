@@ -1,7 +1,8 @@
 #pragma once
 // The accuracy and model choices a command or a back-analysis job may impose on a case's own
 // analysis settings: an accuracy preset, a time step, rigid or deformable blocks, the contact
-// treatment, brittle joints. Applied in that order, so an explicit time step wins over a preset.
+// treatment, brittle joints. They reach the case as overrides of its JSON, in that order, so an
+// explicit time step wins over a preset (io::caseOverridesFor).
 #include <string>
 
 #include "ddaslope/model/scene.hpp"
@@ -18,8 +19,6 @@ struct SettingsOverride {
   bool brittleJoints = false;
   /// Prefix naming the source in AnalysisSettings::timeStepOrigin: "--" gives "--preset fast".
   std::string origin = "--";
-
-  void apply(Scene& scene) const;
 };
 
 }  // namespace ddaslope::model
