@@ -58,7 +58,7 @@ TEST(LinearSolver, StopsAtTheResidualFloor) {
   EXPECT_EQ(solver.stats().cgIterations, before);
   EXPECT_LE((b - k.multiply(x)).norm(), 2 * r0);
   // The open-close iteration asks whether such a solution is also within the strict target
-  // (Simulation::tryStep solves loosely while contact states change): it is not.
+  // (Simulation::solveIterate solves loosely while contact states change): it is not.
   EXPECT_FALSE(solver.lastSolveWithin(0.0));
   EXPECT_TRUE(solver.lastSolveWithin(2 * r0));
 
@@ -70,7 +70,7 @@ TEST(LinearSolver, StopsAtTheResidualFloor) {
 }
 
 // The iteration budget: a stale factor whose CG needs more iterations than the budget is redone
-// (large systems use 4 of the default 8: Simulation::tryStep), and the fresh factor then solves K
+// (large systems use 4 of the default 8: Simulation::configureSolver), and the fresh factor then solves K
 // without iterating.
 TEST(LinearSolver, RedoesAFactorThatNeedsMoreThanItsBudget) {
   for (const int budget : {8, 4}) {

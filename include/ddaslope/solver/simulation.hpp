@@ -4,6 +4,11 @@
 // The DDA forward model. One step reads top-down (STYLE.md):
 // broad phase → contacts → (assemble → factorise → solve → judge states)* → accept or cut Δt
 // → update geometry → commit contacts.
+// Where each part lives in src/solver/: simulation.cpp (construction, advance, commit, energy,
+// monitors), contact_update.cpp (broad and narrow phase, the persistent contact set), step.cpp (one
+// attempt: the solver's path, assembly, solves, the step limit), open_close.cpp (the judgement of
+// each iterate: contact rules, holding and freezing, cycles), equilibrium.cpp (the initial
+// equilibrium's three stages); the time integrator is solver/newmark.hpp.
 #include <cmath>
 #include <algorithm>
 #include <functional>
@@ -21,6 +26,7 @@
 #include "ddaslope/solver/energy.hpp"
 #include "ddaslope/solver/factor_springs.hpp"
 #include "ddaslope/solver/linear_solver.hpp"
+#include "ddaslope/solver/newmark.hpp"
 #include "ddaslope/solver/time_step.hpp"
 
 namespace ddaslope::solver {
@@ -160,8 +166,6 @@ class Simulation {
  private:
   /// Settling: dynamic steps before t = 0 (velocity carried, loads at t = 0).
   enum class Regime { Analysis, HeldEquilibrium, Relaxation, Settling };
-  /// Locked contacts between blocks that the case sets moving along them start sliding.
-  void startSlidingWhereBlocksMove();
   /// How settle() ended: at a rest confirmed at the analysis Δt, at an unconfirmed one, with no
   /// static rest but no sign of failure either (stage 3 settles it), or failing.
   enum class Rest { Confirmed, Unconfirmed, Unsettled, NotFound };
@@ -175,9 +179,39 @@ class Simulation {
     std::vector<Vec6> groundLoads;  ///< the record's inertial force among them (its work, reported apart)
     std::vector<contact::Contact> contacts;
   };
+  struct StepState;       ///< what an attempt carries from stage to stage (src/solver/step_state.hpp)
+  struct IterateChanges;  ///< what judging an iterate changed (src/solver/step_state.hpp)
+  /// The residuals an iterate's solve stops at: the round-off of b's terms, and the one asked for.
+  struct ResidualFloors {
+    double roundOff = 0, solve = 0;
+  };
 
-  void detectContacts(bool initial);
+  // The run around the step (simulation.cpp).
   void markActiveBlocks(const std::vector<bool>& held);
+  /// A system of the size whose factor follows the contacts (≥ 1000 unknowns; the shipped cases
+  /// have at most 28 blocks): its static steps and factorisations are what a step costs.
+  bool largeSystem() const;
+  /// Unknowns per block in K: 6, or 3 for rigid blocks.
+  int unknownsPerBlock() const;
+  /// Accepts an attempt (its contacts move into the contact set); `weakens`: its slip softens
+  /// the joints (analysis steps only).
+  void commit(Attempt& a, double dt, bool weakens);
+  /// The linear solver's counters into stats_ (after each committed step, and after a check).
+  void recordSolverStatistics();
+  /// Largest vertex displacement of an attempt's solution over the active blocks (m), and the
+  /// block that has it (-1 if none is active).
+  std::pair<double, int> fastestBlock(const Attempt& a) const;
+  double largestVertexDisplacement(const Attempt& a) const;  ///< fastestBlock(a).first
+  std::string fastestBlockNote(const Attempt& a) const;  ///< the block that moved most, for logs
+
+  // The contact update (contact_update.cpp).
+  void detectContacts(bool initial);
+  /// Finds the two halves of every edge-to-edge contact (partner_).
+  void pairEdgeHalves();
+  /// Locked contacts between blocks that the case sets moving along them start sliding.
+  void startSlidingWhereBlocksMove();
+
+  // The initial equilibrium (equilibrium.cpp).
   /// Blocks that rest on no fixed block or fixed point through closed contacts.
   std::vector<bool> unsupportedBlocks() const;
   /// Static steps in `regime` until at rest (implied acceleration < 1e-6 g); NotFound if the
@@ -193,50 +227,75 @@ class Simulation {
   /// Δt, every contact judged by its real law, converges with an implied acceleration below
   /// `restAcceleration`: the analysis will start at rest.
   bool confirmedAtRest(const Attempt& last, double restAcceleration);
-  /// A system of the size whose factor follows the contacts (≥ 1000 unknowns; the shipped cases
-  /// have at most 28 blocks): its static steps and factorisations are what a step costs.
-  bool largeSystem() const;
   /// After stage 3 of a large system: one static step to the static equilibrium of the settled
   /// contact states, kept if it converges with no contact frozen, implies less than 1e-6 g, and a
   /// step from rest at the analysis Δt confirms it (the rest test of stage 3).
   void polishRest(double staticDt);
-  /// The linear solver's counters into stats_ (after each committed step, and after a check).
-  void recordSolverStatistics();
-  /// Largest vertex displacement of an attempt's solution over the active blocks (m), and the
-  /// block that has it (-1 if none is active).
-  std::pair<double, int> fastestBlock(const Attempt& a) const;
-  double largestVertexDisplacement(const Attempt& a) const;  ///< fastestBlock(a).first
-  std::string fastestBlockNote(const Attempt& a) const;  ///< the block that moved most, for logs
+
+  // The step (step.cpp): one attempt at Δt, its open-close iteration and the step limit.
   /// `freezeCycling`: a contact that keeps changing state within the step keeps its state
   /// whatever its law says; `holdSmallViolations`: only while that breaks its law by a small
-  /// fraction of the largest contact force (tryStep).
+  /// fraction of the largest contact force (open_close.cpp).
   Attempt tryStep(double dt, Regime regime, bool freezeCycling, bool holdSmallViolations = false);
+  /// K's pattern for the blocks these contacts couple.
+  void updatePattern(const std::vector<contact::Contact>& contacts);
+  /// Whether a step in `regime` carries the blocks' velocity (dynamic analysis and settling).
+  bool carriesVelocity(Regime regime) const;
   /// Block terms of a step; `loads` receives the water, point-load and seismic part of f (its work),
   /// `magnitude` the sum of the absolute values of the terms that make up f (its round-off scale).
   void assembleBlockTerms(double dt, Regime regime, std::vector<Mat6>& k, std::vector<Vec6>& f,
                           std::vector<Vec6>& loads, std::vector<Vec6>& magnitude,
                           std::vector<Vec6>* groundLoads = nullptr) const;
-  /// Accepts an attempt (its contacts move into the contact set); `weakens`: its slip softens
-  /// the joints (analysis steps only).
-  void commit(Attempt& a, double dt, bool weakens);
+  /// The solver's path for the step: fill ordering, CG budget, residual target, a factor kept or
+  /// dropped.
+  void configureSolver(StepState& s);
+  /// K's contact springs (if the states changed) and b, for the attempt's contact states.
+  void assembleContactTerms(StepState& s);
+  /// A large system's factor follows the springs switched on and off (or is dropped).
+  void followStateChanges(StepState& s);
+  ResidualFloors residualFloors(const StepState& s) const;
+  /// Solves the iterate; false (with the attempt's failure) if K is not positive definite or
+  /// the solution not finite.
+  bool solveIterate(StepState& s);
   /// Solves K d = rhs (6 per active block); rigid blocks solve for their 3 unknowns.
   /// residualFloor: the residual below which the right-hand side is round-off (0: none).
   bool solveSystem(const SystemOperator& k, const Eigen::VectorXd& rhs, Eigen::VectorXd& d, double residualFloor);
+  /// Fails a converged attempt whose largest vertex displacement exceeds the step limit.
+  void checkStepLimit(Attempt& a) const;
+
+  // The open-close judgement (open_close.cpp).
+  /// The round-off guard of the contact rules, from the step's contacts.
+  contact::StateTolerance stateTolerance(const std::vector<contact::Contact>& contacts) const;
+  /// Every contact's forces and slip under the iterate's solution.
+  std::vector<contact::ContactResponse> contactResponses(const StepState& s) const;
+  /// Judges every contact, holds or freezes those that cycle, and applies the states.
+  IterateChanges judgeIterate(StepState& s);
+  /// States after a solve: vertex rule per contact, or edge rule per pair (contact_treatment).
+  std::vector<contact::ContactJudgement> judgeContacts(const std::vector<contact::Contact>& cs,
+                                                       const std::vector<contact::ContactResponse>& response,
+                                                       Regime regime, const contact::StateTolerance& tol) const;
+  /// By how much holding contact q in its state breaks its law, against the judgement j.
+  double heldViolation(const StepState& s, size_t q, const contact::ContactJudgement& j,
+                       const std::vector<contact::ContactResponse>& response) const;
+  /// The judgement a changed contact q gets: held or frozen once it has cycled (as the attempt
+  /// allows), or its own (counted as a flip).
+  contact::ContactJudgement holdOrFreeze(StepState& s, size_t q, contact::ContactJudgement j,
+                                         const std::vector<contact::ContactResponse>& response, double allowed) const;
+  /// Contact q takes judgement j under response r (its lock anchor, strength, forces).
+  void applyJudgement(StepState& s, size_t q, const contact::ContactJudgement& j,
+                      const contact::ContactResponse& r) const;
+  /// True (with the attempt's failure) once the contact states repeat in a cycle.
+  bool stopCycling(StepState& s);
   contact::ContactStrength strengthOf(const contact::Contact& c) const;
   /// Shear a sliding contact resists with: N tanφ, plus c·L while a softening bond lasts.
   double slidingResistance(const contact::Contact& c) const;
   /// The friction force each sliding contact applies (0 for the others): its own resistance, but
   /// the two ends of an edge-to-edge contact that slide together apply half their sum each.
   std::vector<double> slidingFriction(const std::vector<contact::Contact>& cs) const;
-  /// Finds the two halves of every edge-to-edge contact (partner_).
-  void pairEdgeHalves();
-  /// States after a solve: vertex rule per contact, or edge rule per pair (contact_treatment).
-  std::vector<contact::ContactJudgement> judgeContacts(const std::vector<contact::Contact>& cs,
-                                                       const std::vector<contact::ContactResponse>& response,
-                                                       Regime regime, const contact::StateTolerance& tol) const;
   double edgeLength(const contact::Contact& c) const;
 
   model::Scene scene_;
+  NewmarkIntegrator integrator_;  ///< the time integration (newmark.hpp)
   double w0_ = 1;
   std::vector<double> mass_;   ///< per block (kg/m), fixed at the start: ρ·S₀
   /// The block terms a large system's factor was made with: its Δt, and whether its steps carry

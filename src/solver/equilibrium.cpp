@@ -1,0 +1,361 @@
+// The initial equilibrium (dda-method.md §6): the scene brought to rest under its static loads
+// before t = 0, in up to three stages (Simulation::bringToEquilibrium): every initial contact
+// held, the real contact law in static steps, and dynamic settling with kinetic damping.
+#include <algorithm>
+#include <cmath>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "ddaslope/core/errors.hpp"
+#include "ddaslope/solver/energy.hpp"
+#include "ddaslope/solver/simulation.hpp"
+
+namespace ddaslope::solver {
+
+using contact::Contact;
+
+namespace {
+
+/// Stage 3's budget, in steps per analysis.equilibrium_max_steps (200 by default: 4000 steps).
+constexpr int kSettlingStepsPerEquilibriumStep = 20;
+
+}  // namespace
+
+double Simulation::restAcceleration() const {
+  // At rest when the acceleration a static step implies, 2|D|/Δt², is below 1e-6 g: a measure
+  // of the out-of-balance force that does not depend on the Δt the step control ended up with.
+  return 1e-6 * std::max(scene_.gravity.norm(), 1e-3);
+}
+
+Simulation::Rest Simulation::settle(Regime regime, double& dt, double largestDt) {
+  // A scene that moves this far while settling is failing, not settling.
+  const double failingTravel = scene_.settings.maxDisplacementRatio * w0_;
+  double travel = 0;
+  // Without stage 3 an unconfirmed rest is kept as a fallback while static steps from the
+  // analysis Δt look for a confirmed one (many-block scenes near failure, e.g. Vajont, creep on).
+  std::optional<std::pair<model::Scene, contact::ContactSet>> firstRest;
+  constexpr int kConfirmationSteps = 30;
+  int stepsSinceRest = 0;
+  const auto fallBack = [&] {
+    // Stage 3 settles a relaxation whose static steps ran out of budget or stopped converging
+    // (contacts cycling in static steps: the chair slide with a block across its kink).
+    if (regime == Regime::Relaxation && scene_.settings.settleDynamically) return Rest::Unsettled;
+    if (!firstRest) return Rest::NotFound;
+    scene_ = std::move(firstRest->first);
+    contacts_ = std::move(firstRest->second);
+    return Rest::Unconfirmed;
+  };
+  for (int s = 0; s < scene_.settings.equilibriumMaxSteps; ++s) {
+    checkDeadline();
+    if (firstRest && stepsSinceRest++ >= kConfirmationSteps) break;
+    detectContacts(false);
+    Attempt a = tryStep(dt, regime, true);
+    bool cut = false;
+    for (int k = 0; !a.converged && k < scene_.settings.maxStepCuts; ++k) {
+      if (log_) log_("equilibrium Δt " + std::to_string(dt) + " s cut: " + a.failure);
+      dt *= scene_.settings.stepCutFactor;
+      a = tryStep(dt, regime, true);
+      cut = true;
+    }
+    if (!a.converged) return fallBack();
+    // Slip while the model settles under gravity switched on at once is an artefact of that start
+    // (in nature the slope was loaded over its history), so it does not soften a joint; a brittle
+    // bond that slides is still lost (original DDA).
+    commit(a, dt, false);
+    ++stats_.equilibriumSteps;
+    const double worst = largestVertexDisplacement(a);
+    stats_.equilibriumResidual = 2 * worst / (dt * dt) / std::max(scene_.gravity.norm(), 1e-3);
+    travel += worst;
+    if (regime == Regime::Relaxation) relaxationTravel_ = travel;
+    if (log_) {
+      std::ostringstream m;
+      m << (regime == Regime::HeldEquilibrium ? "equilibrium (contacts held)" : "equilibrium (relaxation)")
+        << " step " << s + 1 << ": Δt " << dt << " s, " << a.iterations << " open-close iterations, "
+        << "out-of-balance " << stats_.equilibriumResidual << " g, travel " << travel << " m"
+        << fastestBlockNote(a);
+      log_(m.str());
+    }
+    if (2 * worst / (dt * dt) < restAcceleration()) {
+      // Stage 1 holds every contact, so its rest is exact. A relaxation step may be accepted
+      // with cycling contacts frozen against their own criteria (on the chair slide, bonded
+      // contacts held locked in 150 MN/m of tension that their law opens), and at a static Δt of
+      // seconds 2|D|/Δt² hides a residual force the stiffness takes up. The analysis would
+      // release either dynamically, and on a slope near its strength that release slides and
+      // softens joints. So the relaxed state is confirmed by one step from rest at the analysis
+      // Δt with every contact judged by its real law; unconfirmed, stage 3 settles it.
+      if (regime != Regime::Relaxation || confirmedAtRest(a, restAcceleration())) return Rest::Confirmed;
+      if (scene_.settings.settleDynamically) return Rest::Unconfirmed;
+      if (!firstRest) firstRest.emplace(scene_, contacts_);
+      if (log_) log_("equilibrium (relaxation): rest not confirmed at the analysis Δt; settling on");
+      dt = scene_.settings.timeStep;
+      continue;
+    }
+    if (travel > failingTravel) return scene_.settings.settleDynamically ? Rest::NotFound : fallBack();
+    // A cut Δt makes the static step a slow dynamic relaxation: grow it back once it passes.
+    if (!cut) dt = std::min(largestDt, 3 * dt);
+  }
+  return fallBack();
+}
+
+bool Simulation::settleDynamically() {
+  // Kinetic damping (Cundall's dynamic relaxation for explicit codes; here on the implicit
+  // Newmark step): steps at the analysis Δt carry velocity, and whenever the kinetic energy has
+  // passed a peak every velocity is set to zero, which removes the energy of the mode that
+  // peaked while the out-of-balance force keeps pushing towards equilibrium. The scene is at rest
+  // when a step started from zero velocity converges without freezing contacts and implies an
+  // acceleration below restAcceleration(): the test confirmedAtRest() applies to stage 2.
+  const double failingTravel = scene_.settings.maxDisplacementRatio * w0_;
+  const int budget = kSettlingStepsPerEquilibriumStep * scene_.settings.equilibriumMaxSteps;
+  const bool dynamic = integrator_.dynamic();
+  // Releasing the held contacts sets a large scene ringing as a sudden load does, and its
+  // lightly loaded contacts cycle at any Δt, so that the settling cuts Δt again and again. A large
+  // system holds a contact whose cycling breaks its law by little, as its analysis steps do
+  // (open_close.cpp, kHeldViolation), and settles without those cuts. A step that held one never
+  // confirms rest. Small systems and static analyses keep the strict rule: held contacts moved a
+  // slope at its strength to another verdict (docs/performance.md, "Tried and dropped").
+  const bool holdSmallViolations = largeSystem() && dynamic;
+  // The travel of stage 2 counts: the two stages together may not move like a failing scene.
+  double travel = relaxationTravel_, lastKinetic = 0;
+  // Static steps leave no meaningful velocity (commit() sums 2D/Δt over them): start from rest.
+  for (model::Block& b : scene_.blocks) b.velocity.setZero();
+  bool fromRest = true;
+  for (int s = 0; s < budget; ++s) {
+    checkDeadline();
+    detectContacts(false);
+    double dt = scene_.settings.timeStep;
+    Attempt a = tryStep(dt, Regime::Settling, false, holdSmallViolations);
+    for (int k = 0; !a.converged && k < scene_.settings.maxStepCuts; ++k) {
+      if (log_) log_("settling Δt " + std::to_string(dt) + " s cut: " + a.failure);
+      dt *= scene_.settings.stepCutFactor;
+      a = tryStep(dt, Regime::Settling, k >= 1, holdSmallViolations);
+    }
+    if (!a.converged) return false;
+    commit(a, dt, false);
+    ++stats_.settlingSteps;
+    const double worst = largestVertexDisplacement(a);
+    travel += worst;
+    const double implied = 2 * worst / (dt * dt);
+    if (log_) {
+      std::ostringstream m;
+      m << "settling step " << s + 1 << ": Δt " << dt << " s, " << a.iterations << " open-close iterations"
+        << (fromRest ? ", from rest: " : ", ") << "implied acceleration " << implied / std::max(scene_.gravity.norm(), 1e-3)
+        << " g, travel " << travel << " m" << fastestBlockNote(a);
+      log_(m.str());
+    }
+    if (fromRest && !a.frozeContacts && implied < restAcceleration()) {
+      stats_.equilibriumResidual = implied / std::max(scene_.gravity.norm(), 1e-3);
+      return true;
+    }
+    if (travel > failingTravel) return false;
+    double kinetic = 0;
+    for (size_t b = 0; b < scene_.blocks.size(); ++b)
+      if (active_[b] >= 0) kinetic += kineticEnergy(scene_.blocks[b], mass_[b]);
+    // A static analysis carries no velocity: each of its steps starts from rest.
+    fromRest = !dynamic || kinetic < lastKinetic;
+    if (fromRest) {
+      for (model::Block& b : scene_.blocks) b.velocity.setZero();
+      kinetic = 0;
+    }
+    lastKinetic = kinetic;
+  }
+  return false;
+}
+
+void Simulation::polishRest(double staticDt) {
+  // Kinetic damping stops once a step from rest implies less than 1e-6 g; a static step from
+  // there, with the contact states settled, lands on the static equilibrium of those states. A
+  // wall left at 1e-6 g rings slightly through the analysis, and each of its quiet steps then
+  // needs a conjugate-gradient iteration that the single-precision factor of a wall at rest does
+  // not (a second substitution). The static step is kept if it converges with no contact frozen
+  // against its law and implies less than 1e-6 g at its Δt, and if a step from rest at the
+  // analysis Δt under the real law then implies less than 1e-6 g (stage 3's own rest test, which
+  // also leaves the analysis a factor of its block terms); otherwise the settled state stands.
+  const model::Scene settledScene = scene_;
+  const contact::ContactSet settledContacts = contacts_;
+  const double settledPenetration = stats_.maxPenetration;
+  const auto implied = [&](const Attempt& a, double dt) { return 2 * largestVertexDisplacement(a) / (dt * dt); };
+  const auto atRest = [&](const Attempt& a, double dt) {
+    return a.converged && !a.frozeContacts && implied(a, dt) < restAcceleration();
+  };
+  for (model::Block& b : scene_.blocks) b.velocity.setZero();
+  detectContacts(false);
+  Attempt polish = tryStep(staticDt, Regime::Relaxation, false);
+  recordSolverStatistics();
+  if (!atRest(polish, staticDt)) return;
+  commit(polish, staticDt, false);
+  for (model::Block& b : scene_.blocks) b.velocity.setZero();
+  detectContacts(false);
+  const double dt = scene_.settings.timeStep;
+  const Attempt check = tryStep(dt, Regime::Settling, false);
+  recordSolverStatistics();  // the check is not committed, but its factorisation counts here
+  if (!atRest(check, dt)) {
+    scene_ = settledScene;
+    contacts_ = settledContacts;
+    stats_.maxPenetration = settledPenetration;
+    if (log_) log_("equilibrium: the static step from the settled state was not confirmed; the settled state stands");
+    return;
+  }
+  ++stats_.equilibriumSteps;
+  stats_.equilibriumResidual = implied(check, dt) / std::max(scene_.gravity.norm(), 1e-3);
+  if (log_) {
+    std::ostringstream m;
+    m << "equilibrium: one static step from the settled state; a step from rest at the analysis Δt then implies "
+      << stats_.equilibriumResidual << " g";
+    log_(m.str());
+  }
+}
+
+bool Simulation::confirmedAtRest(const Attempt& last, double restAcceleration) {
+  if (last.frozeContacts) return false;
+  const double dt = scene_.settings.timeStep;
+  detectContacts(false);
+  const Attempt check = tryStep(dt, Regime::Relaxation, false);
+  if (!check.converged) return false;
+  return 2 * largestVertexDisplacement(check) / (dt * dt) < restAcceleration;
+}
+
+std::vector<bool> Simulation::unsupportedBlocks() const {
+  const size_t n = scene_.blocks.size();
+  std::vector<bool> reached(n, false);
+  std::vector<int> frontier;
+  for (size_t b = 0; b < n; ++b)
+    if (scene_.blocks[b].fixed) reached[b] = true;
+  for (const model::FixedPoint& f : scene_.fixedPoints) reached[f.point.block] = true;
+  for (size_t b = 0; b < n; ++b)
+    if (reached[b]) frontier.push_back(static_cast<int>(b));
+  while (!frontier.empty()) {
+    const int b = frontier.back();
+    frontier.pop_back();
+    for (const Contact& c : contacts_.contacts()) {
+      if (!c.closed()) continue;
+      const int u = c.key().vertexBlock, v = c.key().edgeBlock;
+      const int other = u == b ? v : (v == b ? u : -1);
+      if (other >= 0 && !reached[other]) {
+        reached[other] = true;
+        frontier.push_back(other);
+      }
+    }
+  }
+  std::vector<bool> held(n);
+  for (size_t b = 0; b < n; ++b) held[b] = !reached[b];
+  return held;
+}
+
+HeldEquilibrium Simulation::holdEquilibrium() {
+  HeldEquilibrium h;
+  h.held = unsupportedBlocks();
+  markActiveBlocks(h.held);
+  if (nActive_ > 0) {
+    // Static steps whose inertia term is 1e-8 of the contact stiffness: only a regularisation,
+    // so a step solves the static problem almost exactly. A mechanism (a block free to turn)
+    // trips the displacement limit, and each Δt cut raises the regularisation ~11-fold.
+    double maxMass = 0;
+    for (const model::Block& b : scene_.blocks)
+      if (!b.fixed) maxMass = std::max(maxMass, scene_.materials[b.material].density * b.moments.area);
+    h.dt = std::sqrt(2e8 * maxMass / penalty_);
+    const int before = stats_.equilibriumSteps;
+    h.converged = settle(Regime::HeldEquilibrium, h.dt, h.dt) != Rest::NotFound;
+    h.steps = stats_.equilibriumSteps - before;
+  }
+  h.blocks = scene_.blocks;
+  h.monitors = scene_.monitors;
+  h.pointLoads = scene_.pointLoads;
+  h.fixedPoints = scene_.fixedPoints;
+  h.contacts = contacts_;
+  markActiveBlocks({});
+  return h;
+}
+
+void Simulation::bringToEquilibrium(const HeldEquilibrium* shared) {
+  if (!scene_.settings.initialEquilibrium) {
+    stats_.startedAtRest = false;  // not brought to rest: the analysis starts as the case is
+    startSlidingWhereBlocksMove();
+    return;
+  }
+  std::vector<Vec6> initialVelocity;
+  for (const model::Block& b : scene_.blocks) initialVelocity.push_back(b.velocity);
+  HeldEquilibrium own;
+  if (shared) {
+    DDASLOPE_ASSERT(shared->blocks.size() == scene_.blocks.size() && shared->monitors.size() == scene_.monitors.size(),
+                    "a shared equilibrium must come from the same scene");
+    scene_.blocks = shared->blocks;
+    scene_.monitors = shared->monitors;
+    scene_.pointLoads = shared->pointLoads;
+    scene_.fixedPoints = shared->fixedPoints;
+    contacts_ = shared->contacts;
+    // The joints (strengths) are this scene's own; contacts keep their joint index.
+  } else {
+    own = holdEquilibrium();
+    shared = &own;
+  }
+  stats_.equilibriumConverged = shared->converged;
+  heldMonitors_.clear();
+  for (const model::Monitor& m : shared->monitors) heldMonitors_.push_back(m.point.current);
+  heldBlocks_ = shared->blocks;
+  markActiveBlocks(shared->held);
+  if (nActive_ > 0) {
+    detectContacts(false);
+    const model::Scene heldScene = scene_;
+    const contact::ContactSet heldContacts = contacts_;
+    // A large system settles dynamically (stage 3) straight from stage 1's state. Each static
+    // step of stage 2 costs a factorisation per open-close iteration (Δt changing, and a large
+    // scene's steps take tens of iterations), and a static step cannot settle a contact held at
+    // its friction limit: its inertia is only a regulariser (1e-8 of the contact stiffness), so a
+    // block whose driving force its friction just balances is all but free, and a large wall
+    // creeps under the relaxation instead of coming to rest. Small systems keep stage 2: their
+    // steps are cheap, and the shipped cases' figures were made with it. So does a static
+    // analysis, whose stage 3 has no kinetic damping. Should stage 3 fail, the analysis starts
+    // from stage 1's state.
+    const bool skipStaticRelaxation = scene_.settings.settleDynamically && largeSystem() &&
+                                      integrator_.dynamic();
+    Rest rest = Rest::Unsettled;
+    relaxationTravel_ = 0;
+    if (!skipStaticRelaxation) {
+      // Releasing every held contact at once in one huge static step rarely converges: start the
+      // relaxation at the analysis Δt and let it grow.
+      double relaxDt = std::min(shared->dt, scene_.settings.timeStep);
+      rest = settle(Regime::Relaxation, relaxDt, shared->dt);
+    }
+    stats_.relaxationConverged = rest == Rest::Confirmed || rest == Rest::Unconfirmed;
+    stats_.startedAtRest = rest == Rest::Confirmed;
+    if (rest == Rest::NotFound) {
+      scene_ = heldScene;
+      contacts_ = heldContacts;
+    } else if ((rest == Rest::Unconfirmed || rest == Rest::Unsettled) && scene_.settings.settleDynamically) {
+      const model::Scene relaxedScene = scene_;
+      const contact::ContactSet relaxedContacts = contacts_;
+      if (log_)
+        log_(skipStaticRelaxation ? "equilibrium: a large system settles dynamically from every contact held"
+             : rest == Rest::Unsettled ? "equilibrium (relaxation): no static rest; settling dynamically"
+                                     : "equilibrium (relaxation): rest not confirmed at the analysis Δt; settling dynamically");
+      stats_.startedAtRest = settleDynamically();
+      // Without stage 2, "relaxed" reports whether the real contact law found rest at all.
+      if (skipStaticRelaxation) {
+        stats_.relaxationConverged = stats_.startedAtRest;
+        if (stats_.startedAtRest) polishRest(shared->dt);
+      }
+      if (!stats_.startedAtRest) {
+        // Failing, or still moving after the budget: start from stage 2's rest, or from stage 1's
+        // state if stage 2 found none, as without stage 3.
+        const bool relaxed = rest == Rest::Unconfirmed;
+        if (log_)
+          log_(std::string("settling: no rest found; the analysis starts from the ") +
+               (relaxed ? "relaxed state" : "state with every contact held"));
+        scene_ = relaxed ? relaxedScene : heldScene;
+        contacts_ = relaxed ? relaxedContacts : heldContacts;
+      }
+    }
+  } else {
+    // No block to settle: at rest unless blocks are held because nothing supports them.
+    stats_.startedAtRest = std::none_of(shared->held.begin(), shared->held.end(), [](bool h) { return h; });
+  }
+  for (size_t b = 0; b < scene_.blocks.size(); ++b) scene_.blocks[b].velocity = initialVelocity[b];
+  markActiveBlocks({});
+  detectContacts(false);
+  startSlidingWhereBlocksMove();
+}
+
+}  // namespace ddaslope::solver
