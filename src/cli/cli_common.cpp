@@ -194,4 +194,16 @@ std::unique_ptr<ddaslope::io::ProgressLog> startProgress(const std::string& comm
   return std::make_unique<ddaslope::io::ProgressLog>(command, terminal, root ? p.logJson : std::string());
 }
 
+/// Where a search's --vtk went (text output).
+void printTrialStatesNote(const std::string& dir, int runs) {
+  if (!dir.empty())
+    std::printf("  wrote %s: blocks.pvd, contacts.pvd: the final state of each of the %d trials, at the value it tried\n",
+                dir.c_str(), runs);
+}
+
+/// Verdict warnings go to stderr, so a --json result on stdout stays clean.
+void warnAboutTrials(const std::string& casePath, const std::string& warning) {
+  if (!warning.empty()) std::fprintf(stderr, "ddaslope: warning: %s: %s\n", casePath.c_str(), warning.c_str());
+}
+
 }  // namespace ddaslope::cli

@@ -63,4 +63,9 @@ void addProgressOptions(CLI::App* cmd, ProgressOptions& p);
 std::unique_ptr<ddaslope::io::ProgressLog> startProgress(const std::string& command, const ProgressOptions& p,
                                                          bool jsonResult);
 
+/// Where a search's --vtk went (text output).
+void printTrialStatesNote(const std::string& dir, int runs);
+/// Verdict warnings go to stderr, so a --json result on stdout stays clean.
+void warnAboutTrials(const std::string& casePath, const std::string& warning);
+
 }  // namespace ddaslope::cli

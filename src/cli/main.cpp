@@ -9,10 +9,11 @@
 #include "ddaslope/core/task_farm.hpp"
 #include "backanalyse_command.hpp"
 #include "check_command.hpp"
+#include "critical_command.hpp"
+#include "fos_command.hpp"
 #include "cli_common.hpp"
 #include "probability_command.hpp"
 #include "run_command.hpp"
-#include "search_commands.hpp"
 
 namespace {
 

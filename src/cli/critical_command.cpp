@@ -1,4 +1,4 @@
-#include "search_commands.hpp"
+#include "critical_command.hpp"
 
 #include <chrono>
 #include <cmath>
@@ -71,18 +71,6 @@ int curveCommand(const std::string& casePath, const ddaslope::model::Scene& scen
   return all ? kExitOk : kExitNonConvergence;
 }
 
-/// Where a search's --vtk went (text output).
-void printTrialStatesNote(const std::string& dir, int runs) {
-  if (!dir.empty())
-    std::printf("  wrote %s: blocks.pvd, contacts.pvd: the final state of each of the %d trials, at the value it tried\n",
-                dir.c_str(), runs);
-}
-
-/// Verdict warnings go to stderr, so a --json result on stdout stays clean.
-void warnAboutTrials(const std::string& casePath, const std::string& warning) {
-  if (!warning.empty()) std::fprintf(stderr, "ddaslope: warning: %s: %s\n", casePath.c_str(), warning.c_str());
-}
-
 /// The yield seismic coefficient k_y (critical --solve seismic-coefficient): along the direction
 /// asked, or along both (auto), the smaller being the slope's.
 int seismicCoefficientCommand(const std::string& casePath, const ddaslope::model::Scene& scene,
@@ -153,7 +141,6 @@ int seismicCoefficientCommand(const std::string& casePath, const ddaslope::model
   return r.found ? kExitOk : kExitNonConvergence;
 }
 
-
 }  // namespace
 
 int criticalCommand(const std::string& casePath, const Overrides& o, const CriticalOptions& opt) {
@@ -206,136 +193,6 @@ int criticalCommand(const std::string& casePath, const Overrides& o, const Criti
   return r.found ? kExitOk : kExitNonConvergence;
 }
 
-namespace {
-
-ddaslope::calibration::FactorOfSafetyResult factorFor(const ddaslope::model::Scene& scene, const std::string& casePath,
-                                                      const FosOptions& opt, ddaslope::io::ProgressSink progress = {}) {
-  std::vector<int> joints;
-  for (const auto& n : opt.joints) joints.push_back(jointIndex(scene, n, casePath));
-  ddaslope::calibration::SearchSettings s;
-  s.threads = opt.threads;
-  s.progress = std::move(progress);
-  recordTrialStates(s, opt.vtkDir, scene);
-  return ddaslope::calibration::factorOfSafety(scene, joints, opt.width, s);
-}
-
-/// F at n values of one case number (e.g. the reservoir level): CSV and PNG in opt.outDir.
-int fosSweep(const std::string& casePath, const Overrides& o, const FosOptions& opt) {
-  const size_t eq = opt.sweep.find('=');
-  double lo = 0, hi = 0;
-  int n = 0;
-  if (eq == std::string::npos || std::sscanf(opt.sweep.c_str() + eq + 1, "%lf:%lf:%d", &lo, &hi, &n) != 3 || n < 2 ||
-      n > 1000 || !std::isfinite(lo) || !std::isfinite(hi))
-    throw ddaslope::InputError("--sweep", opt.sweep, "expected json.path=min:max:n with finite min, max and 2 ≤ n ≤ 1000");
-  const std::string path = opt.sweep.substr(0, eq);
-  const std::string csv = opt.outDir + "/fos_sweep.csv", png = opt.outDir + "/fos_sweep.png";
-  // The values are independent searches (one thread each, so a value's F is the same on any
-  // farm), spread over the threads, or the ranks under mpirun.
-  struct Point {
-    ddaslope::calibration::FactorOfSafetyResult fos;
-    bool done = false;
-  };
-  std::vector<Point> points(static_cast<size_t>(n));
-  std::vector<int> indices(static_cast<size_t>(n));
-  for (int i = 0; i < n; ++i) indices[i] = i;
-  const auto valueAt = [&](int i) { return lo + (hi - lo) * i / (n - 1); };
-  FosOptions single = opt;
-  single.threads = 1;
-  const auto log = startProgress("fos --sweep", opt.progress, false);
-  int finished = 0;
-  const std::unique_ptr<ddaslope::TaskFarm> farm = ddaslope::makeTaskFarm(opt.threads);
-  farm->run(
-      indices,
-      [&](int i) {
-        ddaslope::model::Scene scene = loadCase(casePath, o, {{path, valueAt(i)}});
-        const auto r = factorFor(scene, casePath, single);
-        ddaslope::BytePacker b;
-        b.put(r.found).put(r.factor).put(r.stableEnd).put(r.failingEnd).put(r.runs).put(r.wallTime).put(r.message);
-        return b.bytes();
-      },
-      [&](int i, const ddaslope::TaskResult& bytes) {
-        ddaslope::ByteUnpacker b(bytes);
-        auto& r = points[i].fos;
-        r.found = b.get<bool>();
-        r.factor = b.get<double>();
-        r.stableEnd = b.get<double>();
-        r.failingEnd = b.get<double>();
-        r.runs = b.get<int>();
-        r.wallTime = b.get<double>();
-        r.message = b.getString();
-        points[i].done = true;
-        if (log->active())
-          log->report({"points", ++finished, n,
-                       path + " = " + std::to_string(valueAt(i)) + ": F " + (r.found ? std::to_string(r.factor) : "not found"),
-                       {{"value", valueAt(i)}, {"factor_of_safety", r.found ? r.factor : NAN}}});
-      });
-  if (!farm->isRoot()) return kExitOk;  // the root writes
-  log->finish(true, std::to_string(n) + " values");
-  for (int i = 0; i < n; ++i) {
-    const auto& r = points[i].fos;
-    std::printf("  %s = %-10g F = %s (%d forward runs, %.1f s)\n", path.c_str(), valueAt(i),
-                r.found ? std::to_string(r.factor).c_str() : r.message.c_str(), r.runs, r.wallTime);
-  }
-  std::filesystem::create_directories(opt.outDir);
-  std::ofstream out(csv + ".tmp");
-  out << path << ",factor_of_safety,stable_at,failing_at,found,forward_runs,wall_time_s\n";
-  ddaslope::io::PlotSeries series{"F", {}, {}, true};
-  bool all = true;
-  for (int i = 0; i < n; ++i) {
-    const auto& r = points[i].fos;
-    const double v = valueAt(i);
-    out << v << "," << r.factor << "," << r.stableEnd << "," << r.failingEnd << "," << r.found << "," << r.runs << ","
-        << r.wallTime << "\n";
-    series.x.push_back(v);
-    series.y.push_back(r.found ? r.factor : NAN);
-    all &= r.found;
-  }
-  out.close();
-  std::filesystem::rename(csv + ".tmp", csv);
-  ddaslope::io::writePng({"Strength-reduction factor of safety: " + casePath, path, "F", {series}}, png);
-  std::printf("wrote %s and %s\n", csv.c_str(), png.c_str());
-  return all ? kExitOk : kExitNonConvergence;
-}
-
-
-}  // namespace
-
-int fosCommand(const std::string& casePath, const Overrides& o, const FosOptions& opt) {
-  if (!opt.vtkDir.empty() && !opt.sweep.empty())
-    throw ddaslope::InputError("--vtk", opt.vtkDir, "writes the trials of one search, not of a sweep's searches (drop --sweep)");
-  if (!opt.sweep.empty()) return fosSweep(casePath, o, opt);
-  ddaslope::model::Scene scene = loadCase(casePath, o);
-  const auto log = startProgress("fos", opt.progress, opt.json);
-  const auto r = factorFor(scene, casePath, opt, ddaslope::io::sinkOf(log.get()));
-  log->finish(r.found, r.found ? "F " + std::to_string(r.factor) : r.message);
-  if (opt.json) {
-    ddaslope::io::JsonRecord j;
-    // No answer, no number: the bracket and the message say what is known.
-    j.set("case", casePath).set("found", r.found).set("factor_of_safety", r.found ? r.factor : NAN);
-    j.set("bracket", std::vector<double>{r.stableEnd, r.failingEnd}).set("width", opt.width);
-    j.set("forward_runs", r.runs).set("rounds", r.rounds).set("wall_time_s", r.wallTime).set("message", r.message);
-    j.set("settings", settingsLine(scene));
-    ddaslope::calibration::appendReview(j, r.review);
-    ddaslope::calibration::appendTrials(j, r.trials, "factor");
-    if (!opt.vtkDir.empty()) j.set("vtk", opt.vtkDir);
-    std::printf("%s\n", j.dump().c_str());
-  } else if (r.found) {
-    std::printf("factor of safety (strength reduction on %s): %.4f (stable at %.4f, failing at %.4f)\n",
-                opt.joints.empty() ? "all joints" : "the named joints", r.factor, r.stableEnd, r.failingEnd);
-    if (!r.message.empty()) std::printf("  %s\n", r.message.c_str());
-    std::printf("%d forward runs in %d rounds of %d, %.2f s wall; %s\n", r.runs, r.rounds, opt.threads, r.wallTime,
-                settingsLine(scene).c_str());
-    printTrialStatesNote(opt.vtkDir, r.runs);
-  } else {
-    std::fprintf(stderr, "ddaslope: %s: no factor of safety found after %d forward runs: %s\n", casePath.c_str(),
-                 r.runs, r.message.c_str());
-  }
-  warnAboutTrials(casePath, ddaslope::calibration::smallMotionWarning(r.trials, "F"));
-  warnAboutTrials(casePath, slightBendNote(scene));
-  warnAboutTrials(casePath, notchWarning(scene));
-  return r.found ? kExitOk : kExitNonConvergence;
-}
-
 void addCriticalOptions(CLI::App* cmd, std::string& casePath, Overrides& overrides, CriticalOptions& opt) {
   cmd->add_option("case", casePath, "case file (JSON)")->required();
   cmd->add_option("--joint", opt.joint, "joint to search (cohesion, friction)");
@@ -361,20 +218,6 @@ void addCriticalOptions(CLI::App* cmd, std::string& casePath, Overrides& overrid
   cmd->add_option("--curve", opt.curve, "φmin:φmax:n: the critical (c, φ) curve as CSV and PNG in --out");
   cmd->add_option("--out", opt.outDir, "output directory for --curve")->capture_default_str();
   cmd->add_option("--vtk", opt.vtkDir, "write each trial's final state as a VTK series in this folder (ParaView)");
-}
-
-void addFosOptions(CLI::App* cmd, std::string& casePath, Overrides& overrides, FosOptions& opt) {
-  cmd->add_option("case", casePath, "case file (JSON)")->required();
-  cmd->add_option("--joints", opt.joints, "joints to reduce (default: all)")->delimiter(',');
-  cmd->add_option("--width", opt.width, "final bracket width of F")->capture_default_str()
-      ->check(finiteIn(1e-4, 1, "a width of F in [1e-4, 1]"));
-  cmd->add_option("--threads", opt.threads, "trial factors per round, run at once")->capture_default_str()->check(CLI::Range(1, 256));
-  cmd->add_option("--sweep", opt.sweep, "json.path=min:max:n: F at n values of one case number (CSV and PNG in --out)");
-  cmd->add_option("--out", opt.outDir, "output directory for --sweep")->capture_default_str();
-  cmd->add_option("--vtk", opt.vtkDir, "write each trial's final state as a VTK series in this folder (ParaView)");
-  addModelOptions(cmd, overrides);
-  cmd->add_flag("--json", opt.json, "print the result as JSON");
-  addProgressOptions(cmd, opt.progress);
 }
 
 }  // namespace ddaslope::cli

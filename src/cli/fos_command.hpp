@@ -1,0 +1,29 @@
+#pragma once
+// `ddaslope fos CASE`: the strength-reduction factor of safety, and F against one case number
+// (--sweep).
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "cli_common.hpp"
+
+namespace ddaslope::cli {
+
+struct FosOptions {
+  std::vector<std::string> joints;
+  double width = 0.005;
+  bool json = false;
+  int threads = 2;
+  std::string sweep;  ///< "json.path=min:max:n"
+  std::string outDir = "out/fos";
+  ProgressOptions progress;
+  std::string vtkDir;  ///< every trial's final state as a VTK series (recordTrialStates)
+};
+
+/// Registers the subcommand's options on `cmd` (its case, the model options into `overrides`, …).
+void addFosOptions(CLI::App* cmd, std::string& casePath, Overrides& overrides, FosOptions& opt);
+
+int fosCommand(const std::string& casePath, const Overrides& o, const FosOptions& opt);
+
+}  // namespace ddaslope::cli
