@@ -95,7 +95,7 @@ model::Scene sceneAt(const io::BackanalysisJob& job, const std::vector<double>& 
     if (!job.parameters[i].jsonPath.empty()) overrides.emplace_back(job.parameters[i].jsonPath, x[i]);
   for (const model::SettingsOverride& o : job.model)
     for (auto& m : io::caseOverridesFor(o)) overrides.push_back(std::move(m));
-  model::Scene s = io::readCase(job.casePath, overrides);
+  model::Scene s = io::parseCase(job.caseText, job.casePath, overrides);
   for (size_t i = 0; i < x.size(); ++i) {
     const io::ParameterSpec& p = job.parameters[i];
     if (p.joint.empty()) continue;

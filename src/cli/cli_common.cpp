@@ -13,6 +13,7 @@
 #include "ddaslope/core/task_farm.hpp"
 #include "ddaslope/io/scene_vtk.hpp"
 #include "ddaslope/io/ground_motion.hpp"
+#include "ddaslope/io/input_file.hpp"
 #include "ddaslope/model/input_limits.hpp"
 
 namespace ddaslope::cli {
@@ -108,11 +109,17 @@ ddaslope::io::CaseOverride parseSetting(const std::string& text) {
 /// sweep's value, a study's sample and its job's model choices), the model options, --duration.
 ddaslope::model::Scene loadCase(const std::string& casePath, const Overrides& o,
                                 std::vector<ddaslope::io::CaseOverride> extra) {
+  return loadCaseText(ddaslope::io::readInputFile(casePath, ddaslope::io::kMaxJsonFileBytes), casePath, o,
+                      std::move(extra));
+}
+
+ddaslope::model::Scene loadCaseText(const std::string& text, const std::string& casePath, const Overrides& o,
+                                    std::vector<ddaslope::io::CaseOverride> extra) {
   std::vector<ddaslope::io::CaseOverride> all;
   for (const auto& s : o.settings) all.push_back(parseSetting(s));
   all.insert(all.end(), extra.begin(), extra.end());
   for (auto& m : ddaslope::io::caseOverridesFor(o.model)) all.push_back(std::move(m));
-  ddaslope::model::Scene scene = ddaslope::io::readCase(casePath, all);
+  ddaslope::model::Scene scene = ddaslope::io::parseCase(text, casePath, all);
   // `run --duration` shortens a run after the case is read: the case's expected values at later
   // times stay valid (reported as not reached), and the shorter run's workload needs no new check.
   if (o.duration > 0 && o.duration < scene.settings.duration) scene.settings.duration = o.duration;

@@ -41,6 +41,9 @@ ddaslope::io::CaseOverride parseSetting(const std::string& text);
 /// (--preset, --time-step, --blocks, --contact-treatment, --brittle-joints); then run's --duration.
 ddaslope::model::Scene loadCase(const std::string& casePath, const Overrides& o,
                                 std::vector<ddaslope::io::CaseOverride> extra = {});
+/// loadCase on the text of the case file, read once by the caller (a study's samples).
+ddaslope::model::Scene loadCaseText(const std::string& text, const std::string& casePath, const Overrides& o,
+                                    std::vector<ddaslope::io::CaseOverride> extra = {});
 
 /// The settings every forward run of a command uses, and where Δt came from.
 std::string settingsLine(const ddaslope::model::Scene& scene);

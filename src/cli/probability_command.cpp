@@ -51,7 +51,7 @@ struct SceneMaker {
     std::vector<io::CaseOverride> extra;
     for (size_t i = 0; i < values.size(); ++i) extra.emplace_back(job.spec.inputs[i].path, values[i]);
     for (auto& m : io::caseOverridesFor(job.model)) extra.push_back(std::move(m));
-    return loadCase(job.casePath, overrides, extra);
+    return loadCaseText(job.caseText, job.casePath, overrides, extra);
   }
 };
 

@@ -13,7 +13,7 @@
 #include "ddaslope/geometry/polygon.hpp"
 #include "ddaslope/io/csv_series.hpp"
 #include "ddaslope/io/ground_motion.hpp"
-#include "ddaslope/io/input_file.hpp"
+#include "json_input.hpp"
 #include "ddaslope/model/input_limits.hpp"
 #include "ddaslope/model/kinks.hpp"
 #include "ddaslope/model/presets.hpp"

@@ -1,4 +1,4 @@
-#include "ddaslope/io/input_file.hpp"
+#include "json_input.hpp"
 
 #include <filesystem>
 #include <fstream>

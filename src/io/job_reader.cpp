@@ -9,7 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "ddaslope/core/errors.hpp"
-#include "ddaslope/io/input_file.hpp"
+#include "json_input.hpp"
 #include "ddaslope/io/csv_series.hpp"
 
 namespace ddaslope::io {
@@ -238,6 +238,7 @@ BackanalysisJob readJob(const std::string& path) {
   BackanalysisJob job;
   job.jobPath = path;
   job.casePath = r.resolve(r.string(r.required(doc, "", "case"), "case")).string();
+  job.caseText = readInputFile(job.casePath, kMaxJsonFileBytes, path, "case");
   readParameters(r, doc, job);
   readObservations(r, doc, job);
   readSearch(r, doc, job);

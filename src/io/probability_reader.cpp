@@ -12,7 +12,7 @@
 
 #include "ddaslope/core/errors.hpp"
 #include "ddaslope/io/case_reader.hpp"
-#include "ddaslope/io/input_file.hpp"
+#include "json_input.hpp"
 
 namespace ddaslope::io {
 namespace {
@@ -269,12 +269,14 @@ ProbabilityJob readProbabilityJob(const std::string& path) {
   if (!doc.contains("probability"))
     r.fail("probability", "required key is missing: the uncertain inputs and how to sample them (docs/probability.md)");
   job.spec = readSection(r, doc.at("probability"));
-  json caseDoc = job.casePath == path ? doc : readJsonFile(job.casePath);
+  job.caseText = readInputFile(job.casePath, kMaxJsonFileBytes, job.casePath == path ? "" : path,
+                               job.casePath == path ? "" : "case");
+  json caseDoc = parseJsonText(job.caseText, job.casePath);
   if (caseDoc.is_object()) caseDoc.erase("probability");
   job.caseDigest = digest(caseDoc);
   // Every input names a number of the case, which the case accepts at the input's mean (the
   // values drawn are checked before any run: cli/probability_command.cpp).
-  const model::Scene base = readCase(job.casePath);
+  const model::Scene base = parseCase(job.caseText, job.casePath);
   for (size_t k = 0; k < job.spec.fosJoints.size(); ++k) {
     bool known = false;
     for (const auto& joint : base.joints) known |= joint.name == job.spec.fosJoints[k];
@@ -285,7 +287,7 @@ ProbabilityJob readProbabilityJob(const std::string& path) {
   for (size_t k = 0; k < job.spec.inputs.size(); ++k) {
     const model::UncertainInput& in = job.spec.inputs[k];
     try {
-      readCase(job.casePath, {{in.path, probeValue(in.distribution)}});
+      parseCase(job.caseText, job.casePath, {{in.path, probeValue(in.distribution)}});
     } catch (const InputError& e) {
       r.fail("probability.inputs[" + std::to_string(k) + "].path",
              "the case cannot vary \"" + in.path + "\" (tried at " + shown(probeValue(in.distribution)) +

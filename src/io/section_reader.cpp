@@ -5,7 +5,7 @@
 
 #include "ddaslope/io/case_reader.hpp"
 #include "ddaslope/io/dxf_section.hpp"
-#include "ddaslope/io/input_file.hpp"
+#include "json_input.hpp"
 #include "ddaslope/model/section.hpp"
 
 namespace ddaslope::io {

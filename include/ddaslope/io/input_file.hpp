@@ -5,8 +5,6 @@
 #include <cstdint>
 #include <string>
 
-#include <nlohmann/json_fwd.hpp>
-
 namespace ddaslope::io {
 
 /// Case and job files: a section of a few hundred blocks is tens of kB, and the largest sensible
@@ -25,12 +23,5 @@ constexpr int kMaxJsonDepth = 64;
 /// file and JSON path that pointed to it (empty for a file named on the command line).
 std::string readInputFile(const std::string& path, std::uintmax_t maxBytes, const std::string& referrer = "",
                           const std::string& referrerPath = "");
-
-/// Parses JSON text with the depth limit; syntax errors, overflowing numbers (1e400) and too deep
-/// nesting are InputErrors naming `file`.
-nlohmann::json parseJsonText(const std::string& text, const std::string& file);
-
-/// readInputFile + parseJsonText.
-nlohmann::json readJsonFile(const std::string& path);
 
 }  // namespace ddaslope::io

@@ -56,6 +56,9 @@ struct PrecisionSpec {
 struct BackanalysisJob {
   std::string jobPath;
   std::string casePath;  ///< resolved relative to the job file
+  /// The case file's content, read once with the job: every trial parses the same text, even if
+  /// the file changes while the search runs.
+  std::string caseText;
   std::vector<ParameterSpec> parameters;
   std::vector<ObservationSpec> observations;
   OptimiserSpec optimiser;

@@ -13,6 +13,8 @@ namespace ddaslope::io {
 struct ProbabilityJob {
   std::string file;      ///< the file read: the case itself, or the job
   std::string casePath;  ///< the case whose numbers the samples vary (a job's relative to the job)
+  /// The case file's content, read once: every sample parses the same text.
+  std::string caseText;
   model::ProbabilitySpec spec;
   /// A job's own "preset", "blocks" and "brittle_joints" (none for a section in a case).
   model::SettingsOverride model;
