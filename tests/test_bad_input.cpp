@@ -736,3 +736,72 @@ TEST(RobustInput, ThousandsOfSectionJointsAreCheckedFastAndRunUnderABudget) {
   EXPECT_EQ(json::parse(in)["status"], "budget_exceeded");
   fs::remove_all(out);
 }
+
+// Supports and edge loads: every mistake names the file and the JSON path (exit 2).
+TEST(CaseReader, BadSupports) {
+  const auto withSupport = [](const json& support) {
+    json d = minimal();
+    d["supports"] = json::array({support});
+    return d;
+  };
+  const json bolt = {{"id", "b1"}, {"head", {3, 1.5}}, {"end", {3, 0.5}}, {"stiffness", 1e7}, {"capacity", 1e5}};
+  EXPECT_NO_THROW(io::parseCase(withSupport(bolt).dump(), "case.json"));
+  json outside = bolt;
+  outside["end"] = {30, -5};
+  expectError(withSupport(outside), "supports[0].end", "lies in no block");
+  json negative = bolt;
+  negative["capacity"] = -1;
+  expectError(withSupport(negative), "supports[0].capacity", "a capacity > 0");
+  json same = bolt;
+  same["end"] = {3.5, 1.8};
+  expectError(withSupport(same), "supports[0].end", "another block than the head");
+  json nothing = bolt;
+  nothing.erase("stiffness");
+  expectError(withSupport(nothing), "supports[0]", "carries nothing");
+  json over = bolt;
+  over["pretension"] = 2e5;
+  expectError(withSupport(over), "supports[0].pretension", "at most the capacity");
+  json zero = bolt;
+  zero["head"] = {3, 1};  // on the slider's base, in the slider; the end at the same point in the base
+  zero["end"] = {3, 1};
+  zero["end_block"] = "base";
+  expectError(withSupport(zero), "supports[0].end", "apart from the head");
+  json unnamed = bolt;
+  unnamed.erase("id");
+  expectError(withSupport(unnamed), "supports[0].id", "required key is missing");
+  json d = withSupport(bolt);
+  d["point_loads"] = json::array({{{"id", "b1"}, {"point", {3, 1.5}}, {"force", {1, 0}}}});
+  expectError(d, "supports[0].id", "duplicate id \"b1\"");
+}
+
+TEST(CaseReader, BadEdgeLoads) {
+  json d = minimal();
+  d["edge_loads"] = json::array({{{"from", {2, 2}}, {"to", {4, 2}}, {"pressure", 1e4}}});
+  const model::Scene s = io::parseCase(d.dump(), "case.json");
+  ASSERT_EQ(s.edgeLoads.size(), 1u);
+  // A pressure pushes into the block: down on its top face, 2 m × 10 kPa.
+  EXPECT_NEAR(s.edgeLoads[0].resultant().y(), -2e4, 1e-6);
+  EXPECT_NEAR(s.edgeLoads[0].resultant().x(), 0, 1e-6);
+  d["edge_loads"][0]["to"] = {4.5, 2};
+  expectError(d, "edge_loads[0].to", "on the boundary of block \"slider\"");
+  d["edge_loads"][0]["to"] = {4, 1.5};  // a chord across the block
+  expectError(d, "edge_loads[0]", "its middle 0.25");
+  d["edge_loads"][0]["to"] = {4, 2.5};  // its middle outside every block
+  expectError(d, "edge_loads[0]", "point lies in no block");
+  d["edge_loads"][0]["to"] = {4, 2};
+  d["edge_loads"][0]["load"] = {0, -1e4};
+  expectError(d, "edge_loads[0]", "exactly one of load");
+}
+
+// critical --solve support: a target factor of safety ≤ 0, or no such support: exit 2.
+TEST(Cli, SupportSearchRefusesBadTargetsAndNames) {
+  const std::string anchored = std::string(DDASLOPE_SOURCE_DIR) + "/cases/planar_failure_anchor.json";
+  std::string err;
+  EXPECT_EQ(runCli("critical " + anchored + " --solve support --support anchor --target-fos 0", &err), 2);
+  EXPECT_NE(err.find("--target-fos"), std::string::npos) << err;
+  EXPECT_EQ(runCli("critical " + anchored + " --solve support --support anchor --target-fos -1", &err), 2);
+  EXPECT_EQ(runCli("critical " + anchored + " --solve support --support nail", &err), 2);
+  EXPECT_NE(err.find("no support or load named \"nail\""), std::string::npos) << err;
+  EXPECT_EQ(runCli("critical " + anchored + " --solve support", &err), 2);
+  EXPECT_NE(err.find("--support"), std::string::npos) << err;
+}

@@ -388,6 +388,46 @@ CriticalResult criticalSeismicCoefficient(const model::Scene& scene, int directi
   return account(r, stableAt, t0);
 }
 
+CriticalResult criticalSupport(const model::Scene& scene, const std::string& id, double targetFactor, double width,
+                               const SearchSettings& s) {
+  const auto t0 = std::chrono::steady_clock::now();
+  model::Scene reduced = scene;
+  for (size_t j = 0; j < scene.joints.size(); ++j) reduced.joints[j] = scene.joints[j].reducedBy(targetFactor);
+  // The support's force enters the equilibrium: none is shared.
+  CountedVerdict stableAt{[&](double x, double length) {
+    model::Scene trial = reduced;
+    trial.settings.duration *= length;
+    trial.setSupportQuantity(id, x);
+    return judgeStability(trial, s.verdict, nullptr, endOf(s, x));
+  }, s, "support (N/m)", width};
+  CriticalResult r;
+  constexpr double kLargest = 1e12;
+  if (stableAt(0)) {
+    r.found = true;
+    r.message = "stable without it at this factor of safety";
+  } else {
+    const double own = scene.supportQuantity(id).value;
+    double failing = 0, hi = own > 0 && std::isfinite(own) ? own : 1e5;
+    while (!stableAt(hi) && hi < kLargest && stableAt.undecidedInARow < 2) {
+      failing = hi;
+      hi *= 2;
+    }
+    if (stableAt.undecidedInARow >= 2) {
+      r.message = kUndecidedBracket;
+    } else if (hi >= kLargest) {
+      r.message = "fails even with 1e12 N/m: no support of this kind holds the slope at this factor of safety";
+    } else {
+      const double w = width > 0 ? width : 1e-3 * hi;
+      narrowInto(r, std::ref(stableAt), hi, failing, w, s.threads);
+    }
+  }
+  reviewTrials(r, stableAt, false, {0.0, kLargest}, width > 0 ? width : 1e-3 * r.stableEnd, s.threads,
+               [&](double stable, double failing) {
+                 r.stableEnd = stable, r.failingEnd = failing, r.critical = 0.5 * (stable + failing);
+               });
+  return account(r, stableAt, t0);
+}
+
 std::vector<CurvePoint> criticalCurve(const model::Scene& scene, int joint, double phiMinDeg, double phiMaxDeg,
                                       int n, double width, const SearchSettings& s, TaskFarm* farm) {
   std::vector<CurvePoint> curve(std::max(2, n));

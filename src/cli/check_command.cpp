@@ -39,6 +39,7 @@ int checkCommand(const std::string& casePath, const Overrides& o) {
   printOutlineNotes(scene);
   printSeismicNote(scene);
   printKinkNotes(scene);
+  printSupportNotes(scene);
   if (ddaslope::io::hasProbabilitySection(casePath)) {
     const ddaslope::io::ProbabilityJob job = ddaslope::io::readProbabilityJob(casePath);
     std::printf("  probability section: %zu uncertain inputs, %d samples (%s, measure %s): valid; run it with "

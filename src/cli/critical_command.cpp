@@ -148,6 +148,8 @@ int criticalCommand(const std::string& casePath, const Overrides& o, const Criti
   if (!opt.vtkDir.empty() && !opt.curve.empty())
     throw ddaslope::InputError("--vtk", opt.vtkDir, "writes the trials of one search, not of a curve's searches (drop --curve)");
   if (opt.solve == "seismic-coefficient") return seismicCoefficientCommand(casePath, scene, opt);
+  if (opt.solve == "support") return supportCommand(casePath, scene, opt);
+  if (!opt.support.empty()) throw ddaslope::InputError("--support", opt.support, "used only with --solve support");
   if (opt.joint.empty()) throw ddaslope::InputError("--joint", "", "expected the joint to search (--joint NAME)");
   const int joint = jointIndex(scene, opt.joint, casePath);
   if (!opt.curve.empty()) return curveCommand(casePath, scene, joint, opt);
@@ -197,12 +199,18 @@ void addCriticalOptions(CLI::App* cmd, std::string& casePath, Overrides& overrid
   cmd->add_option("case", casePath, "case file (JSON)")->required();
   cmd->add_option("--joint", opt.joint, "joint to search (cohesion, friction)");
   cmd->add_option("--solve", opt.solve,
-                       "cohesion or friction of the joint, or seismic-coefficient: the yield acceleration k_y (in g)")
-      ->check(CLI::IsMember({"cohesion", "friction", "seismic-coefficient"}))
+                       "cohesion or friction of the joint, seismic-coefficient: the yield acceleration k_y (in g), "
+                       "or support: the anchor force, bolt capacity or load (--support) for --target-fos")
+      ->check(CLI::IsMember({"cohesion", "friction", "seismic-coefficient", "support"}))
       ->capture_default_str();
   cmd->add_option("--direction", opt.direction,
                        "seismic-coefficient: the direction of the horizontal force (+x, -x, or auto: both, the smaller wins)")
       ->check(CLI::IsMember({"+x", "-x", "auto"}))
+      ->capture_default_str();
+  cmd->add_option("--support", opt.support, "support: the id of the support or load to size");
+  cmd->add_option("--target-fos", opt.targetFactor,
+                  "support: the factor of safety it must give (every joint's c and tan φ divided by it)")
+      ->check(finiteIn(0.1, 100, "a factor of safety in [0.1, 100]"))
       ->capture_default_str();
   cmd->add_option("--friction", opt.friction, "friction angle (degrees) while solving for cohesion (default: the case's)")
       ->check(finiteIn(0, 89.9, "a friction angle in [0, 89.9] degrees"));
@@ -215,7 +223,9 @@ void addCriticalOptions(CLI::App* cmd, std::string& casePath, Overrides& overrid
   addModelOptions(cmd, overrides);
   cmd->add_flag("--json", opt.json, "print the result as JSON");
   addProgressOptions(cmd, opt.progress);
-  cmd->add_option("--curve", opt.curve, "φmin:φmax:n: the critical (c, φ) curve as CSV and PNG in --out");
+  cmd->add_option("--curve", opt.curve,
+                  "φmin:φmax:n: the critical (c, φ) curve; with --solve support, min:max:n (N/m): F against the "
+                  "support; as CSV and PNG in --out");
   cmd->add_option("--out", opt.outDir, "output directory for --curve")->capture_default_str();
   cmd->add_option("--vtk", opt.vtkDir, "write each trial's final state as a VTK series in this folder (ParaView)");
 }

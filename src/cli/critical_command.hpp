@@ -23,10 +23,15 @@ struct CriticalOptions {
   std::string outDir = "out";
   ProgressOptions progress;
   std::string vtkDir;      ///< every trial's final state as a VTK series (recordTrialStates)
+  std::string support;     ///< --solve support: the support or load sized
+  double targetFactor = 1;  ///< --solve support: the factor of safety it must give
 };
 
 /// Registers the subcommand's options on `cmd` (its case, the model options into `overrides`, …).
 void addCriticalOptions(CLI::App* cmd, std::string& casePath, Overrides& overrides, CriticalOptions& opt);
+
+/// critical --solve support (critical_support.cpp).
+int supportCommand(const std::string& casePath, const ddaslope::model::Scene& scene, const CriticalOptions& opt);
 
 int criticalCommand(const std::string& casePath, const Overrides& o, const CriticalOptions& opt);
 

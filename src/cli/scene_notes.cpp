@@ -172,4 +172,26 @@ void printSeismicNote(const ddaslope::model::Scene& scene) {
                 scene.settings.timeStep, sample, 0.5 / scene.settings.timeStep);
 }
 
+void printSupportNotes(const ddaslope::model::Scene& scene) {
+  for (const auto& b : scene.supports) {
+    std::printf("  support %s: from block %s to block %s, %.4g m; ", b.id.c_str(), scene.blocks[b.head.block].id.c_str(),
+                scene.blocks[b.end.block].id.c_str(), b.initialLength);
+    if (b.stiffness > 0) std::printf("stiffness %.4g N/m, ", b.stiffness);
+    if (b.pretension > 0) std::printf("pretension %.4g kN/m, ", b.pretension / 1e3);
+    if (std::isfinite(b.capacity))
+      std::printf("capacity %.4g kN/m (%s beyond)", b.capacity / 1e3,
+                  b.failure == ddaslope::model::SupportFailure::Rupture ? "ruptures" : "yields");
+    else
+      std::printf("no capacity limit");
+    if (std::isfinite(b.bondStrength))
+      std::printf("; bond over %.3g m in the head's block and %.3g m in the end's", b.headEmbedment, b.endEmbedment);
+    std::printf("; per metre of slope (spacing %g m)\n", b.spacing);
+  }
+  for (const auto& l : scene.edgeLoads) {
+    const ddaslope::Vec2 r = l.resultant();
+    std::printf("  edge load%s%s on block %s: resultant (%.4g, %.4g) kN/m\n", l.id.empty() ? "" : " ", l.id.c_str(),
+                scene.blocks[l.block].id.c_str(), r.x() / 1e3, r.y() / 1e3);
+  }
+}
+
 }  // namespace ddaslope::cli

@@ -9,6 +9,9 @@ namespace ddaslope::cli {
 
 /// A note per concave kink of a fixed block's surface with a block on it, and per joint the reader
 /// moved off a bend.
+/// check: each support (its blocks, length, force or capacity) and each edge load (its resultant).
+void printSupportNotes(const ddaslope::model::Scene& scene);
+
 void printKinkNotes(const model::Scene& scene);
 /// What the reader did to the blocks' outlines, and the vertices it kept that bend a face so little
 /// that the face still meets its neighbour as two contacts judged apart.

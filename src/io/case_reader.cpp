@@ -17,6 +17,7 @@
 #include "ddaslope/model/input_limits.hpp"
 #include "ddaslope/model/kinks.hpp"
 #include "ddaslope/model/presets.hpp"
+#include "points_reader.hpp"
 #include "scene_normalisation.hpp"
 #include "section_reader.hpp"
 
@@ -178,70 +179,6 @@ void readBlocks(const Reader& r, const json& doc, model::Scene& s,
              "expected an initial speed of at most 1000 m/s at every point of the block (|v| + |ω|·r)");
     if (blk.fixed && !blk.velocity.isZero()) r.fail(p + ".velocity", "a fixed block cannot have an initial velocity");
     s.blocks.push_back(blk);
-  }
-}
-
-/// A point on a named block, checked to lie inside it. Without "block", the block that contains
-/// the point (a free one before a fixed one): handy when blocks are cut from a section.
-model::BlockPoint blockPoint(const Reader& r, const json& j, const std::string& p, const model::Scene& s) {
-  model::BlockPoint bp;
-  bp.initial = bp.current = r.point(r.required(j, p, "point"), p + ".point");
-  if (!j.contains("block")) {
-    int found = -1;
-    for (size_t b = 0; b < s.blocks.size(); ++b) {
-      const geometry::Aabb box = geometry::boundingBox(s.blocks[b].vertices);
-      if (!geometry::containsPoint(s.blocks[b].vertices, bp.initial, 1e-9 * (box.hi - box.lo).maxCoeff())) continue;
-      if (found < 0 || (s.blocks[found].fixed && !s.blocks[b].fixed)) found = static_cast<int>(b);
-    }
-    if (found < 0) r.fail(p + ".point", "point lies in no block");
-    bp.block = found;
-    return bp;
-  }
-  const std::string id = r.string(j.at("block"), p + ".block");
-  const int b = s.blockIndex(id);
-  if (b < 0) r.fail(p + ".block", "unknown block \"" + id + "\"");
-  bp.block = b;
-  const geometry::Aabb box = geometry::boundingBox(s.blocks[b].vertices);
-  if (!geometry::containsPoint(s.blocks[b].vertices, bp.initial, 1e-9 * (box.hi - box.lo).maxCoeff()))
-    r.fail(p + ".point", "point lies outside block \"" + id + "\"");
-  return bp;
-}
-
-void readPointsAndLoads(const Reader& r, const json& doc, model::Scene& s) {
-  const auto list = [&](const char* key) -> const json* {
-    if (!doc.contains(key)) return nullptr;
-    if (!doc.at(key).is_array()) r.fail(key, "expected an array, found " + typeName(doc.at(key)));
-    return &doc.at(key);
-  };
-  if (const json* mons = list("monitors")) {
-    std::set<std::string> seen;
-    for (size_t i = 0; i < mons->size(); ++i) {
-      const std::string p = Reader::index("monitors", i);
-      r.onlyKeys((*mons)[i], p, {"id", "block", "point"});
-      model::Monitor m;
-      m.id = r.identifier(r.string(r.required((*mons)[i], p, "id"), p + ".id"), p + ".id");
-      if (!seen.insert(m.id).second) r.fail(p + ".id", "duplicate monitor id \"" + m.id + "\"");
-      m.point = blockPoint(r, (*mons)[i], p, s);
-      s.monitors.push_back(m);
-    }
-  }
-  if (const json* loads = list("point_loads")) {
-    for (size_t i = 0; i < loads->size(); ++i) {
-      const std::string p = Reader::index("point_loads", i);
-      r.onlyKeys((*loads)[i], p, {"block", "point", "force", "rate"});
-      model::PointLoad l;
-      l.point = blockPoint(r, (*loads)[i], p, s);
-      l.force = r.point(r.required((*loads)[i], p, "force"), p + ".force");
-      if ((*loads)[i].contains("rate")) l.rate = r.point((*loads)[i].at("rate"), p + ".rate");
-      s.pointLoads.push_back(l);
-    }
-  }
-  if (const json* fps = list("fixed_points")) {
-    for (size_t i = 0; i < fps->size(); ++i) {
-      const std::string p = Reader::index("fixed_points", i);
-      r.onlyKeys((*fps)[i], p, {"block", "point"});
-      s.fixedPoints.push_back({blockPoint(r, (*fps)[i], p, s)});
-    }
   }
 }
 
@@ -449,7 +386,7 @@ model::Scene parseCase(const std::string& text, const std::string& file) {
   const Reader r(file);
   const json doc = parseJsonText(text, file);
   r.onlyKeys(doc, "", {"description", "gravity", "materials", "joints", "default_joint", "joint_pairs", "section",
-                       "blocks", "monitors", "point_loads", "fixed_points", "water", "seismic", "analysis", "expected",
+                       "blocks", "monitors", "point_loads", "edge_loads", "supports", "fixed_points", "water", "seismic", "analysis", "expected",
                        "probability"});
   // "probability" (a study's uncertain inputs) is read by io/probability_reader.cpp: a run ignores it.
   model::Scene s;

@@ -54,7 +54,8 @@ nlohmann::ordered_json jointsEcho(const model::Scene& scene) {
 class HistoryWriter {
  public:
   /// `ground`: the input ground motion, written beside the monitors when it is active.
-  HistoryWriter(const fs::path& dir, const std::vector<std::string>& monitors, const model::GroundMotion& ground)
+  HistoryWriter(const fs::path& dir, const std::vector<std::string>& monitors, const model::GroundMotion& ground,
+                const std::vector<model::Support>& supports)
       : dir_(dir), ground_(ground) {
     fs::create_directories(dir);
     fs::remove(dir / "history.csv");
@@ -68,18 +69,21 @@ class HistoryWriter {
     out_ << "time,dt,iterations";
     if (ground_.active()) out_ << ",ground_ax,ground_ay";
     for (const auto& id : monitors) out_ << ',' << id << "_ux," << id << "_uy," << id << "_vx," << id << "_vy";
+    // Each support's axial force (N/m, tension positive) and elongation (m).
+    for (const auto& b : supports) out_ << ',' << b.id << "_force," << b.id << "_elongation";
     out_ << ",kinetic_energy,potential_energy,elastic_energy,load_work";
     if (ground_.active()) out_ << ",ground_motion_work";  // the record's share of load_work
     out_ << ",energy_gain\n";
   }
-  void row(const solver::StepRecord& r, const std::vector<MonitorSample>& s, const solver::EnergyBudget& e,
-           double initialMechanical) {
+  void row(const solver::StepRecord& r, const std::vector<MonitorSample>& s, const std::vector<model::Support>& supports,
+           const solver::EnergyBudget& e, double initialMechanical) {
     out_ << fmt(r.time) << ',' << fmt(r.dt) << ',' << r.iterations;
     if (ground_.active()) {
       const Vec2 a = ground_.at(r.time);
       out_ << ',' << fmt(a.x()) << ',' << fmt(a.y());
     }
     for (const auto& m : s) out_ << ',' << fmt(m.ux) << ',' << fmt(m.uy) << ',' << fmt(m.vx) << ',' << fmt(m.vy);
+    for (const auto& b : supports) out_ << ',' << fmt(b.force) << ',' << fmt(b.elongation());
     out_ << ',' << fmt(e.kinetic) << ',' << fmt(e.potential) << ',' << fmt(e.elastic) << ',' << fmt(e.loadWork);
     if (ground_.active()) out_ << ',' << fmt(e.groundMotionWork);
     out_ << ',' << fmt(e.mechanical() - initialMechanical) << '\n';
@@ -167,6 +171,18 @@ void writeSummary(const fs::path& dir, const model::Scene& scene, const RunOptio
       mons[o.trace.monitorIds[m]] = {{"ux", s.ux}, {"uy", s.uy}, {"vx", s.vx}, {"vy", s.vy}};
     }
   j["monitors"] = mons;
+  if (!o.finalSupports.empty()) {
+    ordered_json sup = ordered_json::object();
+    for (const model::Support& b : o.finalSupports)
+      sup[b.id] = {{"state", model::supportStateName(b.state)},
+                   {"force_n_per_m", b.force},
+                   {"capacity_n_per_m", std::isfinite(b.capacity) ? ordered_json(b.capacity) : ordered_json(nullptr)},
+                   {"elongation_m", b.elongation()},
+                   {"plastic_elongation_m", b.plasticElongation},
+                   {"spacing_m", b.spacing},
+                   {"force_per_support_n", b.force * b.spacing}};
+    j["supports"] = sup;
+  }
   ordered_json ex = ordered_json::array();
   for (const auto& r : o.expectations)
     ex.push_back({{"monitor", r.expectation.monitor}, {"quantity", r.expectation.quantity},
@@ -299,7 +315,7 @@ RunOutcome runScene(const model::Scene& scene, const RunOptions& opt) {
   for (const auto& m : scene.monitors) o.trace.monitorIds.push_back(m.id);
   const bool recordEnergy = opt.energy || opt.outputDir.has_value();
   std::optional<HistoryWriter> history;
-  if (opt.outputDir) history.emplace(*opt.outputDir, o.trace.monitorIds, scene.seismic.ground);
+  if (opt.outputDir) history.emplace(*opt.outputDir, o.trace.monitorIds, scene.seismic.ground, scene.supports);
   std::optional<VtkFrames> vtk;
   if (opt.outputDir && opt.vtk) vtk.emplace(*opt.outputDir + "/vtk", scene, opt.vtkEvery);
   else if (opt.outputDir) removeVtkSeries(*opt.outputDir + "/vtk");
@@ -316,7 +332,7 @@ RunOutcome runScene(const model::Scene& scene, const RunOptions& opt) {
     std::vector<MonitorSample> row;
     for (size_t m = 0; m < s.scene().monitors.size(); ++m) row.push_back(sampleOf(s, static_cast<int>(m)));
     if (recordEnergy) o.trace.energy.push_back(s.energy());
-    if (history) history->row(r, row, o.trace.energy.back(), o.trace.energy.front().mechanical());
+    if (history) history->row(r, row, s.scene().supports, o.trace.energy.back(), o.trace.energy.front().mechanical());
     while (opt.outputDir && nextSnapshot < snapshots.size() && r.time >= snapshots[nextSnapshot] - 1e-12) {
       char name[64];
       std::snprintf(name, sizeof name, "/snapshot_%02zu.png", nextSnapshot);
@@ -347,6 +363,7 @@ RunOutcome runScene(const model::Scene& scene, const RunOptions& opt) {
   }
   if (vtk) o.vtkFrames = vtk->written();
   o.statistics = sim.statistics();
+  o.finalSupports = sim.scene().supports;
   o.stepLimit = sim.stepLimit();
   o.searchDistance = sim.searchDistance();
   o.wallTime = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

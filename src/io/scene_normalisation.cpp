@@ -55,9 +55,8 @@ void mergeFixedBlocks(model::Scene& s) {
         // Block j goes: indices above it move down by one, and what was on it moves to i.
         const int gone = static_cast<int>(j);
         const auto renumber = [&](int k) { return k == gone ? static_cast<int>(i) : k > gone ? k - 1 : k; };
-        for (model::Monitor& m : s.monitors) m.point.block = renumber(m.point.block);
-        for (model::PointLoad& l : s.pointLoads) l.point.block = renumber(l.point.block);
-        for (model::FixedPoint& f : s.fixedPoints) f.point.block = renumber(f.point.block);
+        s.forEachBlockPoint([&](model::BlockPoint& p) { p.block = renumber(p.block); });
+        for (model::EdgeLoad& l : s.edgeLoads) l.block = renumber(l.block);
         std::map<std::pair<int, int>, int> pairs;
         for (const auto& [pair, joint] : s.pairJoints)
           if (pair.first != gone && pair.second != gone) {
@@ -124,9 +123,8 @@ void localiseOrigin(model::Scene& s) {
     b.moments = geometry::computeMoments(b.vertices);  // now to the precision of a small scene
   }
   const auto shift = [&](model::BlockPoint& p) { p.initial -= o, p.current -= o; };
-  for (model::Monitor& m : s.monitors) shift(m.point);
-  for (model::PointLoad& l : s.pointLoads) shift(l.point);
-  for (model::FixedPoint& f : s.fixedPoints) shift(f.point);
+  s.forEachBlockPoint(shift);
+  for (model::EdgeLoad& l : s.edgeLoads) l.from -= o, l.to -= o;
   for (Vec2& p : s.water.line) p -= o;
   for (model::MovedJointEnd& m : s.movedJointEnds) m.kink -= o;
   for (double& level : s.water.seriesLevels) level -= o.y();

@@ -93,6 +93,43 @@ void writeScenePicture(const solver::Simulation& sim, const PictureFrame& frame,
     cairo_arc(cr, x, y, 3.5, 0, 2 * M_PI);
     cairo_fill(cr);
   }
+  // Supports: a line from head to end with a plate at the head; dark blue while they hold,
+  // magenta once yielded, grey dashed when slack or broken.
+  for (const model::Support& b : scene.supports) {
+    const auto [hx, hy] = px(b.head.current);
+    const auto [ex, ey] = px(b.end.current);
+    const bool carries = b.state == model::SupportState::Elastic || b.state == model::SupportState::Yielded;
+    if (b.state == model::SupportState::Yielded) cairo_set_source_rgb(cr, 0.8, 0.0, 0.8);
+    else if (carries) cairo_set_source_rgb(cr, 0.05, 0.1, 0.5);
+    else cairo_set_source_rgb(cr, 0.55, 0.55, 0.55);
+    const double dash[] = {6.0, 4.0};
+    cairo_set_dash(cr, dash, carries ? 0 : 2, 0);
+    cairo_set_line_width(cr, 2.5);
+    cairo_move_to(cr, hx, hy);
+    cairo_line_to(cr, ex, ey);
+    cairo_stroke(cr);
+    cairo_set_dash(cr, nullptr, 0, 0);
+    cairo_rectangle(cr, hx - 4, hy - 4, 8, 8);
+    cairo_fill(cr);
+  }
+  // Loads: an arrow towards each point load's point (edge loads: at their Gauss points).
+  cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);
+  cairo_set_line_width(cr, 1.5);
+  for (const model::PointLoad& l : scene.pointLoads) {
+    const Vec2 f = l.at(sim.time());
+    if (!(f.norm() > 0)) continue;
+    const auto [x, y] = px(l.point.current);
+    const double ux = f.x() / f.norm(), uy = -f.y() / f.norm();  // picture y runs down
+    const double len = 30;
+    cairo_move_to(cr, x - len * ux, y - len * uy);
+    cairo_line_to(cr, x, y);
+    cairo_stroke(cr);
+    cairo_move_to(cr, x, y);
+    cairo_line_to(cr, x - 8 * ux + 4 * uy, y - 8 * uy - 4 * ux);
+    cairo_line_to(cr, x - 8 * ux - 4 * uy, y - 8 * uy + 4 * ux);
+    cairo_close_path(cr);
+    cairo_fill(cr);
+  }
   // Monitors: red crosses.
   cairo_set_source_rgb(cr, 0.85, 0.0, 0.0);
   cairo_set_line_width(cr, 2);
@@ -109,10 +146,10 @@ void writeScenePicture(const solver::Simulation& sim, const PictureFrame& frame,
   cairo_set_source_rgb(cr, 0, 0, 0);
   cairo_move_to(cr, 20, 26);
   cairo_show_text(cr, title.c_str());
-  char legend[200];
+  char legend[320];
   std::snprintf(legend, sizeof legend,
-                "t = %.4g s   colour: block displacement, blue 0 to red %.3g m   contacts: green locked, orange sliding   x: monitors",
-                sim.time(), maxMoved);
+                "t = %.4g s   colour: block displacement, blue 0 to red %.3g m   contacts: green locked, orange sliding   x: monitors%s",
+                sim.time(), maxMoved, scene.supports.empty() ? "" : "   supports: blue, magenta yielded, grey slack/broken");
   cairo_set_font_size(cr, 12);
   cairo_move_to(cr, 20, height - 18);
   cairo_show_text(cr, legend);

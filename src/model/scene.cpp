@@ -1,6 +1,7 @@
 #include "ddaslope/model/scene.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 namespace ddaslope::model {
 
@@ -36,6 +37,61 @@ int Scene::blockIndex(const std::string& id) const {
   for (size_t i = 0; i < blocks.size(); ++i)
     if (blocks[i].id == id) return static_cast<int>(i);
   return -1;
+}
+
+SupportQuantity Scene::supportQuantity(const std::string& id) const {
+  SupportQuantity q;
+  for (const Support& s : supports)
+    if (s.id == id) {
+      q.kind = s.active() ? SupportQuantity::Kind::AnchorForce : SupportQuantity::Kind::BoltCapacity;
+      q.name = s.active() ? "anchor force" : "bolt capacity";
+      q.value = s.active() ? s.pretension : s.capacity;
+      q.spacing = s.spacing;
+      return q;
+    }
+  Vec2 resultant(0, 0);
+  for (const PointLoad& l : pointLoads)
+    if (l.id == id) q.kind = SupportQuantity::Kind::Load, resultant += l.force;
+  if (q.kind == SupportQuantity::Kind::Load) {
+    q.name = "load";
+    q.value = resultant.norm();
+  }
+  return q;
+}
+
+void Scene::setSupportQuantity(const std::string& id, double value) {
+  for (Support& s : supports)
+    if (s.id == id) {
+      if (s.active()) {
+        s.pretension = value;
+        s.capacity = std::max(s.capacity, value);
+        s.force = value;
+      } else {
+        s.capacity = value;
+      }
+      return;
+    }
+  const double now = supportQuantity(id).value;
+  // A load of no size has no direction to keep: it is left as it is (searches start above 0).
+  if (!(now > 0)) return;
+  for (PointLoad& l : pointLoads)
+    if (l.id == id) l.force *= value / now, l.rate *= value / now;
+}
+
+std::vector<PointLoad> equivalentPointLoads(const EdgeLoad& l) {
+  // Gauss points at ½ ± 1/(2√3) of the segment, weight ½ each.
+  const double g = 0.5 / std::sqrt(3.0);
+  const double length = (l.to - l.from).norm();
+  std::vector<PointLoad> out;
+  for (double t : {0.5 - g, 0.5 + g}) {
+    PointLoad p;
+    p.id = l.id;
+    p.point.block = l.block;
+    p.point.initial = p.point.current = l.from + t * (l.to - l.from);
+    p.force = 0.5 * length * ((1 - t) * l.q0 + t * l.q1);
+    out.push_back(p);
+  }
+  return out;
 }
 
 }  // namespace ddaslope::model

@@ -29,6 +29,9 @@ EnergyBudget storedEnergy(const model::Scene& scene, const std::vector<double>& 
   }
   for (const model::FixedPoint& f : scene.fixedPoints)
     e.elastic += 0.5 * normalStiffness * (f.point.current - f.point.initial).squaredNorm();
+  // A support's work: stored while it is elastic, dissipated once it yields (counted either way:
+  // the budget then only misses a gain, never invents one).
+  for (const model::Support& s : scene.supports) e.elastic += s.work;
   for (const contact::Contact& c : contacts) {
     if (!c.closed()) continue;
     e.elastic += 0.5 * c.normalForce * c.normalForce / normalStiffness;

@@ -238,6 +238,15 @@ std::vector<bool> Simulation::unsupportedBlocks() const {
         frontier.push_back(other);
       }
     }
+    // A block held by a support (an anchor into the rock) is supported too.
+    for (const model::Support& s : scene_.supports) {
+      const int u = s.head.block, v = s.end.block;
+      const int other = u == b ? v : (v == b ? u : -1);
+      if (other >= 0 && !reached[other] && s.state != model::SupportState::Broken) {
+        reached[other] = true;
+        frontier.push_back(other);
+      }
+    }
   }
   std::vector<bool> held(n);
   for (size_t b = 0; b < n; ++b) held[b] = !reached[b];
@@ -264,6 +273,7 @@ HeldEquilibrium Simulation::holdEquilibrium() {
   h.monitors = scene_.monitors;
   h.pointLoads = scene_.pointLoads;
   h.fixedPoints = scene_.fixedPoints;
+  h.supports = scene_.supports;
   h.contacts = contacts_;
   markActiveBlocks({});
   return h;
@@ -285,6 +295,7 @@ void Simulation::bringToEquilibrium(const HeldEquilibrium* shared) {
     scene_.monitors = shared->monitors;
     scene_.pointLoads = shared->pointLoads;
     scene_.fixedPoints = shared->fixedPoints;
+    scene_.supports = shared->supports;
     contacts_ = shared->contacts;
     // The joints (strengths) are this scene's own; contacts keep their joint index.
   } else {

@@ -99,6 +99,7 @@ Simulation::IterateChanges Simulation::judgeIterate(StepState& s) {
     if (j.bonded != c.bonded) changes.bonds = true;
     applyJudgement(s, q, j, r);
   }
+  if (judgeSupports(s)) changes.states = true;
   stats_.times.stateChecks += s.sw.lap();
   changes.frictionSettled = frictionDrift <= scene_.settings.frictionTolerance * forceScale;
   return changes;

@@ -73,14 +73,7 @@ void Simulation::markActiveBlocks(const std::vector<bool>& held) {
 
 void Simulation::commit(Attempt& a, double dt, bool weakens) {
   Stopwatch sw;
-  const auto movePoint = [&](model::BlockPoint& p) {
-    const int i = active_[p.block];
-    if (i >= 0)
-      p.current = model::displacedPoint(scene_.blocks[p.block].moments.centroid, p.current, a.d.segment<6>(6 * i));
-  };
-  for (auto& m : scene_.monitors) movePoint(m.point);
-  for (auto& l : scene_.pointLoads) movePoint(l.point);
-  for (auto& f : scene_.fixedPoints) movePoint(f.point);
+  commitPoints(a);
   for (size_t b = 0; b < scene_.blocks.size(); ++b) {
     const int i = active_[b];
     if (i < 0) continue;

@@ -39,6 +39,7 @@ Simulation::Attempt Simulation::tryStep(double dt, Regime regime, bool freezeCyc
   updatePattern(s.a.contacts);
   assembleBlockTerms(dt, regime, s.blockK, s.blockF, s.a.loads, s.blockMagnitude, &s.a.groundLoads);
   s.rhs.resize(6 * nActive_);
+  prepareSupports(s);
   stats_.times.assembly += s.sw.lap();
   s.stateTolerance = stateTolerance(s.a.contacts);
   configureSolver(s);
@@ -75,6 +76,10 @@ void Simulation::updatePattern(const std::vector<Contact>& contacts) {
   std::vector<std::pair<int, int>> couplings;
   for (const Contact& c : contacts) {
     const int i = active_[c.key().vertexBlock], j = active_[c.key().edgeBlock];
+    if (i >= 0 && j >= 0) couplings.emplace_back(i, j);
+  }
+  for (const model::Support& b : scene_.supports) {
+    const int i = active_[b.head.block], j = active_[b.end.block];
     if (i >= 0 && j >= 0) couplings.emplace_back(i, j);
   }
   const int dof = unknownsPerBlock();
@@ -147,6 +152,7 @@ void Simulation::assembleContactTerms(StepState& s) {
       s.addTerm(c, -c.slideDirection * s.friction[q], s.kin[q].shearStep());
     }
   }
+  addSupportTerms(s);
   // A large system assembles K only if a factorisation asks for it; a small one at once, and
   // multiplies by the assembled K, whose round-off the shipped cases' documented results carry.
   if (s.stiffnessChanged) {

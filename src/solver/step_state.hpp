@@ -94,6 +94,10 @@ struct Simulation::StepState {
   /// the round-off scale of b where the solve stops at round-off.
   void addTerm(const contact::Contact& c, double s, const Vec12& v) {
     const auto [i, j] = ends(c);
+    addTerm(i, j, s, v);
+  }
+  /// The same between active blocks i and j (−1: fixed or held).
+  void addTerm(int i, int j, double s, const Vec12& v) {
     if (i >= 0) rhs.segment<6>(6 * i) += s * v.head<6>();
     if (j >= 0) rhs.segment<6>(6 * j) += s * v.tail<6>();
     if (!residualAtRoundOff) return;
@@ -103,6 +107,13 @@ struct Simulation::StepState {
   /// The solution's entries for the two blocks of contact c (zero for a fixed one).
   Vec12 gather(const contact::Contact& c) const {
     const auto [i, j] = ends(c);
+    Vec12 d = Vec12::Zero();
+    if (i >= 0) d.head<6>() = a.d.segment<6>(6 * i);
+    if (j >= 0) d.tail<6>() = a.d.segment<6>(6 * j);
+    return d;
+  }
+  /// The solution's entries for active blocks i and j (zero for −1).
+  Vec12 gather(int i, int j) const {
     Vec12 d = Vec12::Zero();
     if (i >= 0) d.head<6>() = a.d.segment<6>(6 * i);
     if (j >= 0) d.tail<6>() = a.d.segment<6>(6 * j);
@@ -156,6 +167,12 @@ struct Simulation::StepState {
   bool stiffnessChanged = true;  ///< K must be rebuilt: the last judgement changed a state
   bool nextSolveStrict = false;  ///< the last judgement changed none: solve to the full target
   bool solvedStrictly = false;   ///< the last solution met the full target
+
+  // The supports: their elongation vector on the step's start geometry (assembly/support_terms),
+  // their active blocks, and their elongation at the step's start.
+  std::vector<Vec12> supportV;
+  std::vector<std::pair<int, int>> supportEnds;
+  std::vector<double> supportElongation0;
 
   // Judging (open_close.cpp).
   contact::StateTolerance stateTolerance{};

@@ -79,6 +79,14 @@ CriticalResult criticalFriction(const model::Scene& scene, int joint, double coh
 CriticalResult criticalSeismicCoefficient(const model::Scene& scene, int direction, double width,
                                           const SearchSettings& s = {});
 
+/// The size of the support or load `id` (model::Scene::supportQuantity: an anchor's force, a
+/// bolt's capacity, a load's resultant, N/m) at which the scene holds with every joint's strength
+/// reduced by `targetFactor` (c/F, atan(tan φ/F)); support capacities are not reduced. Brackets
+/// upward from 0 by doubling from the case's own value (or 1e5 N/m), then bisects to `width`
+/// (≤ 0: 1e-3 of the bracket's stable end). 0 with a remark when the scene holds without it.
+CriticalResult criticalSupport(const model::Scene& scene, const std::string& id, double targetFactor, double width,
+                               const SearchSettings& s = {});
+
 struct CurvePoint {
   double frictionDeg = 0;
   CriticalResult cohesion;  ///< critical cohesion at this friction angle

@@ -46,6 +46,7 @@ struct RunOutcome {
   bool budgetStop = false;  ///< stopped by analysis.max_steps or wall_clock_limit (exit 3)
   Trace trace;
   solver::RunStatistics statistics;
+  std::vector<model::Support> finalSupports;  ///< the supports' states and forces at the end
   double wallTime = 0;
   double stepLimit = 0, searchDistance = 0;  ///< the run's effective values (m)
   std::vector<ExpectationResult> expectations;

@@ -8,18 +8,13 @@
 
 #include "ddaslope/model/analysis_settings.hpp"
 #include "ddaslope/model/block.hpp"
+#include "ddaslope/model/block_point.hpp"
 #include "ddaslope/model/materials.hpp"
 #include "ddaslope/model/seismic.hpp"
+#include "ddaslope/model/support.hpp"
 #include "ddaslope/model/water.hpp"
 
 namespace ddaslope::model {
-
-/// A point carried by a block (monitor, load point, fixed point): it moves with the block.
-struct BlockPoint {
-  int block = 0;
-  Vec2 initial{0, 0};
-  Vec2 current{0, 0};
-};
 
 struct Monitor {
   std::string id;
@@ -30,8 +25,26 @@ struct PointLoad {
   BlockPoint point;
   Vec2 force{0, 0};  ///< N per metre of thickness, at t = 0
   Vec2 rate{0, 0};   ///< N/m per second: the force at time t is force + rate · t
+  std::string id{};  ///< optional: names the load for a support search (critical --support)
   Vec2 at(double t) const { return force + t * rate; }
 };
+
+/// A load distributed along a block's boundary from `from` to `to` (a surcharge, a berm, a
+/// foundation): traction varying linearly from q0 to q1 (N/m² = N/m per metre of edge).
+struct EdgeLoad {
+  std::string id;
+  int block = 0;
+  Vec2 from{0, 0}, to{0, 0};
+  Vec2 q0{0, 0}, q1{0, 0};
+  /// The resultant (N/m) and where it acts.
+  Vec2 resultant() const { return 0.5 * (q0 + q1) * (to - from).norm(); }
+};
+
+/// The point loads equivalent to an edge load: the traction at the two Gauss points of the
+/// segment, each with half its length. Exact for a DDA block, whose displacement is linear in
+/// position: the work of a linear traction on a linear displacement is a quadratic, which
+/// two-point Gauss integration integrates exactly.
+std::vector<PointLoad> equivalentPointLoads(const EdgeLoad& l);
 
 struct FixedPoint {
   BlockPoint point;  ///< held at point.initial by a penalty spring
@@ -60,6 +73,15 @@ struct Expectation {
   std::string source{};
 };
 
+/// What a support search varies for a named support or load (critical --solve support).
+struct SupportQuantity {
+  enum class Kind { None, AnchorForce, BoltCapacity, Load };
+  Kind kind = Kind::None;
+  std::string name;    ///< "anchor force", "bolt capacity", "load"
+  double value = 0;    ///< the case's own (N/m)
+  double spacing = 1;  ///< a support's out-of-plane spacing (m): per support = value × spacing
+};
+
 struct Scene {
   std::string description;
   Vec2 gravity{0, -9.81};
@@ -72,6 +94,10 @@ struct Scene {
   std::vector<Monitor> monitors;
   std::vector<PointLoad> pointLoads;
   std::vector<FixedPoint> fixedPoints;
+  std::vector<Support> supports;
+  /// Distributed loads on block edges, as the case gives them; each is applied as the point
+  /// loads of its Gauss points (in pointLoads, with the distributed load's id).
+  std::vector<EdgeLoad> edgeLoads;
   std::vector<Expectation> expectations;
   WaterTable water;  ///< no water unless its line is set
   SeismicLoad seismic;  ///< none unless set
@@ -91,6 +117,21 @@ struct Scene {
   /// Normal penalty in use (explicit, or factor × max E).
   double normalPenalty() const;
   int blockIndex(const std::string& id) const;  ///< −1 when absent
+  /// The quantity a support search varies for the support or load `id` (Kind::None: no such
+  /// name). An anchor (a pretension, or no stiffness) is searched on its force; a passive bolt on
+  /// its capacity; a point or edge load on the size of its resultant, its direction kept.
+  SupportQuantity supportQuantity(const std::string& id) const;
+  /// Sets that quantity to `value` (N/m): an anchor's capacity is raised to its force if below.
+  void setSupportQuantity(const std::string& id, double value);
+  /// f(BlockPoint&) for every point carried by a block: monitors, point loads, fixed points and
+  /// both ends of every support.
+  template <class F>
+  void forEachBlockPoint(F&& f) {
+    for (Monitor& m : monitors) f(m.point);
+    for (PointLoad& l : pointLoads) f(l.point);
+    for (FixedPoint& p : fixedPoints) f(p.point);
+    for (Support& b : supports) f(b.head), f(b.end);
+  }
 };
 
 }  // namespace ddaslope::model

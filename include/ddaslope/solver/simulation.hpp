@@ -90,6 +90,7 @@ struct HeldEquilibrium {
   std::vector<model::Monitor> monitors;
   std::vector<model::PointLoad> pointLoads;
   std::vector<model::FixedPoint> fixedPoints;
+  std::vector<model::Support> supports;
   contact::ContactSet contacts;
   std::vector<bool> held;  ///< blocks not supported, kept still during equilibrium
   double dt = 0;           ///< the static step the stage ended with
@@ -178,6 +179,7 @@ class Simulation {
     std::vector<Vec6> loads;  ///< water and point loads on each active block (their work: loads·d)
     std::vector<Vec6> groundLoads;  ///< the record's inertial force among them (its work, reported apart)
     std::vector<contact::Contact> contacts;
+    std::vector<model::SupportState> supportStates;  ///< each support's state as judged
   };
   struct StepState;       ///< what an attempt carries from stage to stage (src/solver/step_state.hpp)
   struct IterateChanges;  ///< what judging an iterate changed (src/solver/step_state.hpp)
@@ -251,6 +253,15 @@ class Simulation {
   void configureSolver(StepState& s);
   /// K's contact springs (if the states changed) and b, for the attempt's contact states.
   void assembleContactTerms(StepState& s);
+  // The supports' part of a step (support_steps.cpp): their elongation vectors on the step's
+  // start geometry, their terms in K and b, their states judged in each iterate, and their
+  // forces after an accepted step.
+  void prepareSupports(StepState& s) const;
+  void addSupportTerms(StepState& s);
+  /// True if a support's state changed (the iterate is solved again).
+  bool judgeSupports(StepState& s);
+  /// Moves the points the blocks carry and the supports' forces with an accepted attempt.
+  void commitPoints(const Attempt& a);
   /// A large system's factor follows the springs switched on and off (or is dropped).
   void followStateChanges(StepState& s);
   ResidualFloors residualFloors(const StepState& s) const;

@@ -1,0 +1,140 @@
+// `ddaslope critical CASE --solve support --support NAME`: the force of an anchor, the capacity of
+// a bolt or the size of a load that makes the slope hold at a target factor of safety, and with
+// --curve, the factor of safety against that quantity.
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+
+#include "critical_command.hpp"
+#include "ddaslope/calibration/strength_search.hpp"
+#include "ddaslope/calibration/trial_report.hpp"
+#include "ddaslope/core/errors.hpp"
+#include "ddaslope/io/json_record.hpp"
+#include "ddaslope/io/line_plot.hpp"
+#include "scene_notes.hpp"
+
+namespace ddaslope::cli {
+namespace {
+
+namespace cal = ddaslope::calibration;
+using ddaslope::model::SupportQuantity;
+
+SupportQuantity namedSupport(const std::string& casePath, const ddaslope::model::Scene& scene, const std::string& id) {
+  if (id.empty())
+    throw ddaslope::InputError("--support", "", "expected the support or load to size (--support NAME: an id of supports, "
+                                                "point_loads or edge_loads)");
+  const SupportQuantity q = scene.supportQuantity(id);
+  if (q.kind == SupportQuantity::Kind::None) {
+    std::string known;
+    for (const auto& s : scene.supports) known += (known.empty() ? "" : ", ") + s.id;
+    for (const auto& l : scene.pointLoads)
+      if (!l.id.empty() && known.find(l.id) == std::string::npos) known += (known.empty() ? "" : ", ") + l.id;
+    throw ddaslope::InputError(casePath, "supports", "no support or load named \"" + id + "\" (the case has: " +
+                                                         (known.empty() ? "none with an id" : known) + ")");
+  }
+  if (q.kind == SupportQuantity::Kind::Load && !(q.value > 0))
+    throw ddaslope::InputError(casePath, "point_loads", "load \"" + id + "\" has no size, so no direction to keep: give "
+                                                        "it a non-zero force in the direction it acts");
+  return q;
+}
+
+/// F against the support's size: a factor-of-safety search at each of n sizes over [lo, hi].
+int supportCurve(const std::string& casePath, const ddaslope::model::Scene& scene, const CriticalOptions& opt,
+                 const SupportQuantity& q) {
+  double lo = 0, hi = 0;
+  int n = 0;
+  if (std::sscanf(opt.curve.c_str(), "%lf:%lf:%d", &lo, &hi, &n) != 3 || !std::isfinite(lo) || !std::isfinite(hi) ||
+      n < 2 || n > 200 || lo < 0 || lo >= hi)
+    throw ddaslope::InputError("--curve", "", "expected min:max:n in N/m with 0 ≤ min < max and 2 ≤ n ≤ 200, found \"" +
+                                                  opt.curve + "\"");
+  const auto t0 = std::chrono::steady_clock::now();
+  std::filesystem::create_directories(opt.outDir);
+  const std::string csv = opt.outDir + "/support_curve.csv", png = opt.outDir + "/support_curve.png";
+  std::FILE* f = std::fopen((csv + ".tmp").c_str(), "w");
+  if (!f) throw ddaslope::InputError(csv, "", "cannot write the file");
+  std::fprintf(f, "%s_n_per_m,factor_of_safety,stable_at,failing_at,found,forward_runs\n",
+               q.kind == SupportQuantity::Kind::BoltCapacity ? "capacity" : "force");
+  ddaslope::io::PlotSeries series{"F (" + opt.support + ")", {}, {}, true};
+  cal::SearchSettings s;
+  s.threads = opt.threads;
+  int runs = 0;
+  bool all = true;
+  for (int k = 0; k < n; ++k) {
+    const double x = lo + (hi - lo) * k / (n - 1);
+    ddaslope::model::Scene trial = scene;
+    trial.setSupportQuantity(opt.support, x);
+    const cal::FactorOfSafetyResult r = cal::factorOfSafety(trial, {}, 1e-3, s);
+    std::fprintf(f, "%.6g,%.6g,%.6g,%.6g,%d,%d\n", x, r.found ? r.factor : NAN, r.stableEnd, r.failingEnd, r.found, r.runs);
+    if (!opt.json)
+      std::printf("  %s %10.4g kN/m: F = %s\n", q.name.c_str(), x / 1e3,
+                  r.found ? std::to_string(r.factor).c_str() : ("none (" + r.message + ")").c_str());
+    series.x.push_back(x / 1e3);
+    series.y.push_back(r.found ? r.factor : NAN);
+    runs += r.runs;
+    all &= r.found;
+  }
+  std::fclose(f);
+  std::filesystem::rename(csv + ".tmp", csv);
+  ddaslope::io::writePng({"Factor of safety against " + q.name + ": " + casePath, q.name + " (kN/m)",
+                          "factor of safety F", {series}},
+                         png);
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  if (opt.json) {
+    ddaslope::io::JsonRecord j;
+    j.set("case", casePath).set("support", opt.support).set("quantity", q.name).set("all_found", all);
+    j.set("values_n_per_m", series.x).set("factor_of_safety", series.y);
+    j.set("forward_runs", runs).set("wall_time_s", wall).set("csv", csv).set("png", png);
+    std::printf("%s\n", j.dump().c_str());
+  } else {
+    std::printf("%d forward runs, %.2f s wall; wrote %s and %s\n", runs, wall, csv.c_str(), png.c_str());
+  }
+  return all ? kExitOk : kExitNonConvergence;
+}
+
+}  // namespace
+
+int supportCommand(const std::string& casePath, const ddaslope::model::Scene& scene, const CriticalOptions& opt) {
+  if (!opt.joint.empty() || opt.friction >= 0 || opt.cohesion >= 0)
+    throw ddaslope::InputError(!opt.joint.empty() ? "--joint" : opt.friction >= 0 ? "--friction" : "--cohesion", "",
+                               "not used by --solve support: every joint is reduced by --target-fos (set strengths "
+                               "with --set, e.g. joints.NAME.friction_angle=30)");
+  const SupportQuantity q = namedSupport(casePath, scene, opt.support);
+  if (!opt.curve.empty()) return supportCurve(casePath, scene, opt, q);
+  const auto log = startProgress("critical --solve support", opt.progress, opt.json);
+  cal::SearchSettings s;
+  s.threads = opt.threads;
+  s.progress = ddaslope::io::sinkOf(log.get());
+  recordTrialStates(s, opt.vtkDir, scene);
+  const cal::CriticalResult r = cal::criticalSupport(scene, opt.support, opt.targetFactor, opt.width, s);
+  log->finish(r.found, r.found ? q.name + " " + std::to_string(r.critical) : r.message);
+  if (opt.json) {
+    ddaslope::io::JsonRecord j;
+    j.set("case", casePath).set("solve", "support").set("support", opt.support).set("quantity", q.name);
+    j.set("target_factor_of_safety", opt.targetFactor).set("found", r.found);
+    j.set("critical", r.found ? r.critical : NAN).set("unit", "N/m");
+    j.set("per_support_n", r.found ? r.critical * q.spacing : NAN).set("spacing_m", q.spacing);
+    j.set("bracket", std::vector<double>{r.failingEnd, r.stableEnd});
+    j.set("forward_runs", r.runs).set("wall_time_s", r.wallTime).set("message", r.message);
+    j.set("settings", settingsLine(scene));
+    cal::appendReview(j, r.review);
+    cal::appendTrials(j, r.trials, "value_n_per_m");
+    if (!opt.vtkDir.empty()) j.set("vtk", opt.vtkDir);
+    std::printf("%s\n", j.dump().c_str());
+  } else if (r.found) {
+    std::printf("%s of '%s' for F = %g: %.6g kN/m (failing at %.6g, stable at %.6g)%s%s\n", q.name.c_str(),
+                opt.support.c_str(), opt.targetFactor, r.critical / 1e3, r.failingEnd / 1e3, r.stableEnd / 1e3,
+                r.message.empty() ? "" : ": ", r.message.c_str());
+    if (q.spacing != 1) std::printf("  = %.6g kN per support at %g m spacing\n", r.critical * q.spacing / 1e3, q.spacing);
+    std::printf("  (every joint's c and tan φ divided by %g; support capacities are not reduced)\n", opt.targetFactor);
+    std::printf("%d forward runs, %.2f s wall; %s\n", r.runs, r.wallTime, settingsLine(scene).c_str());
+    printTrialStatesNote(opt.vtkDir, r.runs);
+  } else {
+    std::fprintf(stderr, "ddaslope: %s: no %s found after %d forward runs: %s\n", casePath.c_str(), q.name.c_str(),
+                 r.runs, r.message.c_str());
+  }
+  warnAboutTrials(casePath, cal::smallMotionWarning(r.trials, "support"));
+  return r.found ? kExitOk : kExitNonConvergence;
+}
+
+}  // namespace ddaslope::cli
