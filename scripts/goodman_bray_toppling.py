@@ -235,6 +235,8 @@ def main():
                     "gives at --phi (direction --theta, height --height)")
     ap.add_argument("--write-case", metavar="PATH", help="write the ddaslope case (columns, base, the toe "
                     "force --toe-force or else the T found, at --theta and --height) to PATH")
+    ap.add_argument("--anchor-case", metavar="PATH", help="write the case held by a toe anchor instead (a "
+                    "support element at --theta, 12 m long into the base, holding the toe force as its pretension)")
     ap.add_argument("--sticky-sliding", action="store_true", help="once a column slides, all below slide")
     ap.add_argument("--table", action="store_true", help="print the column-by-column table")
     args = ap.parse_args()
@@ -282,6 +284,28 @@ def main():
             json.dump(doc, f, indent=1)
             f.write("\n")
         print(f"wrote {args.write_case}: toe force {doc['point_loads'][0]['force']} N/m at {doc['point_loads'][0]['point']}")
+    if args.anchor_case:
+        import json
+        Tc = args.toe_force if args.toe_force is not None else T
+        doc = case(y, args.dx, args.psi_p, args.b, args.crest, g, args.phi, Tc, args.theta, h, DESCRIPTION)
+        load = doc.pop("point_loads")[0]
+        head = load["point"]
+        unit = [c / math.hypot(*load["force"]) for c in load["force"]]
+        end = [round(head[0] + 12.0 * unit[0], 6), round(head[1] + 12.0 * unit[1], 6)]
+        doc["supports"] = [{"id": "toe_anchor", "head": head, "head_block": "column_1", "end": end,
+                            "end_block": "base", "pretension": round(Tc * 1e3, 1)}]
+        doc["description"] = (
+            f"The Goodman & Bray toppling slope of cases/goodman_bray_toppling.json (phi = {args.phi:g} deg, F = 0.828 "
+            f"unsupported) held by a toe anchor: a support element from mid-height of the toe column's face, "
+            f"{args.psi_p - args.theta:g} deg above the horizontal (into the slope and down), 12 m into the rock "
+            f"below, holding {Tc:.1f} kN/m (its pretension, no stiffness: a constant force). Goodman & Bray's chain "
+            f"with a pure toe force in that direction (python3 scripts/goodman_bray_toppling.py --theta "
+            f"{args.theta:g}): {T:.1f} kN/m for limiting equilibrium. Try: ddaslope critical "
+            f"cases/goodman_bray_toppling_anchor.json --solve support --support toe_anchor (docs/supports.md)")
+        with open(args.anchor_case, "w") as f:
+            json.dump(doc, f, indent=1)
+            f.write("\n")
+        print(f"wrote {args.anchor_case}: toe anchor from {head} to {end}, {Tc:.1f} kN/m")
     ang = math.radians(args.psi_p - args.theta)  # the slope faces +x: up-dip is (-cos psi_p, sin psi_p)
     print(f"    T as a vector for a slope facing +x (toe at the right, slope rising to the left): "
           f"[{-T * math.cos(ang) * 1e3:.0f}, {T * math.sin(ang) * 1e3:.0f}] N/m")

@@ -27,6 +27,9 @@ def main():
     ap.add_argument("--trigger", type=float, nargs=3, default=None, metavar=("PHI_PEAK", "PHI_RES", "DW"),
                     help="write a failure-to-run-out case instead: one sliding-surface law, peak friction PHI_PEAK "
                          "falling to PHI_RES over a slip of DW m, from the failure level to rest (60 s)")
+    ap.add_argument("--anchor", type=float, nargs=2, default=None, metavar=("PHI", "FORCE"),
+                    help="an ANCHORED variant: the sliding surface at PHI deg (the back-analysed trigger friction) "
+                         "and a 200 m toe anchor holding FORCE N/m (sized with critical --solve support)")
     ap.add_argument("--out", default=os.path.join(HERE, "..", "cases", "vajont.json"))
     a = ap.parse_args()
     data = json.load(open(SHARED))
@@ -136,6 +139,24 @@ def main():
         # The strength-reduction verdict of a fit's F = 1 observation as for the static case.
         case["analysis"] = {"duration": 60.0, "time_step": 0.01, "failure_displacement": 5.0}
         del case["expected"]
+    if a.anchor is not None:
+        phi, force = a.anchor
+        # The toe's face, 10 m inside it, towards the crown and 30 deg down through the seat into
+        # the rock below: the anchor pulls the mass back where it moves out over the valley.
+        head = [1100.0, 80.0]
+        down = math.radians(30)
+        end = [round(head[0] - 200 * math.cos(down), 3), round(head[1] - 200 * math.sin(down), 3)]
+        case["description"] += (f" ANCHORED variant: the sliding surface at the back-analysed trigger friction "
+                                 f"{phi:g} deg (F = 1 at the failure level, docs/vajont.md) and one 200 m anchor "
+                                 "from the toe's face, 30 deg below the horizontal into the rock below the seat, "
+                                 f"holding {force / 1e6:g} MN per metre of slope: the force that "
+                                 "`ddaslope critical cases/vajont_anchor.json --solve support --support anchor "
+                                 "--target-fos 1.3` finds for F = 1.3 (docs/supports.md). Hundreds of 1 MN anchors "
+                                 "per metre: no support could have held Vajont.")
+        case["joints"]["sliding_surface"]["friction_angle"] = phi
+        case["supports"] = [{"id": "anchor", "head": head, "end": end, "pretension": force}]
+        case["expected"] = [{"monitor": "toe", "quantity": "displacement", "at_most": 0.1,
+                             "source": "F = 1.3 with the anchor: the slope holds"}]
     with open(a.out, "w") as f:
         json.dump(case, f, indent=2)
         f.write("\n")

@@ -93,6 +93,8 @@ class RunSeries(unittest.TestCase):
         run(["run", case_path("toppling_block.json"), "--out", f"{out}/topple", "--quiet", "--vtk", "--blocks", "rigid"])
         run(["run", case_path("planar_failure_water.json"), "--out", f"{out}/water", "--quiet", "--vtk",
              "--duration", "0.1"])
+        run(["run", case_path("goodman_bray_toppling_anchor.json"), "--out", f"{out}/anchor", "--quiet", "--vtk",
+             "--duration", "0.1"])
         cls.out = out
 
     @classmethod
@@ -242,6 +244,28 @@ class RunSeries(unittest.TestCase):
         blocks = vtk_to_numpy(self.final("water", "blocks").grid.GetPoints().GetData())
         self.assertAlmostEqual(points[0][0], blocks[:, 0].min(), delta=1e-12)  # across the blocks' extent
         self.assertAlmostEqual(points[-1][0], blocks[:, 0].max(), delta=1e-12)
+
+    def test_supports_are_lines_from_head_to_end_with_the_history_force(self):
+        case = load_case("goodman_bray_toppling_anchor.json")
+        support = case["supports"][0]
+        self.assertFalse(os.path.exists(f"{self.out}/slide/vtk/supports.pvd"))  # no supports: no series
+        supports = self.final("anchor", "supports")
+        self.assertEqual(supports.count(), 1)
+        self.assertEqual(supports.types(), {VTK_LINE})
+        self.assertEqual(supports.field["support_names"], [support["id"]])
+        self.assertEqual(supports.field["state_names"], ["elastic", "yielded", "slack", "broken"])
+        row = last_row(f"{self.out}/anchor/history.csv")
+        sid = support["id"]
+        # history.csv prints 12 significant digits
+        self.assertAlmostEqual(supports.cells["force"][0], float(row[f"{sid}_force"]),
+                               delta=1e-11 * abs(float(row[f"{sid}_force"])))
+        self.assertAlmostEqual(supports.cells["elongation"][0], float(row[f"{sid}_elongation"]), delta=1e-15)
+        self.assertEqual(supports.cells["state"][0], 0)  # a constant-force anchor stays elastic
+        # The line runs from the head's current point to the end (in the fixed rock: unmoved).
+        points = vtk_to_numpy(supports.grid.GetPoints().GetData())
+        self.assertAlmostEqual(points[1][0], support["end"][0], delta=1e-9)
+        self.assertAlmostEqual(points[1][1], support["end"][1], delta=1e-9)
+        self.assertLess(math.dist(points[0][:2], support["head"]), 0.01)
 
 
 class SearchSeries(unittest.TestCase):

@@ -774,6 +774,23 @@ TEST(CaseReader, BadSupports) {
   expectError(d, "supports[0].id", "duplicate id \"b1\"");
 }
 
+// A grouted bolt's capacity is the least of its tendon's and its bond's over the length it has in
+// each block: 0.8 m in the slider (from y = 1.8 to its base at y = 1), 0.5 m in the base (y = 1 to
+// 0.5); per metre of slope at a 2 m spacing.
+TEST(CaseReader, GroutedBoltCapacityIsItsWeakestAnchorage) {
+  json d = minimal();
+  d["supports"] = json::array({{{"id", "b1"}, {"head", {3, 1.8}}, {"end", {3, 0.5}}, {"stiffness", 1e7},
+                                {"capacity", 2e5}, {"bond_strength", 1e5}, {"spacing", 2}}});
+  const model::Scene s = io::parseCase(d.dump(), "case.json");
+  ASSERT_EQ(s.supports.size(), 1u);
+  EXPECT_NEAR(s.supports[0].headEmbedment, 0.8, 1e-12);
+  EXPECT_NEAR(s.supports[0].endEmbedment, 0.5, 1e-12);
+  EXPECT_NEAR(s.supports[0].capacity, 1e5 * 0.5 / 2, 1e-6);
+  EXPECT_NEAR(s.supports[0].stiffness, 1e7 / 2, 1e-6);
+  d["supports"][0]["bond_strength"] = 1e7;  // the tendon gives way first
+  EXPECT_NEAR(io::parseCase(d.dump(), "case.json").supports[0].capacity, 2e5 / 2, 1e-6);
+}
+
 TEST(CaseReader, BadEdgeLoads) {
   json d = minimal();
   d["edge_loads"] = json::array({{{"from", {2, 2}}, {"to", {4, 2}}, {"pressure", 1e4}}});

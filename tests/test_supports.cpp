@@ -232,3 +232,16 @@ TEST(Supports, GoodmanBrayToeForceForLimitingEquilibrium) {
   ASSERT_TRUE(horizontal.found) << horizontal.message;
   EXPECT_NEAR(horizontal.critical, 2013e3, 0.05 * 2013e3);
 }
+
+// The same slope held by a toe anchor, a support element 20° below the horizontal into the rock
+// (cases/goodman_bray_toppling_anchor.json): the anchor force for F = 1 within 5 % of Goodman &
+// Bray's chain for a pure toe force in that direction, 2085.5 kN/m
+// (python3 scripts/goodman_bray_toppling.py --theta 50).
+TEST(Supports, GoodmanBrayToeAnchorForLimitingEquilibrium) {
+  const model::Scene base = planarCase("goodman_bray_toppling_anchor.json");
+  calibration::SearchSettings settings;
+  settings.threads = 2;
+  const calibration::CriticalResult r = calibration::criticalSupport(base, "toe_anchor", 1.0, 0, settings);
+  ASSERT_TRUE(r.found) << r.message;
+  EXPECT_NEAR(r.critical, 2085.5e3, 0.05 * 2085.5e3);
+}

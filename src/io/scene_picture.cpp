@@ -146,13 +146,17 @@ void writeScenePicture(const solver::Simulation& sim, const PictureFrame& frame,
   cairo_set_source_rgb(cr, 0, 0, 0);
   cairo_move_to(cr, 20, 26);
   cairo_show_text(cr, title.c_str());
-  char legend[320];
+  char legend[200];
   std::snprintf(legend, sizeof legend,
-                "t = %.4g s   colour: block displacement, blue 0 to red %.3g m   contacts: green locked, orange sliding   x: monitors%s",
-                sim.time(), maxMoved, scene.supports.empty() ? "" : "   supports: blue, magenta yielded, grey slack/broken");
+                "t = %.4g s   colour: block displacement, blue 0 to red %.3g m   contacts: green locked, orange sliding   x: monitors",
+                sim.time(), maxMoved);
   cairo_set_font_size(cr, 12);
   cairo_move_to(cr, 20, height - 18);
   cairo_show_text(cr, legend);
+  if (!scene.supports.empty() || !scene.pointLoads.empty()) {
+    cairo_move_to(cr, 20, height - 4);
+    cairo_show_text(cr, "supports: dark blue holding, magenta yielded, grey dashed slack or broken   arrows: loads");
+  }
   cairo_destroy(cr);
   const cairo_status_t st = cairo_surface_write_to_png(surface, (path + ".tmp").c_str());
   cairo_surface_destroy(surface);

@@ -12,7 +12,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr const char* kKinds[] = {"blocks", "contacts", "water"};
+constexpr const char* kKinds[] = {"blocks", "contacts", "water", "supports"};
 
 VtkArray numbers(const std::string& name, int components = 1, std::vector<std::string> componentNames = {}) {
   return {name, components, std::move(componentNames), std::vector<double>{}};
@@ -119,12 +119,35 @@ VtkGrid waterGrid(const solver::Simulation& sim) {
   return g;
 }
 
+VtkGrid supportsGrid(const solver::Simulation& sim) {
+  const model::Scene& scene = sim.scene();
+  VtkGrid g;
+  VtkArray state = integers("state"), force = numbers("force"), elongation = numbers("elongation");
+  VtkArray plastic = numbers("plastic_elongation");
+  for (const model::Support& b : scene.supports) {
+    g.addCell(VtkCellType::Line, {b.head.current, b.end.current});
+    integersOf(state).push_back(static_cast<std::int32_t>(b.state));
+    numbersOf(force).push_back(b.force);
+    numbersOf(elongation).push_back(b.elongation());
+    numbersOf(plastic).push_back(b.plasticElongation);
+  }
+  g.cellData = {state, force, elongation, plastic};
+  inCaseCoordinates(g, scene);
+  std::vector<std::string> ids;
+  for (const model::Support& b : scene.supports) ids.push_back(b.id);
+  g.fieldData = {names("support_names", ids),
+                 names("state_names", {"elastic", "yielded", "slack", "broken"})};
+  return g;
+}
+
 VtkRecorder::VtkRecorder(const std::string& dir, const model::Scene& scene)
     : dir_(dir),
       water_(scene.water.active()),
+      supports_(!scene.supports.empty()),
       blocks_(dir + "/blocks.pvd"),
       contacts_(dir + "/contacts.pvd"),
-      waterSeries_(dir + "/water.pvd") {
+      waterSeries_(dir + "/water.pvd"),
+      supportSeries_(dir + "/supports.pvd") {
   for (const model::Block& b : scene.blocks) initialCentroids_.push_back(b.moments.centroid);
   removeVtkSeries(dir);
   fs::create_directories(dir);
@@ -146,6 +169,7 @@ void VtkRecorder::write(const solver::Simulation& sim, double timestep, const st
   std::vector<std::function<void()>> entries{save(blocksGrid(sim, initialCentroids_), kKinds[0], blocks_),
                                              save(contactsGrid(sim), kKinds[1], contacts_)};
   if (water_) entries.push_back(save(waterGrid(sim), kKinds[2], waterSeries_));
+  if (supports_) entries.push_back(save(supportsGrid(sim), kKinds[3], supportSeries_));
   for (const auto& add : entries) add();
 }
 

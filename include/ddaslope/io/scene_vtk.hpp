@@ -35,8 +35,9 @@ class VtkRecorder {
   /// `scene`: the case as read (displacements count from it). Creates `dir` and removes the
   /// files of an earlier series there.
   VtkRecorder(const std::string& dir, const model::Scene& scene);
-  /// blocks_<label>.vtu, contacts_<label>.vtu (and water_<label>.vtu when the scene has water),
-  /// then their entries at `timestep` in blocks.pvd, contacts.pvd, water.pvd. `notes`: more field
+  /// blocks_<label>.vtu, contacts_<label>.vtu (and water_<label>.vtu when the scene has water,
+  /// supports_<label>.vtu when it has supports), then their entries at `timestep` in blocks.pvd,
+  /// contacts.pvd, water.pvd, supports.pvd. `notes`: more field
   /// data for every file of the frame (a trial's value and verdict).
   void write(const solver::Simulation& sim, double timestep, const std::string& label,
              const std::vector<VtkArray>& notes = {});
@@ -45,8 +46,8 @@ class VtkRecorder {
  private:
   std::string dir_;
   std::vector<Vec2> initialCentroids_;
-  bool water_ = false;
-  PvdCollection blocks_, contacts_, waterSeries_;
+  bool water_ = false, supports_ = false;
+  PvdCollection blocks_, contacts_, waterSeries_, supportSeries_;
 };
 
 /// True when everything a frame writes is finite (a diverged run's last state is not).
