@@ -822,3 +822,46 @@ TEST(Cli, SupportSearchRefusesBadTargetsAndNames) {
   EXPECT_EQ(runCli("critical " + anchored + " --solve support", &err), 2);
   EXPECT_NE(err.find("--support"), std::string::npos) << err;
 }
+
+// unit_weight (kN/m³) as RS2 and Slide2 take it: density = 1000·γ/g; one of the two, not both.
+TEST(CaseReader, UnitWeightIsADensityUnderTheCasesGravity) {
+  json d = minimal();
+  d["materials"]["rock"].erase("density");
+  d["materials"]["rock"]["unit_weight"] = 25.506;
+  EXPECT_NEAR(io::parseCase(d.dump(), "case.json").materials[0].density, 25.506e3 / 9.81, 1e-9);
+  d["materials"]["rock"]["density"] = 2600;
+  expectError(d, "materials.rock", "found both");
+  d["materials"]["rock"].erase("density");
+  d["materials"]["rock"].erase("unit_weight");
+  expectError(d, "materials.rock", "unit_weight (kN/m³");
+  d["materials"]["rock"]["unit_weight"] = -25;
+  expectError(d, "materials.rock.unit_weight", "a unit weight in kN/m³");
+}
+
+// A Barton–Bandis joint: φr, JRC and JCS; a peak friction angle or a cohesion is refused, JRC and
+// JCS out of range are named, and JRC on a Mohr–Coulomb joint is refused.
+TEST(CaseReader, BadBartonBandisJoints) {
+  json d = minimal();
+  d["joints"]["bedding"] = {{"law", "barton_bandis"}, {"residual_friction_angle", 25}, {"jrc", 8}, {"jcs", 50e6}};
+  const model::Scene s = io::parseCase(d.dump(), "case.json");
+  ASSERT_TRUE(s.joints[0].bartonBandis.has_value());
+  EXPECT_DOUBLE_EQ(s.joints[0].bartonBandis->jrc, 8);
+  EXPECT_NEAR(s.joints[0].frictionAngle, degToRad(25), 1e-15);
+  // Barton & Bandis (1982): JRC_n = JRC_0 (L_n/L_0)^(−0.02 JRC_0), JCS_n = JCS_0 (L_n/L_0)^(−0.03 JRC_0).
+  d["joints"]["bedding"]["scale"] = {{"field_length", 2.0}};
+  const model::Scene scaled = io::parseCase(d.dump(), "case.json");
+  EXPECT_NEAR(scaled.joints[0].bartonBandis->jrc, 8 * std::pow(20.0, -0.16), 1e-12);
+  EXPECT_NEAR(scaled.joints[0].bartonBandis->jcs, 50e6 * std::pow(20.0, -0.24), 1e-3);
+  d["joints"]["bedding"].erase("scale");
+  d["joints"]["bedding"]["jrc"] = 25;
+  expectError(d, "joints.bedding.jrc", "a JRC in [0, 20]");
+  d["joints"]["bedding"]["jrc"] = 8;
+  d["joints"]["bedding"]["jcs"] = 0;
+  expectError(d, "joints.bedding.jcs", "a JCS in [1e5, 1e9] Pa");
+  d["joints"]["bedding"]["jcs"] = 50e6;
+  d["joints"]["bedding"]["friction_angle"] = 30;
+  expectError(d, "joints.bedding.friction_angle", "residual_friction_angle (φr), jrc and jcs");
+  json mc = minimal();
+  mc["joints"]["bedding"]["jrc"] = 8;
+  expectError(mc, "joints.bedding.jrc", "used only by a Barton–Bandis joint");
+}

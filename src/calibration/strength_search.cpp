@@ -337,6 +337,33 @@ CriticalResult criticalFriction(const model::Scene& scene, int joint, double coh
   return account(r, stableAt, t0);
 }
 
+CriticalResult criticalJrc(const model::Scene& scene, int joint, double width, const SearchSettings& s) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const auto held = sharedEquilibrium(scene);
+  CountedVerdict stableAt{[&](double jrc, double length) {
+    model::Scene trial = scene;
+    trial.settings.duration *= length;
+    trial.joints[joint].bartonBandis->jrc = jrc;
+    return judgeStability(trial, s.verdict, held ? &*held : nullptr, endOf(s, jrc));
+  }, s, "JRC", width};
+  constexpr double kLargest = 20;
+  const BisectionResult b = bisect(std::ref(stableAt), 0.0, kLargest, width, s.threads);
+  CriticalResult r;
+  copyBracket(b, r);
+  r.critical = b.critical;
+  if (!r.found) {
+    r.message = b.stableEnd == 0 ? "stable even with JRC = 0 (φr alone holds)" : "fails even with JRC = 20";
+    if (b.stableEnd == 0) {
+      r.found = true;
+      r.critical = 0;
+    }
+  }
+  reviewTrials(r, stableAt, false, {0.0, kLargest}, width, s.threads, [&](double stable, double failing) {
+    r.stableEnd = stable, r.failingEnd = failing, r.critical = 0.5 * (stable + failing);
+  });
+  return account(r, stableAt, t0);
+}
+
 CriticalResult criticalSeismicCoefficient(const model::Scene& scene, int direction, double width,
                                           const SearchSettings& s) {
   const auto t0 = std::chrono::steady_clock::now();

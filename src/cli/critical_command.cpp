@@ -71,6 +71,41 @@ int curveCommand(const std::string& casePath, const ddaslope::model::Scene& scen
   return all ? kExitOk : kExitNonConvergence;
 }
 
+/// The JRC at which a Barton–Bandis joint just holds the slope (critical --solve jrc).
+int jrcCommand(const std::string& casePath, const ddaslope::model::Scene& scene, int joint, const CriticalOptions& opt) {
+  if (!scene.joints[joint].bartonBandis)
+    throw ddaslope::InputError("--solve", "jrc", "joint '" + opt.joint + "' is a Mohr–Coulomb joint: JRC belongs to "
+                                                 "Barton–Bandis joints (\"law\": \"barton_bandis\")");
+  const auto log = startProgress("critical --solve jrc", opt.progress, opt.json);
+  ddaslope::calibration::SearchSettings s;
+  s.threads = opt.threads;
+  s.progress = ddaslope::io::sinkOf(log.get());
+  recordTrialStates(s, opt.vtkDir, scene);
+  const auto r = ddaslope::calibration::criticalJrc(scene, joint, opt.width > 0 ? opt.width : 0.01, s);
+  log->finish(r.found, r.found ? "critical JRC " + std::to_string(r.critical) : r.message);
+  if (opt.json) {
+    ddaslope::io::JsonRecord j;
+    j.set("case", casePath).set("joint", opt.joint).set("solve", opt.solve).set("found", r.found);
+    j.set("critical", r.found ? r.critical : NAN).set("unit", "JRC");
+    j.set("bracket", std::vector<double>{r.failingEnd, r.stableEnd});
+    j.set("forward_runs", r.runs).set("wall_time_s", r.wallTime).set("message", r.message);
+    j.set("settings", settingsLine(scene));
+    ddaslope::calibration::appendReview(j, r.review);
+    ddaslope::calibration::appendTrials(j, r.trials, "jrc");
+    std::printf("%s\n", j.dump().c_str());
+  } else if (r.found) {
+    std::printf("critical JRC of joint '%s' at φr = %g°, JCS = %g MPa: %.4g (failing at %.4g, stable at %.4g)%s%s\n",
+                opt.joint.c_str(), ddaslope::radToDeg(scene.joints[joint].frictionAngle),
+                scene.joints[joint].bartonBandis->jcs / 1e6, r.critical, r.failingEnd, r.stableEnd,
+                r.message.empty() ? "" : ": ", r.message.c_str());
+    std::printf("%d forward runs, %.2f s wall; %s\n", r.runs, r.wallTime, settingsLine(scene).c_str());
+  } else {
+    std::fprintf(stderr, "ddaslope: %s: no critical JRC found after %d forward runs: %s\n", casePath.c_str(), r.runs,
+                 r.message.c_str());
+  }
+  return r.found ? kExitOk : kExitNonConvergence;
+}
+
 /// The yield seismic coefficient k_y (critical --solve seismic-coefficient): along the direction
 /// asked, or along both (auto), the smaller being the slope's.
 int seismicCoefficientCommand(const std::string& casePath, const ddaslope::model::Scene& scene,
@@ -158,8 +193,12 @@ int criticalCommand(const std::string& casePath, const Overrides& o, const Criti
   s.threads = opt.threads;
   s.progress = ddaslope::io::sinkOf(log.get());
   recordTrialStates(s, opt.vtkDir, scene);
-  const bool cohesion = opt.solve == "cohesion";
   const ddaslope::model::JointProperties& jp = scene.joints[joint];
+  if (opt.solve == "jrc") return jrcCommand(casePath, scene, joint, opt);
+  if (jp.bartonBandis && opt.solve == "cohesion")
+    throw ddaslope::InputError("--solve", "cohesion", "joint '" + opt.joint + "' is a Barton–Bandis joint, without "
+                                                      "cohesion: search its jrc or its residual friction (friction)");
+  const bool cohesion = opt.solve == "cohesion";
   const double phi = opt.friction >= 0 ? opt.friction : ddaslope::radToDeg(jp.frictionAngle);
   const double c = opt.cohesion >= 0 ? opt.cohesion : jp.cohesion;
   if (opt.friction >= 90) throw ddaslope::InputError("--friction", "", "expected an angle in [0, 90) degrees");
@@ -179,9 +218,13 @@ int criticalCommand(const std::string& casePath, const Overrides& o, const Criti
     if (!opt.vtkDir.empty()) j.set("vtk", opt.vtkDir);
     std::printf("%s\n", j.dump().c_str());
   } else if (r.found) {
+    const std::string where =
+        cohesion          ? "at φ = " + std::to_string(phi) + "°"
+        : jp.bartonBandis ? "(Barton–Bandis φr) at JRC = " + std::to_string(jp.bartonBandis->jrc) + ", JCS = " +
+                                std::to_string(jp.bartonBandis->jcs / 1e6) + " MPa"
+                          : "at c = " + std::to_string(c) + " Pa";
     std::printf("critical %s of joint '%s' %s: %.6g %s (failing at %.6g, stable at %.6g)%s%s\n", opt.solve.c_str(),
-                opt.joint.c_str(),
-                (cohesion ? "at φ = " + std::to_string(phi) + "°" : "at c = " + std::to_string(c) + " Pa").c_str(),
+                opt.joint.c_str(), where.c_str(),
                 r.critical, unit, r.failingEnd, r.stableEnd, r.message.empty() ? "" : ": ", r.message.c_str());
     std::printf("%d forward runs, %.2f s wall; %s\n", r.runs, r.wallTime, settingsLine(scene).c_str());
     printTrialStatesNote(opt.vtkDir, r.runs);
@@ -199,9 +242,9 @@ void addCriticalOptions(CLI::App* cmd, std::string& casePath, Overrides& overrid
   cmd->add_option("case", casePath, "case file (JSON)")->required();
   cmd->add_option("--joint", opt.joint, "joint to search (cohesion, friction)");
   cmd->add_option("--solve", opt.solve,
-                       "cohesion or friction of the joint, seismic-coefficient: the yield acceleration k_y (in g), "
+                       "cohesion or friction of the joint (φr of a Barton–Bandis joint), jrc, seismic-coefficient: the yield acceleration k_y (in g), "
                        "or support: the anchor force, bolt capacity or load (--support) for --target-fos")
-      ->check(CLI::IsMember({"cohesion", "friction", "seismic-coefficient", "support"}))
+      ->check(CLI::IsMember({"cohesion", "friction", "jrc", "seismic-coefficient", "support"}))
       ->capture_default_str();
   cmd->add_option("--direction", opt.direction,
                        "seismic-coefficient: the direction of the horizontal force (+x, -x, or auto: both, the smaller wins)")

@@ -6,8 +6,8 @@
 namespace ddaslope::contact {
 
 double shearStrength(bool bonded, double normalForce, const ContactStrength& s) {
-  if (bonded) return std::max(0.0, s.cohesionForce + normalForce * s.tanPhi);
-  return std::max(0.0, normalForce) * s.tanPhi;
+  if (bonded) return std::max(0.0, s.cohesionForce + s.friction(normalForce));
+  return std::max(0.0, s.friction(std::max(0.0, normalForce)));
 }
 
 ContactJudgement judgeVertexContact(ContactState state, int direction, bool bonded,
@@ -71,7 +71,7 @@ std::pair<ContactJudgement, ContactJudgement> judgeEdgeContact(const HalfState& 
   // tan φ, as the sliding resistance does (halves of a softening joint have slipped different
   // distances): with one mean tan φ a locked pair could fail below the resistance it meets
   // once sliding, and stick and slip in turn for ever.
-  const double friction = r1.normalForce * s1.tanPhi + r2.normalForce * s2.tanPhi;
+  const double friction = s1.friction(r1.normalForce) + s2.friction(r2.normalForce);
   const double strength = std::max(0.0, friction + (bonded ? s1.cohesionForce + s2.cohesionForce : 0.0));
   if (std::abs(shear) > strength + tol.force) {
     const int dir = shear > 0 ? 1 : -1;

@@ -36,11 +36,23 @@ void readMaterials(const Reader& r, const json& doc, model::Scene& s, std::map<s
   if (mats.empty()) r.fail("materials", "expected at least one material");
   for (const auto& [name, m] : mats.items()) {
     const std::string p = "materials." + name;
-    r.onlyKeys(m, p, {"density", "young_modulus", "poisson_ratio"});
+    r.onlyKeys(m, p, {"density", "unit_weight", "young_modulus", "poisson_ratio"});
     model::Material mat;
     mat.name = r.identifier(name, p);
-    mat.density = r.numberIn(r.required(m, p, "density"), p + ".density", limits::kMinDensity, limits::kMaxDensity,
-                             false, false, "a density in [1, 1e5] kg/m³");
+    if (m.contains("density") == m.contains("unit_weight"))
+      r.fail(p, "expected one of density (kg/m³) and unit_weight (kN/m³, as RS2 and Slide2 take it; density = "
+                "1000·γ/g), " + std::string(m.contains("density") ? "found both" : "found neither"));
+    if (m.contains("unit_weight")) {
+      // γ in kN/m³ under the case's own gravity (9.81 m/s² unless it says otherwise).
+      const double g = s.gravity.norm() > 0 ? s.gravity.norm() : 9.81;
+      const double gamma = r.numberIn(m.at("unit_weight"), p + ".unit_weight", limits::kMinDensity * g / 1e3,
+                                      limits::kMaxDensity * g / 1e3, false, false,
+                                      "a unit weight in kN/m³ (a density of 1 to 1e5 kg/m³)");
+      mat.density = gamma * 1e3 / g;
+    } else {
+      mat.density = r.numberIn(m.at("density"), p + ".density", limits::kMinDensity, limits::kMaxDensity, false,
+                               false, "a density in [1, 1e5] kg/m³ (or give unit_weight in kN/m³)");
+    }
     mat.youngModulus = r.numberIn(r.required(m, p, "young_modulus"), p + ".young_modulus", limits::kMinYoungModulus,
                                   limits::kMaxYoungModulus, false, false, "a Young's modulus in [1e3, 1e13] Pa");
     mat.poissonRatio = r.numberIn(r.required(m, p, "poisson_ratio"), p + ".poisson_ratio", 0, 0.5,
@@ -70,18 +82,52 @@ void readWeakening(const Reader& r, const json& jn, const std::string& p, model:
                                          std::to_string(jp.cohesion) + " Pa)");
 }
 
+/// A Barton–Bandis joint: φr (residual_friction_angle), JRC and JCS, with Barton & Bandis's (1982)
+/// scale correction from the laboratory sample's length to the field block's when `scale` gives
+/// them: JRC_n = JRC_0 (L_n/L_0)^(−0.02 JRC_0), JCS_n = JCS_0 (L_n/L_0)^(−0.03 JRC_0).
+void readBartonBandis(const Reader& r, const json& jn, const std::string& p, model::JointProperties& jp) {
+  for (const char* key : {"friction_angle", "cohesion", "residual_cohesion"})
+    if (jn.contains(key))
+      r.fail(Reader::join(p, key), "a Barton–Bandis joint's strength is σn tan(φr + JRC log10(JCS/σn)): give "
+                                   "residual_friction_angle (φr), jrc and jcs, without friction_angle or cohesion");
+  jp.frictionAngle = degToRad(r.numberIn(r.required(jn, p, "residual_friction_angle"), p + ".residual_friction_angle",
+                                         0, 90, false, true, "a residual friction angle φr in [0, 90) degrees"));
+  model::JointProperties::BartonBandis bb;
+  bb.jrc = r.numberIn(r.required(jn, p, "jrc"), p + ".jrc", 0, 20, false, false, "a JRC in [0, 20]");
+  bb.jcs = r.numberIn(r.required(jn, p, "jcs"), p + ".jcs", 1e5, 1e9, false, false,
+                      "a JCS in [1e5, 1e9] Pa (0.1 to 1000 MPa)");
+  if (jn.contains("scale")) {
+    const json& sc = jn.at("scale");
+    const std::string q = p + ".scale";
+    r.onlyKeys(sc, q, {"lab_length", "field_length"});
+    const double lab = r.optionalIn(sc, q, "lab_length", 0.1, 0, 1e3, true, false, "a sample length in (0, 1000] m");
+    const double field = r.numberIn(r.required(sc, q, "field_length"), q + ".field_length", 0, 1e4, true, false,
+                                    "a block length in (0, 1e4] m");
+    const double jrc0 = bb.jrc;
+    bb.jrc = jrc0 * std::pow(field / lab, -0.02 * jrc0);
+    bb.jcs = bb.jcs * std::pow(field / lab, -0.03 * jrc0);
+  }
+  jp.bartonBandis = bb;
+}
+
 void readJoints(const Reader& r, const json& doc, model::Scene& s, std::map<std::string, int>& ids) {
   const json& joints = r.required(doc, "", "joints");
   r.object(joints, "joints");
   if (joints.empty()) r.fail("joints", "expected at least one joint");
   for (const auto& [name, jn] : joints.items()) {
     const std::string p = "joints." + name;
-    r.onlyKeys(jn, p, {"friction_angle", "cohesion", "tensile_strength", "bond", "residual_friction_angle",
-                       "residual_cohesion", "weakening_distance", "weakening_law"});
+    r.onlyKeys(jn, p, {"law", "friction_angle", "cohesion", "tensile_strength", "bond", "residual_friction_angle",
+                       "residual_cohesion", "weakening_distance", "weakening_law", "jrc", "jcs", "scale"});
     model::JointProperties jp;
     jp.name = r.identifier(name, p);
-    jp.frictionAngle = degToRad(r.numberIn(r.required(jn, p, "friction_angle"), p + ".friction_angle",
-                                           0, 90, false, true, "a friction angle in [0, 90) degrees"));
+    if (r.choice(jn, p, "law", "mohr_coulomb", {"mohr_coulomb", "barton_bandis"}) == "barton_bandis") {
+      readBartonBandis(r, jn, p, jp);
+    } else {
+      for (const char* key : {"jrc", "jcs", "scale"})
+        if (jn.contains(key)) r.fail(Reader::join(p, key), "used only by a Barton–Bandis joint (\"law\": \"barton_bandis\")");
+      jp.frictionAngle = degToRad(r.numberIn(r.required(jn, p, "friction_angle"), p + ".friction_angle",
+                                             0, 90, false, true, "a friction angle in [0, 90) degrees"));
+    }
     jp.cohesion = r.optionalIn(jn, p, "cohesion", 0, 0, 1e12, false, false, "a cohesion ≥ 0 Pa");
     jp.tensileStrength = r.optionalIn(jn, p, "tensile_strength", 0, 0, 1e12, false, false,
                                       "a tensile strength ≥ 0 Pa");
@@ -89,6 +135,7 @@ void readJoints(const Reader& r, const json& doc, model::Scene& s, std::map<std:
     jp.bond = bond == "none" ? model::BondPolicy::None
                              : (bond == "always" ? model::BondPolicy::Always : model::BondPolicy::Initial);
     readWeakening(r, jn, p, jp);
+    if (jp.bartonBandis) jp.bartonBandis->wears = jn.contains("weakening_distance");
     ids[name] = static_cast<int>(s.joints.size());
     s.joints.push_back(jp);
   }

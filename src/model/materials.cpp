@@ -24,6 +24,12 @@ double JointProperties::residualCohesionUsed() const { return std::min(residualC
 
 JointProperties JointProperties::reducedBy(double factor) const {
   JointProperties j = *this;
+  if (bartonBandis) {
+    // tan(φr + JRC log10(JCS/σn)) / F: the mobilised angle's tangent, not φr's alone.
+    j.bartonBandis->reduction *= factor;
+    j.tensileStrength = tensileStrength / factor;
+    return j;
+  }
   j.cohesion = cohesion / factor;
   j.tensileStrength = tensileStrength / factor;
   j.frictionAngle = std::atan(std::tan(frictionAngle) / factor);

@@ -71,6 +71,10 @@ CriticalResult criticalCohesion(const model::Scene& scene, int joint, double fri
 CriticalResult criticalFriction(const model::Scene& scene, int joint, double cohesion, double width,
                                 const SearchSettings& s = {});
 
+/// The JRC of Barton–Bandis joint `joint` at which the scene becomes stable, its φr and JCS as
+/// the case has them; bisection on [0, 20] to `width`.
+CriticalResult criticalJrc(const model::Scene& scene, int joint, double width, const SearchSettings& s = {});
+
 /// The yield (critical) horizontal seismic coefficient k_y of Newmark's method: the smallest k_h
 /// (a fraction of g, acting along `direction`, +1 for +x or −1 for −x, with the case's k_v) at
 /// which the slope fails. Brackets upward from 0 by doubling from 0.05 (to at most 2), then

@@ -14,6 +14,13 @@ struct ContactStrength {
   /// A joint with a weakening distance keeps its bond while it slides (the strength falls with
   /// the slip instead); a brittle one loses it the moment it slides.
   bool bondSurvivesSlip = false;
+  /// Barton–Bandis (bartonBandis): the friction of a normal force N over the share `length` is
+  /// N tan(φr + jrc·log10(jcs·length/N)) / reduction, the angle held within [φr, 70°] (Barton's
+  /// cap at low stress; above JCS the law has no roughness left). tanPhi is tan φr.
+  bool bartonBandis = false;
+  double jrc = 0, jcs = 0, length = 0, reduction = 1;
+  /// The friction a normal force N mobilises (N/m; N ≤ 0 gives N tan φ, which only a bond offsets).
+  double friction(double normalForce) const;
 };
 
 /// Fraction w ∈ [0, 1] of the peak-above-residual strength left after an accumulated slip δ (m):
@@ -27,6 +34,8 @@ struct JointStrength {
   double tanPeak = 0, tanResidual = 0;  ///< tan φ, tan φ_r as used (φ_r ≤ φ)
   double cohesion = 0, residualCohesion = 0, tensileStrength = 0;  ///< Pa
   bool softens = false;                 ///< weakening distance > 0: the bond survives slip
+  bool bartonBandis = false, jrcWears = false;
+  double jrc = 0, jcs = 0, reduction = 1;
 };
 /// The joint's distance must be resolved (set).
 JointStrength jointStrength(const model::JointProperties& j);

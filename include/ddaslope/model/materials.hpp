@@ -49,6 +49,17 @@ struct JointProperties {
   /// kAutomaticWeakeningRatio × w0, resolved when a simulation starts (docs/contact-model.md).
   std::optional<double> weakeningDistance;
   WeakeningLaw weakeningLaw = WeakeningLaw::Linear;
+  /// Barton–Bandis (Barton & Choubey 1977): τ = σn tan(φr + JRC log10(JCS/σn)), φr the
+  /// frictionAngle, no cohesion (docs/contact-model.md, "Barton–Bandis joints"). With a weakening
+  /// distance JRC falls to 0 with slip. Strength reduction divides tan of the whole mobilised angle
+  /// by F (`reduction`), as RS2 and UDEC reduce a nonlinear joint.
+  struct BartonBandis {
+    double jrc = 0;        ///< joint roughness coefficient (as used: scale-corrected if asked)
+    double jcs = 0;        ///< joint wall compressive strength (Pa, as used)
+    double reduction = 1;  ///< F of a strength reduction
+    bool wears = false;    ///< JRC falls to 0 over the weakening distance (given one)
+  };
+  std::optional<BartonBandis> bartonBandis;
 
   /// A joint of constant strength (no softening besides the brittle bond).
   static JointProperties coulomb(std::string name, double frictionAngle, double cohesion = 0, double tensileStrength = 0);
