@@ -245,3 +245,19 @@ TEST(Supports, GoodmanBrayToeAnchorForLimitingEquilibrium) {
   ASSERT_TRUE(r.found) << r.message;
   EXPECT_NEAR(r.critical, 2085.5e3, 0.05 * 2085.5e3);
 }
+
+// RS2's rigid stand-in (E = 2e14 Pa) is accepted: the contact penalty is that of the stiffest rock
+// (2e11 Pa), and Hoek & Bray's planar failure keeps its factor of safety (1.1133 closed form),
+// the same as with E = 2e11 Pa to the search's bracket.
+TEST(Supports, RigidStandInModulusKeepsThePlanarFactorOfSafety) {
+  model::Scene stiffest = planarCase("planar_failure.json");
+  stiffest.materials[0].youngModulus = 2e11;
+  model::Scene standIn = stiffest;
+  standIn.materials[0].youngModulus = 2e14;
+  EXPECT_DOUBLE_EQ(standIn.normalPenalty(), stiffest.normalPenalty());
+  const calibration::FactorOfSafetyResult a = calibration::factorOfSafety(stiffest, {}, 1e-3);
+  const calibration::FactorOfSafetyResult b = calibration::factorOfSafety(standIn, {}, 1e-3);
+  ASSERT_TRUE(a.found && b.found);
+  EXPECT_NEAR(b.factor, a.factor, 2e-3);
+  EXPECT_NEAR(b.factor, 1.1133, 0.01 * 1.1133);
+}

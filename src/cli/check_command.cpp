@@ -11,6 +11,7 @@
 #include "ddaslope/io/case_reader.hpp"
 #include "ddaslope/io/probability_reader.hpp"
 #include "ddaslope/io/scene_picture.hpp"
+#include "ddaslope/model/input_limits.hpp"
 #include "ddaslope/solver/simulation.hpp"
 #include "scene_notes.hpp"
 
@@ -40,6 +41,12 @@ int checkCommand(const std::string& casePath, const Overrides& o) {
   printSeismicNote(scene);
   printKinkNotes(scene);
   printSupportNotes(scene);
+  for (const auto& m : scene.materials)
+    if (m.youngModulus > ddaslope::model::limits::kStiffestRock)
+      std::printf("  note: material %s: E = %g Pa is stiffer than any rock: a rigid stand-in (as in RS2 and UDEC). "
+                  "Its blocks barely strain; --blocks rigid (analysis.blocks: rigid) is the exact form, at half "
+                  "the unknowns\n",
+                  m.name.c_str(), m.youngModulus);
   if (ddaslope::io::hasProbabilitySection(casePath)) {
     const ddaslope::io::ProbabilityJob job = ddaslope::io::readProbabilityJob(casePath);
     std::printf("  probability section: %zu uncertain inputs, %d samples (%s, measure %s): valid; run it with "

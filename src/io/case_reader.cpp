@@ -54,7 +54,7 @@ void readMaterials(const Reader& r, const json& doc, model::Scene& s, std::map<s
                                false, "a density in [1, 1e5] kg/m³ (or give unit_weight in kN/m³)");
     }
     mat.youngModulus = r.numberIn(r.required(m, p, "young_modulus"), p + ".young_modulus", limits::kMinYoungModulus,
-                                  limits::kMaxYoungModulus, false, false, "a Young's modulus in [1e3, 1e13] Pa");
+                                  limits::kMaxYoungModulus, false, false, "a Young's modulus in [1e3, 1e15] Pa");
     mat.poissonRatio = r.numberIn(r.required(m, p, "poisson_ratio"), p + ".poisson_ratio", 0, 0.5,
                                   false, true, "a Poisson's ratio in [0, 0.5)");
     ids[name] = static_cast<int>(s.materials.size());

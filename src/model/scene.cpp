@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "ddaslope/model/input_limits.hpp"
+
 namespace ddaslope::model {
 
 int Scene::jointBetween(int a, int b) const {
@@ -28,8 +30,11 @@ double Scene::modelHalfSize() const {
 
 double Scene::normalPenalty() const {
   if (settings.penalty > 0) return settings.penalty;
+  // A rigid stand-in (E above any rock's, RS2's 2e14 Pa) sets the contacts no stiffer than the
+  // stiffest rock would: its blocks barely strain either way, and a penalty scaled to it would
+  // be stiffer than the numbers resolve.
   double maxE = 0;
-  for (const Material& m : materials) maxE = std::max(maxE, m.youngModulus);
+  for (const Material& m : materials) maxE = std::max(maxE, std::min(m.youngModulus, limits::kStiffestRock));
   return settings.penaltyFactor * maxE;
 }
 

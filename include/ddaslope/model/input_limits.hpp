@@ -10,7 +10,10 @@ constexpr double kMaxGravity = 1000;          // m/s²
 constexpr double kMinDensity = 1;             // kg/m³: lighter than air is not a rock
 constexpr double kMaxDensity = 1e5;           // kg/m³: ten times osmium
 constexpr double kMinYoungModulus = 1e3;      // Pa: a gel
-constexpr double kMaxYoungModulus = 1e13;     // Pa: ten times diamond
+/// Up to RS2's and UDEC's rigid stand-ins (E = 2e14 Pa is common) and a little beyond; above
+/// kStiffestRock no rock exists, and `check` names such a material a rigid stand-in.
+constexpr double kMaxYoungModulus = 1e15;     // Pa
+constexpr double kStiffestRock = 2e11;        // Pa: the stiffest intact rocks (eclogite, ~1.7e11)
 /// Initial speed of any point of a block (|v| + |ω|·size): faster than any landslide or rockfall
 /// by an order of magnitude.
 constexpr double kMaxInitialSpeed = 1e3;      // m/s
