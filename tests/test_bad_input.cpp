@@ -865,3 +865,20 @@ TEST(CaseReader, BadBartonBandisJoints) {
   mc["joints"]["bedding"]["jrc"] = 8;
   expectError(mc, "joints.bedding.jrc", "used only by a Barton–Bandis joint");
 }
+
+// r_u: a ratio in [0, 1], alone (not with a water surface), with the ground's unit weight when the
+// case has several materials.
+TEST(CaseReader, BadPorePressureRatio) {
+  json d = minimal();
+  d["water"] = {{"ru", 0.25}};
+  const model::Scene s = io::parseCase(d.dump(), "case.json");
+  EXPECT_NEAR(s.water.unitWeight, 0.25 * 2600 * 9.81, 1e-9);
+  EXPECT_DOUBLE_EQ(s.water.headAt(3), 2);  // the slider's top: the ground at x = 3
+  d["water"]["ru"] = 1.5;
+  expectError(d, "water.ru", "a pore-pressure ratio r_u in [0, 1]");
+  d["water"] = {{"ru", 0.25}, {"level", 3}};
+  expectError(d, "water", "exactly one of level");
+  d["water"] = {{"ru", 0.25}};
+  d["materials"]["clay"] = {{"density", 1900}, {"young_modulus", 1e8}, {"poisson_ratio", 0.3}};
+  expectError(d, "water.ground_unit_weight", "several materials");
+}

@@ -4,7 +4,14 @@
 
 #include <cmath>
 
+#include <fstream>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
 #include "ddaslope/assembly/water_terms.hpp"
+#include "ddaslope/calibration/strength_search.hpp"
+#include "ddaslope/io/case_reader.hpp"
 #include "scene_builders.hpp"
 
 using namespace ddaslope;
@@ -79,5 +86,36 @@ TEST(Water, RisingReservoirUnloadsAHangingBlock) {
   for (const auto& [time, submerged] : {std::pair{1.0, 1.0}, std::pair{2.0, 2.0}}) {
     const double expected = -(w - 9810 * submerged) / p;
     EXPECT_NEAR(scenes::measureAt(t, "centre", "uy", time), expected, 1e-3 * w / p) << "t = " << time;
+  }
+}
+
+// A pore-pressure ratio r_u on Hoek & Bray's planar failure (cases/planar_failure.json with
+// "water": {"ru": r_u}): u = r_u γ h, h the depth below the ground, on every block face. On the
+// wedge that is an uplift U = r_u γ ∫h ds on the sliding plane and a push V = r_u γ z²/2 on its
+// back face (the open tension crack, depth z); Hoek & Bray's general form
+// F = (cA + (W cos ψ − U − V sin ψ) tan φ)/(W sin ψ + V cos ψ) within 1 % for r_u = 0.1, 0.2, 0.3.
+TEST(Water, PorePressureRatioOnThePlanarFailureMatchesTheClosedForm) {
+  std::ifstream in(std::string(DDASLOPE_SOURCE_DIR) + "/cases/planar_failure.json");
+  std::stringstream text;
+  text << in.rdbuf();
+  const double psi = std::atan2(14.004150764194, 20.0), phi = degToRad(30), c = 25e3;
+  const double gamma = 2600 * 9.81;
+  // ∫h ds along the plane y = x tan ψ under the ground y = min(x tan 60°, 20), x from 0 to 20.
+  const double x1 = 20 / std::tan(degToRad(60));
+  const double hdx = (std::tan(degToRad(60)) - std::tan(psi)) * x1 * x1 / 2 +
+                     (20 * (20 - x1) - std::tan(psi) * (20 * 20 - x1 * x1) / 2);
+  const double plane = 20 / std::cos(psi), z = 20 - 14.004150764194;
+  for (double ru : {0.1, 0.2, 0.3}) {
+    nlohmann::json doc = nlohmann::json::parse(text.str());
+    doc["water"] = {{"ru", ru}};
+    doc.erase("expected");
+    const model::Scene s = io::parseCase(doc.dump(), "planar_failure_ru.json");
+    const double w = s.blocks[1].moments.area * gamma;
+    const double u = ru * gamma * hdx / std::cos(psi), v = ru * gamma * z * z / 2;
+    const double expected =
+        (c * plane + (w * std::cos(psi) - u - v * std::sin(psi)) * std::tan(phi)) / (w * std::sin(psi) + v * std::cos(psi));
+    const calibration::FactorOfSafetyResult r = calibration::factorOfSafety(s, {}, 1e-3);
+    ASSERT_TRUE(r.found) << r.message;
+    EXPECT_NEAR(r.factor, expected, 0.01 * expected) << "r_u = " << ru;
   }
 }

@@ -255,15 +255,33 @@ void readWater(const Reader& r, const json& doc, model::Scene& s) {
   const bool drawn = s.water.active();  // the section's drawing gave the water line
   if (!doc.contains("water")) return;
   const json& w = doc.at("water");
-  r.onlyKeys(w, "water", {"level", "phreatic_line", "level_series", "unit_weight"});
+  r.onlyKeys(w, "water", {"level", "phreatic_line", "level_series", "unit_weight", "ru", "ground_unit_weight"});
   s.water.unitWeight = r.optionalIn(w, "water", "unit_weight", 9810, 10, 1e6, false, false, "a unit weight in [10, 1e6] N/m³");
-  const int given = w.contains("level") + w.contains("phreatic_line") + w.contains("level_series");
+  const int given = w.contains("level") + w.contains("phreatic_line") + w.contains("level_series") + w.contains("ru");
   if (drawn && given > 0)
     r.fail("water", "the water line is drawn (section.dxf.layers.water_line): remove level, phreatic_line and "
                     "level_series here, or the water_line layer from the section");
   if (drawn) return;
   if (given != 1)
-    r.fail("water", "expected exactly one of level (a horizontal water surface), phreatic_line or level_series");
+    r.fail("water", "expected exactly one of level (a horizontal water surface), phreatic_line, level_series or ru "
+                    "(a pore-pressure ratio)");
+  if (w.contains("ru")) {
+    const double ru = r.numberIn(w.at("ru"), "water.ru", 0, 1, false, false, "a pore-pressure ratio r_u in [0, 1]");
+    // γ of the ground above: the material's, if the case has one; else the user's.
+    double gamma = 0;
+    if (w.contains("ground_unit_weight"))
+      gamma = r.numberIn(w.at("ground_unit_weight"), "water.ground_unit_weight", 10, 1e6, false, false,
+                         "a unit weight in [10, 1e6] N/m³");
+    else if (s.materials.size() == 1)
+      gamma = s.materials[0].density * (s.gravity.norm() > 0 ? s.gravity.norm() : 9.81);
+    else
+      r.fail("water.ground_unit_weight", "required key is missing: r_u needs the unit weight of the ground (N/m³) "
+                                         "when the case has several materials");
+    if (w.contains("unit_weight")) r.fail("water.unit_weight", "not used with ru (give ground_unit_weight)");
+    s.water = model::porePressureRatio(s.blocks, ru, gamma);
+    return;
+  }
+  if (w.contains("ground_unit_weight")) r.fail("water.ground_unit_weight", "used only with ru");
   if (w.contains("level_series")) {
     const json& ls = w.at("level_series");
     r.onlyKeys(ls, "water.level_series", {"csv", "time_column", "level_column"});

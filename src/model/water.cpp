@@ -1,8 +1,39 @@
 #include "ddaslope/model/water.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 namespace ddaslope::model {
+
+std::vector<Vec2> groundSurface(const std::vector<Block>& blocks) {
+  std::vector<double> xs;
+  for (const Block& b : blocks)
+    for (const Vec2& v : b.vertices) xs.push_back(v.x());
+  std::sort(xs.begin(), xs.end());
+  xs.erase(std::unique(xs.begin(), xs.end()), xs.end());
+  std::vector<Vec2> line;
+  for (double x : xs) {
+    double top = -INFINITY;
+    for (const Block& b : blocks)
+      for (size_t k = 0; k < b.vertices.size(); ++k) {
+        const Vec2 &p = b.vertices[k], &q = b.vertices[(k + 1) % b.vertices.size()];
+        if (x < std::min(p.x(), q.x()) || x > std::max(p.x(), q.x())) continue;
+        // A vertical edge at x reaches its upper end; another edge crosses x once.
+        const double y = p.x() == q.x() ? std::max(p.y(), q.y()) : p.y() + (q.y() - p.y()) * (x - p.x()) / (q.x() - p.x());
+        top = std::max(top, y);
+      }
+    line.emplace_back(x, top);
+  }
+  return line;
+}
+
+WaterTable porePressureRatio(const std::vector<Block>& blocks, double ru, double groundUnitWeight) {
+  WaterTable w;
+  w.line = groundSurface(blocks);
+  w.unitWeight = ru * groundUnitWeight;
+  w.ru = ru;
+  return w;
+}
 
 double WaterTable::headAt(double x) const {
   if (x <= line.front().x()) return line.front().y();

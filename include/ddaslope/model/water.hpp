@@ -5,8 +5,20 @@
 #include <vector>
 
 #include "ddaslope/core/types.hpp"
+#include "ddaslope/model/block.hpp"
 
 namespace ddaslope::model {
+
+/// The ground surface of a scene: the upper envelope of its blocks, a point at every vertex's x
+/// (between them the topmost edge is one straight edge, blocks not overlapping). A crack narrower
+/// than the blocks' spacing of vertices is bridged.
+std::vector<Vec2> groundSurface(const std::vector<Block>& blocks);
+
+/// A pore-pressure ratio r_u = u/(γ h) (Bishop & Morgenstern 1960), h the depth below the ground
+/// surface: u = r_u γ (ground(x) − y), a hydrostatic law with the ground for its line and r_u γ
+/// for its unit weight (the WaterTable it returns), integrated as a water table is.
+struct WaterTable;
+WaterTable porePressureRatio(const std::vector<Block>& blocks, double ru, double groundUnitWeight);
 
 struct WaterTable {
   std::vector<Vec2> line;      ///< phreatic line, x increasing; extended flat beyond its ends
@@ -14,6 +26,8 @@ struct WaterTable {
   /// Optional reservoir history: the water level (m) at times (s), linear in between and held
   /// beyond the ends. When set, the line is horizontal at levelAt(t).
   std::vector<double> seriesTimes, seriesLevels;
+  /// Set when the pressure is r_u's (porePressureRatio): the ratio, for the record.
+  double ru = 0;
   bool active() const { return !line.empty(); }
   /// Height of the phreatic line at x (m).
   double headAt(double x) const;
