@@ -261,3 +261,24 @@ TEST(Supports, RigidStandInModulusKeepsThePlanarFactorOfSafety) {
   EXPECT_NEAR(b.factor, a.factor, 2e-3);
   EXPECT_NEAR(b.factor, 1.1133, 0.01 * 1.1133);
 }
+
+// A load the slope stands without is sized the other way: the largest crest surcharge that holds
+// at a target F. With Q on the planar wedge, F = cA/((W + Q) sin ψ) + tan φ/tan ψ, so for F = 1.05
+// Q = cA/((1.05 − tan φ/tan ψ) sin ψ) − W (closed form), within 1 %.
+TEST(Supports, LargestSurchargeForATargetFactorOfSafety) {
+  model::Scene s = planarCase("planar_failure.json");
+  model::EdgeLoad l;
+  l.id = "surcharge";
+  l.block = 1;
+  l.from = {11.547005383793, 20};
+  l.to = {20, 20};
+  l.q0 = l.q1 = {0, -10e3};
+  for (const model::PointLoad& p : model::equivalentPointLoads(l)) s.pointLoads.push_back(p);
+  const double psi = std::atan2(14.004150764194, 20.0), target = 1.05;
+  const double w = s.blocks[1].moments.area * 2600 * 9.81, ca = 25e3 * 20 / std::cos(psi);
+  const double expected = ca / ((target - std::tan(degToRad(30)) / std::tan(psi)) * std::sin(psi)) - w;
+  const calibration::CriticalResult r = calibration::criticalSupport(s, "surcharge", target, 0);
+  ASSERT_TRUE(r.found) << r.message;
+  EXPECT_TRUE(r.largestThatHolds);
+  EXPECT_NEAR(r.critical, expected, 0.01 * expected);
+}

@@ -429,11 +429,36 @@ CriticalResult criticalSupport(const model::Scene& scene, const std::string& id,
   }, s, "support (N/m)", width};
   CriticalResult r;
   constexpr double kLargest = 1e12;
-  if (stableAt(0)) {
+  const model::SupportQuantity quantity = scene.supportQuantity(id);
+  const bool holdsWithout = stableAt(0);
+  if (holdsWithout && quantity.kind == model::SupportQuantity::Kind::Load) {
+    // A load the slope stands without: how large may it grow (a surcharge, a berm)?
+    r.largestThatHolds = true;
+    double stable = 0, hi = quantity.value;
+    while (stableAt(hi) && hi < kLargest && stableAt.undecidedInARow < 2) {
+      stable = hi;
+      hi *= 2;
+    }
+    if (stableAt.undecidedInARow >= 2) {
+      r.message = kUndecidedBracket;
+    } else if (hi >= kLargest) {
+      r.found = true;
+      r.critical = r.stableEnd = stable;
+      r.message = "holds under every load tried, up to 1e12 N/m: this load does not push the slope towards failure";
+    } else {
+      narrowInto(r, std::ref(stableAt), stable, hi, width > 0 ? width : 1e-3 * hi, s.threads);
+    }
+    reviewTrials(r, stableAt, true, {0.0, kLargest}, width > 0 ? width : 1e-3 * r.failingEnd, s.threads,
+                 [&](double stable, double failing) {
+                   r.stableEnd = stable, r.failingEnd = failing, r.critical = 0.5 * (stable + failing);
+                 });
+    return account(r, stableAt, t0);
+  }
+  if (holdsWithout) {
     r.found = true;
     r.message = "stable without it at this factor of safety";
   } else {
-    const double own = scene.supportQuantity(id).value;
+    const double own = quantity.value;
     double failing = 0, hi = own > 0 && std::isfinite(own) ? own : 1e5;
     while (!stableAt(hi) && hi < kLargest && stableAt.undecidedInARow < 2) {
       failing = hi;

@@ -178,14 +178,19 @@ int seismicCoefficientCommand(const std::string& casePath, const ddaslope::model
 
 }  // namespace
 
-int criticalCommand(const std::string& casePath, const Overrides& o, const CriticalOptions& opt) {
+int criticalCommand(const std::string& casePath, const Overrides& o, const CriticalOptions& given) {
   ddaslope::model::Scene scene = loadCase(casePath, o);
+  CriticalOptions opt = given;
+  // A case with one joint: that joint is the one searched.
+  const bool strengthSearch = opt.solve != "seismic-coefficient" && opt.solve != "support";
+  if (strengthSearch && opt.joint.empty() && scene.joints.size() == 1) opt.joint = scene.joints[0].name;
   if (!opt.vtkDir.empty() && !opt.curve.empty())
     throw ddaslope::InputError("--vtk", opt.vtkDir, "writes the trials of one search, not of a curve's searches (drop --curve)");
   if (opt.solve == "seismic-coefficient") return seismicCoefficientCommand(casePath, scene, opt);
   if (opt.solve == "support") return supportCommand(casePath, scene, opt);
   if (!opt.support.empty()) throw ddaslope::InputError("--support", opt.support, "used only with --solve support");
-  if (opt.joint.empty()) throw ddaslope::InputError("--joint", "", "expected the joint to search (--joint NAME)");
+  if (opt.joint.empty())
+    throw ddaslope::InputError("--joint", "missing", "expected the joint to search (--joint NAME): the case has several");
   const int joint = jointIndex(scene, opt.joint, casePath);
   if (!opt.curve.empty()) return curveCommand(casePath, scene, joint, opt);
   const auto log = startProgress("critical", opt.progress, opt.json);
@@ -240,7 +245,7 @@ int criticalCommand(const std::string& casePath, const Overrides& o, const Criti
 
 void addCriticalOptions(CLI::App* cmd, std::string& casePath, Overrides& overrides, CriticalOptions& opt) {
   cmd->add_option("case", casePath, "case file (JSON)")->required();
-  cmd->add_option("--joint", opt.joint, "joint to search (cohesion, friction)");
+  cmd->add_option("--joint", opt.joint, "joint to search (cohesion, friction, jrc; default: the case's only joint)");
   cmd->add_option("--solve", opt.solve,
                        "cohesion or friction of the joint (φr of a Barton–Bandis joint), jrc, seismic-coefficient: the yield acceleration k_y (in g), "
                        "or support: the anchor force, bolt capacity or load (--support) for --target-fos")
@@ -260,7 +265,9 @@ void addCriticalOptions(CLI::App* cmd, std::string& casePath, Overrides& overrid
   cmd->add_option("--cohesion", opt.cohesion, "cohesion (Pa) while solving for friction (default: the case's)")
       ->check(finiteIn(0, 1e12, "a cohesion in [0, 1e12] Pa"));
   // Widths below 1e-6 would ask the bisection for more digits than the verdict has.
-  cmd->add_option("--width", opt.width, "final bracket width (Pa, degrees or g; default 10 Pa, 0.01° or 1e-3 of k_y)")
+  cmd->add_option("--width", opt.width,
+                  "final bracket width (Pa, degrees, JRC, g or N/m; default 10 Pa, 0.01°, 0.01, 1e-3 of k_y or of the "
+                  "support's bracket)")
       ->check(finiteIn(1e-6, 1e12, "a width in [1e-6, 1e12]"));
   cmd->add_option("--threads", opt.threads, "forward runs at once")->capture_default_str()->check(CLI::Range(1, 256));
   addModelOptions(cmd, overrides);

@@ -22,7 +22,7 @@ using ddaslope::model::SupportQuantity;
 
 SupportQuantity namedSupport(const std::string& casePath, const ddaslope::model::Scene& scene, const std::string& id) {
   if (id.empty())
-    throw ddaslope::InputError("--support", "", "expected the support or load to size (--support NAME: an id of supports, "
+    throw ddaslope::InputError("--support", "missing", "expected the support or load to size (--support NAME: an id of supports, "
                                                 "point_loads or edge_loads)");
   const SupportQuantity q = scene.supportQuantity(id);
   if (q.kind == SupportQuantity::Kind::None) {
@@ -121,6 +121,13 @@ int supportCommand(const std::string& casePath, const ddaslope::model::Scene& sc
     cal::appendTrials(j, r.trials, "value_n_per_m");
     if (!opt.vtkDir.empty()) j.set("vtk", opt.vtkDir);
     std::printf("%s\n", j.dump().c_str());
+  } else if (r.found && r.largestThatHolds) {
+    std::printf("largest %s of '%s' that holds at F = %g: %.6g kN/m (stable at %.6g, failing at %.6g)%s%s\n",
+                q.name.c_str(), opt.support.c_str(), opt.targetFactor, r.critical / 1e3, r.stableEnd / 1e3,
+                r.failingEnd / 1e3, r.message.empty() ? "" : ": ", r.message.c_str());
+  } else if (r.found && r.critical == 0) {
+    std::printf("%s of '%s' for F = %g: none needed: the slope holds at F = %g without it\n", q.name.c_str(),
+                opt.support.c_str(), opt.targetFactor, opt.targetFactor);
   } else if (r.found) {
     std::printf("%s of '%s' for F = %g: %.6g kN/m (failing at %.6g, stable at %.6g)%s%s\n", q.name.c_str(),
                 opt.support.c_str(), opt.targetFactor, r.critical / 1e3, r.failingEnd / 1e3, r.stableEnd / 1e3,
@@ -132,6 +139,23 @@ int supportCommand(const std::string& casePath, const ddaslope::model::Scene& sc
   } else {
     std::fprintf(stderr, "ddaslope: %s: no %s found after %d forward runs: %s\n", casePath.c_str(), q.name.c_str(),
                  r.runs, r.message.c_str());
+  }
+  for (const auto& b : scene.supports) {
+    if (b.id != opt.support) continue;
+    // The search sizes the capacity (or force) the support needs; its grout may hold less.
+    if (r.found && r.critical > b.bondCapacity)
+      std::fprintf(stderr, "ddaslope: warning: %s: support %s needs %.6g kN/m, but its bond over the shorter embedded "
+                           "length holds %.6g kN/m: lengthen it or raise bond_strength, or the grout gives way first\n",
+                   casePath.c_str(), b.id.c_str(), r.critical / 1e3, b.bondCapacity / 1e3);
+    // A passive bolt carries only what the slope's motion stretches it by before a trial is judged.
+    if (!r.found && !b.active()) {
+      const double failure = scene.settings.failureDisplacement > 0 ? scene.settings.failureDisplacement
+                                                                    : 1e-3 * scene.modelHalfSize();
+      std::fprintf(stderr, "ddaslope: note: %s: passive bolt %s (stiffness %.4g N/m per m) carries at most about "
+                           "%.4g kN/m before the blocks move the failure displacement (%g m) that fails a trial, "
+                           "whatever its capacity: a stiffer bolt or a pretension (an anchor) holds more\n",
+                   casePath.c_str(), b.id.c_str(), b.stiffness, b.stiffness * failure / 1e3, failure);
+    }
   }
   warnAboutTrials(casePath, cal::smallMotionWarning(r.trials, "support"));
   return r.found ? kExitOk : kExitNonConvergence;

@@ -176,7 +176,7 @@ void printSupportNotes(const ddaslope::model::Scene& scene) {
   for (const auto& b : scene.supports) {
     std::printf("  support %s: from block %s to block %s, %.4g m; ", b.id.c_str(), scene.blocks[b.head.block].id.c_str(),
                 scene.blocks[b.end.block].id.c_str(), b.initialLength);
-    if (b.stiffness > 0) std::printf("stiffness %.4g N/m, ", b.stiffness);
+    if (b.stiffness > 0) std::printf("stiffness %.4g N/m per m, ", b.stiffness);
     if (b.pretension > 0) std::printf("pretension %.4g kN/m, ", b.pretension / 1e3);
     if (std::isfinite(b.capacity))
       std::printf("capacity %.4g kN/m (%s beyond)", b.capacity / 1e3,
@@ -186,6 +186,8 @@ void printSupportNotes(const ddaslope::model::Scene& scene) {
     if (std::isfinite(b.bondStrength))
       std::printf("; bond over %.3g m in the head's block and %.3g m in the end's", b.headEmbedment, b.endEmbedment);
     std::printf("; per metre of slope (spacing %g m)\n", b.spacing);
+    if (b.stiffness <= 0 && b.pretension <= 0)
+      std::printf("  note: support %s has neither stiffness nor pretension: it carries nothing\n", b.id.c_str());
   }
   for (const auto& l : scene.edgeLoads) {
     const ddaslope::Vec2 r = l.resultant();

@@ -44,7 +44,9 @@ void readMaterials(const Reader& r, const json& doc, model::Scene& s, std::map<s
                 "1000·γ/g), " + std::string(m.contains("density") ? "found both" : "found neither"));
     if (m.contains("unit_weight")) {
       // γ in kN/m³ under the case's own gravity (9.81 m/s² unless it says otherwise).
-      const double g = s.gravity.norm() > 0 ? s.gravity.norm() : 9.81;
+      if (!(s.gravity.norm() > 0))
+        r.fail(p + ".unit_weight", "a unit weight is a density under gravity, and the case has none: give density");
+      const double g = s.gravity.norm();
       const double gamma = r.numberIn(m.at("unit_weight"), p + ".unit_weight", limits::kMinDensity * g / 1e3,
                                       limits::kMaxDensity * g / 1e3, false, false,
                                       "a unit weight in kN/m³ (a density of 1 to 1e5 kg/m³)");
@@ -270,12 +272,12 @@ void readWater(const Reader& r, const json& doc, model::Scene& s) {
     // γ of the ground above: the material's, if the case has one; else the user's.
     double gamma = 0;
     if (w.contains("ground_unit_weight"))
-      gamma = r.numberIn(w.at("ground_unit_weight"), "water.ground_unit_weight", 10, 1e6, false, false,
-                         "a unit weight in [10, 1e6] N/m³");
+      gamma = 1e3 * r.numberIn(w.at("ground_unit_weight"), "water.ground_unit_weight", 1, 100, false, false,
+                               "a unit weight in [1, 100] kN/m³ (as materials' unit_weight)");
     else if (s.materials.size() == 1)
       gamma = s.materials[0].density * (s.gravity.norm() > 0 ? s.gravity.norm() : 9.81);
     else
-      r.fail("water.ground_unit_weight", "required key is missing: r_u needs the unit weight of the ground (N/m³) "
+      r.fail("water.ground_unit_weight", "required key is missing: r_u needs the unit weight of the ground (kN/m³) "
                                          "when the case has several materials");
     if (w.contains("unit_weight")) r.fail("water.unit_weight", "not used with ru (give ground_unit_weight)");
     s.water = model::porePressureRatio(s.blocks, ru, gamma);

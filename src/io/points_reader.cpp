@@ -162,10 +162,9 @@ void readSupports(const Reader& r, const json& list, model::Scene& s, std::set<s
                        spacing;
       b.headEmbedment = lengthInside(s.blocks[b.head.block].vertices, b.head.initial, b.end.initial);
       b.endEmbedment = lengthInside(s.blocks[b.end.block].vertices, b.head.initial, b.end.initial);
-      b.capacity = std::min({b.capacity, b.bondStrength * b.headEmbedment, b.bondStrength * b.endEmbedment});
+      b.bondCapacity = b.bondStrength * std::min(b.headEmbedment, b.endEmbedment);
+      b.capacity = std::min(b.capacity, b.bondCapacity);
     }
-    if (b.stiffness == 0 && b.pretension == 0)
-      r.fail(p, "expected a stiffness or a pretension: a support with neither carries nothing");
     if (b.pretension > b.capacity) {
       std::ostringstream m;
       m << "expected a pretension of at most the capacity (" << b.capacity * spacing << " N per support";

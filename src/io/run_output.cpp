@@ -36,8 +36,20 @@ MonitorSample sampleOf(const solver::Simulation& sim, int m) {
 nlohmann::ordered_json jointsEcho(const model::Scene& scene) {
   nlohmann::ordered_json out = nlohmann::ordered_json::object();
   const double w0 = scene.modelHalfSize();
-  for (const model::JointProperties& jp : scene.joints)
-    out[jp.name] = {{"friction_angle", radToDeg(jp.frictionAngle)},
+  for (const model::JointProperties& jp : scene.joints) {
+    if (jp.bartonBandis) {
+      // φr, JRC and JCS as used (scale-corrected); JRC wears only over a weakening distance given.
+      out[jp.name] = {{"law", "barton_bandis"},
+                      {"residual_friction_angle", radToDeg(jp.frictionAngle)},
+                      {"jrc", jp.bartonBandis->jrc},
+                      {"jcs", jp.bartonBandis->jcs},
+                      {"tensile_strength", jp.tensileStrength},
+                      {"jrc_wears_over", jp.bartonBandis->wears ? nlohmann::ordered_json(*jp.weakeningDistance)
+                                                                 : nlohmann::ordered_json(nullptr)}};
+      continue;
+    }
+    out[jp.name] = {{"law", "mohr_coulomb"},
+                    {"friction_angle", radToDeg(jp.frictionAngle)},
                     {"cohesion", jp.cohesion},
                     {"tensile_strength", jp.tensileStrength},
                     {"residual_friction_angle", radToDeg(jp.residualFriction())},
@@ -47,6 +59,7 @@ nlohmann::ordered_json jointsEcho(const model::Scene& scene) {
                     {"weakening_law", jp.weakeningLaw == model::WeakeningLaw::Linear ? "linear" : "exponential"},
                     {"bond", jp.bond == model::BondPolicy::Initial ? "initial"
                                                                     : (jp.bond == model::BondPolicy::None ? "none" : "always")}};
+  }
   return out;
 }
 
@@ -189,6 +202,14 @@ void writeSummary(const fs::path& dir, const model::Scene& scene, const RunOptio
                   {"actual", r.actual}, {"passed", r.passed}, {"text", r.describe()}});
   j["expected"] = ex;
   j["joints"] = jointsEcho(scene);
+  if (scene.water.ru > 0)
+    j["water"] = {{"ru", scene.water.ru}, {"ground_unit_weight_kn_per_m3", scene.water.unitWeight / scene.water.ru / 1e3}};
+  else if (scene.water.active())
+    j["water"] = {{"unit_weight_n_per_m3", scene.water.unitWeight}, {"line", [&] {
+                    nlohmann::ordered_json l = nlohmann::ordered_json::array();
+                    for (const Vec2& p : scene.water.line) l.push_back({p.x() + scene.origin.x(), p.y() + scene.origin.y()});
+                    return l;
+                  }()}};
   const model::AnalysisSettings& s = scene.settings;
   j["settings"] = {{"duration", s.duration},
                    {"time_step", s.timeStep},

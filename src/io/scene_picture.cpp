@@ -51,8 +51,9 @@ void writeScenePicture(const solver::Simulation& sim, const PictureFrame& frame,
   cairo_t* cr = cairo_create(surface);
   cairo_set_source_rgb(cr, 1, 1, 1);
   cairo_paint(cr);
-  // Water below the phreatic line.
-  if (scene.water.active()) {
+  // Water below the phreatic line (a pore-pressure ratio has no free water to draw: the legend
+  // names it).
+  if (scene.water.active() && scene.water.ru <= 0) {
     cairo_set_source_rgba(cr, 0.55, 0.75, 0.95, 0.5);
     const int steps = 200;
     for (int i = 0; i <= steps; ++i) {
@@ -153,9 +154,15 @@ void writeScenePicture(const solver::Simulation& sim, const PictureFrame& frame,
   cairo_set_font_size(cr, 12);
   cairo_move_to(cr, 20, height - 18);
   cairo_show_text(cr, legend);
-  if (!scene.supports.empty() || !scene.pointLoads.empty()) {
+  if (!scene.supports.empty() || !scene.pointLoads.empty() || scene.water.ru > 0) {
+    char second[200];
+    std::snprintf(second, sizeof second, "%s%s",
+                  scene.supports.empty() && scene.pointLoads.empty()
+                      ? ""
+                      : "supports: dark blue holding, magenta yielded, grey dashed slack or broken   arrows: loads   ",
+                  scene.water.ru > 0 ? ("pore pressure r_u = " + std::to_string(scene.water.ru).substr(0, 5)).c_str() : "");
     cairo_move_to(cr, 20, height - 4);
-    cairo_show_text(cr, "supports: dark blue holding, magenta yielded, grey dashed slack or broken   arrows: loads");
+    cairo_show_text(cr, second);
   }
   cairo_destroy(cr);
   const cairo_status_t st = cairo_surface_write_to_png(surface, (path + ".tmp").c_str());

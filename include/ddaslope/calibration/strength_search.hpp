@@ -53,6 +53,9 @@ struct CriticalResult {
   bool found = false;
   std::string message;      ///< why not found, or a remark (e.g. stable without cohesion)
   double critical = 0;      ///< Pa for cohesion, degrees for friction
+  /// The answer is the largest value at which the scene holds (a load that destabilises), not
+  /// the smallest (a strength, a support).
+  bool largestThatHolds = false;
   double stableEnd = 0;     ///< bracket end that holds
   double failingEnd = 0;    ///< bracket end that fails
   int runs = 0;
@@ -87,7 +90,9 @@ CriticalResult criticalSeismicCoefficient(const model::Scene& scene, int directi
 /// bolt's capacity, a load's resultant, N/m) at which the scene holds with every joint's strength
 /// reduced by `targetFactor` (c/F, atan(tan φ/F)); support capacities are not reduced. Brackets
 /// upward from 0 by doubling from the case's own value (or 1e5 N/m), then bisects to `width`
-/// (≤ 0: 1e-3 of the bracket's stable end). 0 with a remark when the scene holds without it.
+/// (≤ 0: 1e-3 of the bracket's stable end). 0 with a remark when the scene holds without it;
+/// for a load that holds without it, the largest load that holds (largestThatHolds), bracketed
+/// upward by doubling from the case's own value.
 CriticalResult criticalSupport(const model::Scene& scene, const std::string& id, double targetFactor, double width,
                                const SearchSettings& s = {});
 

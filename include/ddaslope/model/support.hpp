@@ -41,6 +41,7 @@ struct Support {
   /// the head's and the end's block; the capacity already holds their least bond capacity.
   double bondStrength = INFINITY;
   double headEmbedment = 0, endEmbedment = 0;
+  double bondCapacity = INFINITY;  ///< bond × the shorter embedment (N/m): what the grout holds
   double spacing = 1;  ///< out of plane (m): the forces here are a support's own ÷ spacing
   /// An anchor holds a force (its pretension, or it has no stiffness); a passive bolt answers
   /// the blocks' motion.
