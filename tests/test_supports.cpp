@@ -171,6 +171,19 @@ void aimAnchor(model::Scene& s, double thetaDeg, double force) {
   s.setSupportQuantity("anchor", force);
 }
 
+/// A vertical surcharge q (Pa) on the planar wedge's crest, from the face's top to the crack, as
+/// the point loads of an edge load named "surcharge".
+model::EdgeLoad addCrestSurcharge(model::Scene& s, double q) {
+  model::EdgeLoad l;
+  l.id = "surcharge";
+  l.block = 1;
+  l.from = {11.547005383793, 20};
+  l.to = {20, 20};
+  l.q0 = l.q1 = {0, -q};
+  for (const model::PointLoad& p : model::equivalentPointLoads(l)) s.pointLoads.push_back(p);
+  return l;
+}
+
 }  // namespace
 
 // The anchored planar failure: F by strength reduction within 1 % of the closed form for three
@@ -207,13 +220,7 @@ TEST(Supports, AnchorForceForATargetFactorOfSafetyMatchesTheClosedForm) {
 // the weight, F = (cA + (W + Q) cos ψ tan φ)/((W + Q) sin ψ), within 1 %.
 TEST(Supports, SurchargeOnTheCrestActsAsItsResultant) {
   model::Scene s = planarCase("planar_failure.json");
-  model::EdgeLoad l;
-  l.id = "surcharge";
-  l.block = 1;
-  l.from = {11.547005383793, 20};
-  l.to = {20, 20};
-  l.q0 = l.q1 = {0, -100e3};
-  for (const model::PointLoad& p : model::equivalentPointLoads(l)) s.pointLoads.push_back(p);
+  const model::EdgeLoad l = addCrestSurcharge(s, 100e3);
   const double q = 100e3 * (20 - 11.547005383793);
   EXPECT_NEAR(l.resultant().y(), -q, 1e-9 * q);
   const calibration::FactorOfSafetyResult r = calibration::factorOfSafety(s, {}, 1e-3);
@@ -267,13 +274,7 @@ TEST(Supports, RigidStandInModulusKeepsThePlanarFactorOfSafety) {
 // Q = cA/((1.05 − tan φ/tan ψ) sin ψ) − W (closed form), within 1 %.
 TEST(Supports, LargestSurchargeForATargetFactorOfSafety) {
   model::Scene s = planarCase("planar_failure.json");
-  model::EdgeLoad l;
-  l.id = "surcharge";
-  l.block = 1;
-  l.from = {11.547005383793, 20};
-  l.to = {20, 20};
-  l.q0 = l.q1 = {0, -10e3};
-  for (const model::PointLoad& p : model::equivalentPointLoads(l)) s.pointLoads.push_back(p);
+  addCrestSurcharge(s, 10e3);
   const double psi = std::atan2(14.004150764194, 20.0), target = 1.05;
   const double w = s.blocks[1].moments.area * 2600 * 9.81, ca = 25e3 * 20 / std::cos(psi);
   const double expected = ca / ((target - std::tan(degToRad(30)) / std::tan(psi)) * std::sin(psi)) - w;
