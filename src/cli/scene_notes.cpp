@@ -191,8 +191,17 @@ void printSupportNotes(const ddaslope::model::Scene& scene) {
   }
   for (const auto& l : scene.edgeLoads) {
     const ddaslope::Vec2 r = l.resultant();
-    std::printf("  edge load%s%s on block %s: resultant (%.4g, %.4g) kN/m\n", l.id.empty() ? "" : " ", l.id.c_str(),
-                scene.blocks[l.block].id.c_str(), r.x() / 1e3, r.y() / 1e3);
+    std::printf("  edge load%s%s on block %s: resultant (%.4g, %.4g) kN/m%s\n", l.id.empty() ? "" : " ", l.id.c_str(),
+                scene.blocks[l.block].id.c_str(), r.x() / 1e3, r.y() / 1e3,
+                scene.blocks[l.block].fixed ? ": the block is fixed, so the load does nothing" : "");
+  }
+  // Point loads of the case itself (an edge load's Gauss points are shown as the edge load).
+  for (const auto& l : scene.pointLoads) {
+    if (l.ofEdgeLoad) continue;
+    std::printf("  point load%s%s on block %s at (%.6g, %.6g): (%.4g, %.4g) kN/m%s\n", l.id.empty() ? "" : " ",
+                l.id.c_str(), scene.blocks[l.point.block].id.c_str(), l.point.initial.x() + scene.origin.x(),
+                l.point.initial.y() + scene.origin.y(), l.force.x() / 1e3, l.force.y() / 1e3,
+                scene.blocks[l.point.block].fixed ? ": the block is fixed, so the load does nothing" : "");
   }
 }
 

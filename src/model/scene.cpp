@@ -91,6 +91,7 @@ std::vector<PointLoad> equivalentPointLoads(const EdgeLoad& l) {
   for (double t : {0.5 - g, 0.5 + g}) {
     PointLoad p;
     p.id = l.id;
+    p.ofEdgeLoad = true;
     p.point.block = l.block;
     p.point.initial = p.point.current = l.from + t * (l.to - l.from);
     p.force = 0.5 * length * ((1 - t) * l.q0 + t * l.q1);

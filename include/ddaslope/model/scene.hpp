@@ -26,6 +26,7 @@ struct PointLoad {
   Vec2 force{0, 0};  ///< N per metre of thickness, at t = 0
   Vec2 rate{0, 0};   ///< N/m per second: the force at time t is force + rate · t
   std::string id{};  ///< optional: names the load for a support search (critical --support)
+  bool ofEdgeLoad = false;  ///< a Gauss point of an edge load (equivalentPointLoads)
   Vec2 at(double t) const { return force + t * rate; }
 };
 
