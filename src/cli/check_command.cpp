@@ -41,6 +41,7 @@ int checkCommand(const std::string& casePath, const Overrides& o) {
   printSeismicNote(scene);
   printKinkNotes(scene);
   printSupportNotes(scene);
+  printWaterNotes(scene);
   if (scene.water.ru > 0)
     std::printf("  pore pressure: r_u = %g, u = r_u·γ·h on every block face, γ = %g N/m³, h the depth below the "
                 "ground surface (the blocks' upper envelope, %zu points)\n",

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 #include <memory>
+#include <optional>
 
 #include "ddaslope/calibration/strength_search.hpp"
 #include "ddaslope/calibration/trial_report.hpp"
@@ -15,6 +16,7 @@
 #include "ddaslope/io/case_reader.hpp"
 #include "ddaslope/io/json_record.hpp"
 #include "ddaslope/io/line_plot.hpp"
+#include "crack_search.hpp"
 #include "scene_notes.hpp"
 
 namespace ddaslope::cli {
@@ -198,7 +200,7 @@ int criticalCommand(const std::string& casePath, const Overrides& o, const Criti
   s.threads = opt.threads;
   s.progress = ddaslope::io::sinkOf(log.get());
   recordTrialStates(s, opt.vtkDir, scene);
-  const ddaslope::model::JointProperties& jp = scene.joints[joint];
+  const ddaslope::model::JointProperties jp = scene.joints[joint];  // a copy: a crack search reloads the scene
   if (opt.solve == "jrc") return jrcCommand(casePath, scene, joint, opt);
   if (jp.bartonBandis && opt.solve == "cohesion")
     throw ddaslope::InputError("--solve", "cohesion", "joint '" + opt.joint + "' is a Barton–Bandis joint, without "
@@ -207,8 +209,31 @@ int criticalCommand(const std::string& casePath, const Overrides& o, const Criti
   const double phi = opt.friction >= 0 ? opt.friction : ddaslope::radToDeg(jp.frictionAngle);
   const double c = opt.cohesion >= 0 ? opt.cohesion : jp.cohesion;
   if (opt.friction >= 90) throw ddaslope::InputError("--friction", "", "expected an angle in [0, 90) degrees");
-  const auto r = cohesion ? ddaslope::calibration::criticalCohesion(scene, joint, phi, opt.width > 0 ? opt.width : 10, s)
-                          : ddaslope::calibration::criticalFriction(scene, joint, c, opt.width > 0 ? opt.width : 0.01, s);
+  const double width = opt.width > 0 ? opt.width : cohesion ? 10 : 0.01;
+  const auto solve = [&](const ddaslope::model::Scene& at, const ddaslope::calibration::SearchSettings& settings) {
+    return cohesion ? ddaslope::calibration::criticalCohesion(at, joint, phi, width, settings)
+                    : ddaslope::calibration::criticalFriction(at, joint, c, width, settings);
+  };
+  // A tension crack searched: the strength its least safe position needs, the table printed first.
+  std::optional<CrackSearch> crack;
+  if (scene.crackSearch) {
+    // Positions searched ten times finer than the answer (F is flat near the least safe one).
+    ddaslope::calibration::SearchSettings single;
+    single.threads = 1;
+    const auto solveFine = [&](const ddaslope::model::Scene& at) {
+      return cohesion ? ddaslope::calibration::criticalCohesion(at, joint, phi, width / 10, single)
+                      : ddaslope::calibration::criticalFriction(at, joint, c, width / 10, single);
+    };
+    crack = searchCrackPosition(casePath, o, scene, opt.threads, true, width / 10, "critical " + opt.solve, opt.progress,
+                                [&](const ddaslope::model::Scene& at) {
+                                  const auto x = solveFine(at);
+                                  return CrackValue{x.found, x.critical, x.runs, x.message};
+                                });
+    scene = loadCase(casePath, o, crackAt(crack->result.best));
+    if (!opt.json) printCrackSearch(*crack, scene, "critical " + opt.solve);
+    recordTrialStates(s, opt.vtkDir, scene);
+  }
+  const auto r = solve(scene, s);
   log->finish(r.found, r.found ? "critical " + opt.solve + " " + std::to_string(r.critical) : r.message);
   const char* unit = cohesion ? "Pa" : "degrees";
   if (opt.json) {
@@ -221,6 +246,7 @@ int criticalCommand(const std::string& casePath, const Overrides& o, const Criti
     ddaslope::calibration::appendReview(j, r.review);
     ddaslope::calibration::appendTrials(j, r.trials, cohesion ? "cohesion_pa" : "friction_angle_deg");
     if (!opt.vtkDir.empty()) j.set("vtk", opt.vtkDir);
+    if (scene.tensionCrack) appendCrackSearch(j, crack ? *crack : CrackSearch{}, scene);
     std::printf("%s\n", j.dump().c_str());
   } else if (r.found) {
     const std::string where =

@@ -1,11 +1,13 @@
 #include "fos_command.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <memory>
+#include <optional>
 
 #include "ddaslope/calibration/strength_search.hpp"
 #include "ddaslope/calibration/trial_report.hpp"
@@ -15,6 +17,7 @@
 #include "ddaslope/io/case_reader.hpp"
 #include "ddaslope/io/json_record.hpp"
 #include "ddaslope/io/line_plot.hpp"
+#include "crack_search.hpp"
 #include "scene_notes.hpp"
 
 namespace ddaslope::cli {
@@ -117,6 +120,23 @@ int fosCommand(const std::string& casePath, const Overrides& o, const FosOptions
     throw ddaslope::InputError("--vtk", opt.vtkDir, "writes the trials of one search, not of a sweep's searches (drop --sweep)");
   if (!opt.sweep.empty()) return fosSweep(casePath, o, opt);
   ddaslope::model::Scene scene = loadCase(casePath, o);
+  // A tension crack searched: F at its least safe position, the search's table printed first.
+  std::optional<CrackSearch> crack;
+  if (scene.crackSearch) {
+    // Near the least safe position F is flat (1e-5 over 0.1 m on Hoek & Bray's planar failure):
+    // the positions are searched ten times finer than the answer, which is cheap beside them.
+    FosOptions single = opt;
+    single.threads = 1;
+    single.vtkDir.clear();
+    single.width = std::max(1e-4, opt.width / 10);
+    crack = searchCrackPosition(casePath, o, scene, opt.threads, false, single.width, "F", opt.progress,
+                                [&](const ddaslope::model::Scene& at) {
+                                  const auto r = factorFor(at, casePath, single);
+                                  return CrackValue{r.found, r.factor, r.runs, r.message};
+                                });
+    scene = loadCase(casePath, o, crackAt(crack->result.best));
+    if (!opt.json) printCrackSearch(*crack, scene, "F");
+  }
   const auto log = startProgress("fos", opt.progress, opt.json);
   const auto r = factorFor(scene, casePath, opt, ddaslope::io::sinkOf(log.get()));
   log->finish(r.found, r.found ? "F " + std::to_string(r.factor) : r.message);
@@ -130,6 +150,7 @@ int fosCommand(const std::string& casePath, const Overrides& o, const FosOptions
     ddaslope::calibration::appendReview(j, r.review);
     ddaslope::calibration::appendTrials(j, r.trials, "factor");
     if (!opt.vtkDir.empty()) j.set("vtk", opt.vtkDir);
+    if (scene.tensionCrack) appendCrackSearch(j, crack ? *crack : CrackSearch{}, scene);
     std::printf("%s\n", j.dump().c_str());
   } else if (r.found) {
     std::printf("factor of safety (strength reduction on %s): %.4f (stable at %.4f, failing at %.4f)\n",

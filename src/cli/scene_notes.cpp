@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <sstream>
 
+#include "ddaslope/assembly/water_terms.hpp"
 #include "ddaslope/geometry/polygon.hpp"
 #include "ddaslope/io/ground_motion.hpp"
 #include "ddaslope/model/kinks.hpp"
@@ -202,6 +203,50 @@ void printSupportNotes(const ddaslope::model::Scene& scene) {
                 l.id.c_str(), scene.blocks[l.point.block].id.c_str(), l.point.initial.x() + scene.origin.x(),
                 l.point.initial.y() + scene.origin.y(), l.force.x() / 1e3, l.force.y() / 1e3,
                 scene.blocks[l.point.block].fixed ? ": the block is fixed, so the load does nothing" : "");
+  }
+}
+
+void printWaterNotes(const ddaslope::model::Scene& scene) {
+  const Vec2 o = scene.origin;
+  if (const auto& c = scene.tensionCrack) {
+    std::printf("  tension crack at x = %g m: %g m deep (ground %g m, sliding surface %g m), water %g m deep in it "
+                "(fraction %g%s), open by %g m\n",
+                c->x, c->depth(), c->top, c->bottom, c->waterDepth(), c->waterFraction,
+                c->waterFraction > 0 ? ", draining along the sliding surface to the toe" : "", c->gap);
+    if (scene.crackSearch)
+      std::printf("  fos and critical search the crack's position in x = [%g, %g] m for the least safe\n",
+                  scene.crackSearch->first, scene.crackSearch->second);
+  }
+  if (!scene.water.active()) return;
+  const ddaslope::model::WaterTable water = scene.water.at(0);
+  const double near = 1e-6 * scene.modelHalfSize();
+  for (const auto& b : scene.blocks) {
+    if (b.fixed) continue;
+    for (size_t k = 0; k < b.vertices.size(); ++k) {
+      const Vec2 &a = b.vertices[k], &e = b.vertices[(k + 1) % b.vertices.size()];
+      const Vec2 r = ddaslope::assembly::edgeWaterResultant(a, e, water);
+      if (r.norm() == 0) continue;
+      // What the face meets: another block along its middle, or nothing.
+      const Vec2 mid = 0.5 * (a + e);
+      std::string meets = "free face";
+      if (const auto& c = scene.tensionCrack; c && std::abs(a.x() + o.x() - c->x) <= near && std::abs(e.x() + o.x() - c->x) <= near)
+        meets = "the tension crack";
+      for (size_t j = 0; j < scene.blocks.size(); ++j) {
+        const auto& other = scene.blocks[j];
+        if (&other == &b) continue;
+        bool on = false;
+        for (size_t m = 0; m < other.vertices.size() && !on; ++m)
+          on = ddaslope::geometry::distanceToSegment(mid, other.vertices[m], other.vertices[(m + 1) % other.vertices.size()],
+                                                     nullptr) <= near;
+        if (!on) continue;
+        const int own = static_cast<int>(&b - scene.blocks.data());
+        meets = "on " + other.id + ", joint " + scene.joints[scene.jointBetween(own, static_cast<int>(j))].name;
+        break;
+      }
+      std::printf("  water on %s, face (%g, %g)-(%g, %g) (%s): %.4g kN/m, up to %.4g kPa\n", b.id.c_str(), a.x() + o.x(),
+                  a.y() + o.y(), e.x() + o.x(), e.y() + o.y(), meets.c_str(), r.norm() / 1e3,
+                  std::max(water.pressureAt(a), water.pressureAt(e)) / 1e3);
+    }
   }
 }
 

@@ -21,6 +21,10 @@ std::string slightBendNote(const model::Scene& scene);
 /// A warning for the searches where a joint ends on a concave bend (a corner in a notch); empty if
 /// none.
 std::string notchWarning(const model::Scene& scene);
+/// The water in force: the tension crack (its position, depth and water), and on each face of a
+/// free block below the water its resultant and greatest pressure, named by the block or joint it
+/// meets (the pressure on each joint), or as a free face.
+void printWaterNotes(const model::Scene& scene);
 /// The seismic loading in force: the coefficients and the record's span and peaks.
 void printSeismicNote(const model::Scene& scene);
 

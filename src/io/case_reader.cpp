@@ -254,8 +254,12 @@ void readJointPairs(const Reader& r, const json& doc, model::Scene& s, const std
 }
 
 void readWater(const Reader& r, const json& doc, model::Scene& s) {
-  const bool drawn = s.water.active();  // the section's drawing gave the water line
+  const bool crackWater = s.tensionCrack && s.tensionCrack->waterFraction > 0;
+  const bool drawn = s.water.active() && !crackWater;  // the section's drawing gave the water line
   if (!doc.contains("water")) return;
+  if (crackWater)
+    r.fail("water", "the tension crack's water (section.tension_crack.water_fraction) is the case's water: remove "
+                    "water, or give the crack no water_fraction");
   const json& w = doc.at("water");
   r.onlyKeys(w, "water", {"level", "phreatic_line", "level_series", "unit_weight", "ru", "ground_unit_weight"});
   s.water.unitWeight = r.optionalIn(w, "water", "unit_weight", 9810, 10, 1e6, false, false, "a unit weight in [10, 1e6] N/m³");
@@ -618,9 +622,10 @@ std::vector<CaseOverride> caseOverridesFor(const model::SettingsOverride& o) {
 std::string expandSection(const std::string& path) {
   const model::Scene scene = readCase(path);
   nlohmann::ordered_json doc = nlohmann::ordered_json::parse(readInputFile(path, kMaxJsonFileBytes));
-  // A water line drawn with the section stays with the blocks as the phreatic line it was.
+  // A water line drawn with the section, or the water of its tension crack, stays with the blocks
+  // as the phreatic line it was.
   const auto drawnWater = nlohmann::ordered_json::json_pointer("/section/dxf/layers/water_line");
-  if (doc.contains(drawnWater)) {
+  if (doc.contains(drawnWater) || (scene.tensionCrack && scene.tensionCrack->waterFraction > 0)) {
     nlohmann::ordered_json line = nlohmann::ordered_json::array();
     for (const Vec2& p : scene.water.line) line.push_back({p.x() + scene.origin.x(), p.y() + scene.origin.y()});
     doc["water"]["phreatic_line"] = line;

@@ -210,6 +210,9 @@ void writeSummary(const fs::path& dir, const model::Scene& scene, const RunOptio
                     for (const Vec2& p : scene.water.line) l.push_back({p.x() + scene.origin.x(), p.y() + scene.origin.y()});
                     return l;
                   }()}};
+  if (const auto& c = scene.tensionCrack)
+    j["tension_crack"] = {{"x", c->x}, {"depth", c->depth()}, {"water_depth", c->waterDepth()},
+                          {"water_fraction", c->waterFraction}, {"open_by", c->gap}};
   const model::AnalysisSettings& s = scene.settings;
   j["settings"] = {{"duration", s.duration},
                    {"time_step", s.timeStep},

@@ -1,5 +1,6 @@
 #include "section_reader.hpp"
 
+#include <cmath>
 #include <filesystem>
 #include <optional>
 
@@ -60,6 +61,35 @@ std::optional<std::pair<std::string, std::string>> inDrawing(const DxfSection& d
   return std::make_pair("section.dxf.layers." + name, where);
 }
 
+/// section.tension_crack: its position (x, or the depth at which it reaches the sliding surface),
+/// its water and the range its position is searched in; the search range when given.
+std::optional<std::pair<double, double>> readTensionCrack(const Reader& r, const json& t, const std::string& p,
+                                                          model::SectionSpec& spec) {
+  r.onlyKeys(t, p, {"x", "depth", "water_fraction", "search"});
+  if (t.contains("x") == t.contains("depth"))
+    r.fail(p, "expected exactly one of x (the crack's position, m) or depth (m: the crack reaches the sliding surface "
+              "this far below the ground)");
+  model::TensionCrack crack;
+  if (t.contains("x")) {
+    crack.x = r.number(t.at("x"), p + ".x");
+  } else {
+    const double depth = r.numberIn(t.at("depth"), p + ".depth", 0, 1e6, true, false, "a depth > 0 m");
+    if (spec.slidingSurface.size() < 2 || spec.ground.size() < 2) r.fail(p + ".depth", "needs the section's ground and sliding surface");
+    crack.x = model::crackPositionAtDepth(spec, depth);
+    if (!std::isfinite(crack.x))
+      r.fail(p + ".depth", "the sliding surface is nowhere this deep below the ground between crown and toe");
+  }
+  crack.waterFraction = r.optionalIn(t, p, "water_fraction", 0, 0, 1, false, false, "a fraction of the crack's depth in [0, 1]");
+  spec.tensionCrack = crack;
+  if (!t.contains("search")) return std::nullopt;
+  const json& range = t.at("search");
+  if (!range.is_array() || range.size() != 2)
+    r.fail(p + ".search", "expected [x_min, x_max]: the range fos and critical search the crack's position in");
+  const double lo = r.number(range[0], p + ".search[0]"), hi = r.number(range[1], p + ".search[1]");
+  if (!(lo < hi)) r.fail(p + ".search", "expected x_min < x_max");
+  return std::make_pair(lo, hi);
+}
+
 }  // namespace
 
 void readSection(const Reader& r, const json& doc, model::Scene& s, const std::map<std::string, int>& materialIds,
@@ -68,7 +98,7 @@ void readSection(const Reader& r, const json& doc, model::Scene& s, const std::m
   const std::string p = "section";
   const json& j = doc.at(p);
   r.onlyKeys(j, p, {"ground", "sliding_surface", "base_depth", "material", "base_material", "sliding_joint", "joints",
-                    "joint_sets", "kink_block_width", "dxf"});
+                    "joint_sets", "kink_block_width", "dxf", "tension_crack"});
   const auto polyline = [&](const char* key) {
     const json& a = r.required(j, p, key);
     if (!a.is_array()) r.fail(p + "." + key, "expected an array of points [x, y]");
@@ -130,6 +160,8 @@ void readSection(const Reader& r, const json& doc, model::Scene& s, const std::m
       spec.jointSets.push_back(set);
     }
   }
+  std::optional<std::pair<double, double>> crackSearch;
+  if (j.contains("tension_crack")) crackSearch = readTensionCrack(r, j.at("tension_crack"), p + ".tension_crack", spec);
   const auto materialOf = [&](const char* key, const std::string& def) {
     const std::string m = j.contains(key) ? r.string(j.at(key), p + "." + key) : def;
     if (!materialIds.count(m)) r.fail(p + "." + key, "unknown material \"" + m + "\" (not in materials)");
@@ -145,6 +177,11 @@ void readSection(const Reader& r, const json& doc, model::Scene& s, const std::m
     if (drawn)
       if (const auto at = inDrawing(*drawn, *source, e.jsonPath())) r.fail(at->first, at->second + ": " + e.message());
     r.fail(p + "." + e.jsonPath(), e.message());
+  }
+  if (blocks.crack) {
+    s.tensionCrack = blocks.crack;
+    s.crackSearch = crackSearch;
+    if (blocks.crack->waterFraction > 0) s.water.line = model::crackWaterLine(*blocks.crack, spec.ground);
   }
   const int baseIndex = static_cast<int>(s.blocks.size());
   blocks.base.material = baseMaterial;

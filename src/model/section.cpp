@@ -172,11 +172,16 @@ Extent checkLines(const SectionSpec& s) {
   return {size, tol, lowest, highest};
 }
 
-/// The slide mass (ground from crown to toe, back along the sliding surface) and the base below.
-std::pair<std::vector<Vec2>, std::vector<Vec2>> massAndBase(const SectionSpec& s, const Extent& e) {
+/// The slide mass (ground from crown to toe, back along the slide's surface) and the base below
+/// (the ground outside the slide, the base's surface). The two surfaces are the sliding surface,
+/// or with a tension crack, each begins with its wall of the crack.
+std::pair<std::vector<Vec2>, std::vector<Vec2>> massAndBase(const SectionSpec& s, const Extent& e,
+                                                            const std::vector<Vec2>& slideSurface,
+                                                            const std::vector<Vec2>& baseSurface) {
   const double tol = e.tol, lowest = e.lowest;
-  const Vec2 crown = s.slidingSurface.front(), toe = s.slidingSurface.back();
+  const Vec2 crown = slideSurface.front(), toe = slideSurface.back(), baseCrown = baseSurface.front();
   const double crownAt = positionOnPolyline(s.ground, crown, tol), toeAt = positionOnPolyline(s.ground, toe, tol);
+  const double baseCrownAt = positionOnPolyline(s.ground, baseCrown, tol);
   const auto betweenCrownAndToe = [&](size_t i) {
     return groundVertexAfter(s.ground, i, crown, crownAt, tol) && groundVertexBefore(s.ground, i, toe, toeAt, tol);
   };
@@ -185,7 +190,7 @@ std::pair<std::vector<Vec2>, std::vector<Vec2>> massAndBase(const SectionSpec& s
   std::vector<Vec2> mass{crown};
   for (size_t i = 0; i < s.ground.size(); ++i)
     if (betweenCrownAndToe(i)) mass.push_back(s.ground[i]);
-  for (size_t i = s.slidingSurface.size(); i-- > 1;) mass.push_back(s.slidingSurface[i]);
+  for (size_t i = slideSurface.size(); i-- > 1;) mass.push_back(slideSurface[i]);
   mass = geometry::cleanPolygon(mass, tol);
   if (mass.size() < 3 || !geometry::isSimple(mass)) fail("sliding_surface", "the slide mass between ground and sliding surface is not a simple polygon");
 
@@ -193,8 +198,8 @@ std::pair<std::vector<Vec2>, std::vector<Vec2>> massAndBase(const SectionSpec& s
   const double bottom = lowest - s.baseDepth;
   std::vector<Vec2> base;
   for (size_t i = 0; i < s.ground.size(); ++i)
-    if (groundVertexBefore(s.ground, i, crown, crownAt, tol)) base.push_back(s.ground[i]);
-  for (const Vec2& p : s.slidingSurface) base.push_back(p);
+    if (groundVertexBefore(s.ground, i, baseCrown, baseCrownAt, tol)) base.push_back(s.ground[i]);
+  for (const Vec2& p : baseSurface) base.push_back(p);
   for (size_t i = 0; i < s.ground.size(); ++i)
     if (groundVertexAfter(s.ground, i, toe, toeAt, tol)) base.push_back(s.ground[i]);
   base.push_back({s.ground.back().x(), bottom});
@@ -280,9 +285,94 @@ void cutKinkBlocks(std::vector<std::vector<Vec2>>& pieces, const SectionSpec& s,
 
 }  // namespace
 
-SectionBlocks cutSection(const SectionSpec& s) {
-  const Extent e = checkLines(s);
-  const auto [mass, base] = massAndBase(s, e);
+double crackPositionAtDepth(const SectionSpec& s, double depth) {
+  const Vec2 crown = s.slidingSurface.front(), toe = s.slidingSurface.back();
+  const auto excess = [&](double x) { return groundAt(s.ground, x) - groundAt(s.slidingSurface, x) - depth; };
+  // The first sign change on a fine scan from the crown, then bisection.
+  const int n = 2000;
+  double a = crown.x();
+  for (int k = 1; k <= n; ++k) {
+    double b = crown.x() + (toe.x() - crown.x()) * k / n;
+    if (excess(a) < 0 && excess(b) >= 0) {
+      for (int i = 0; i < 100; ++i) {
+        const double m = 0.5 * (a + b);
+        if (excess(m) < 0) a = m;
+        else b = m;
+      }
+      return 0.5 * (a + b);
+    }
+    a = b;
+  }
+  return NAN;
+}
+
+std::vector<Vec2> crackWaterLine(const CrackGeometry& c, const std::vector<Vec2>& ground) {
+  const Vec2 from(c.x, c.bottom + c.waterDepth()), to = c.toe;
+  std::vector<double> xs{from.x(), to.x()};
+  for (const Vec2& p : ground)
+    if (p.x() > from.x() && p.x() < to.x()) xs.push_back(p.x());
+  std::sort(xs.begin(), xs.end());
+  std::vector<Vec2> line;
+  for (const double x : xs) {
+    const double straight = from.y() + (to.y() - from.y()) * (x - from.x()) / (to.x() - from.x());
+    if (line.empty() || x > line.back().x()) line.emplace_back(x, std::min(straight, groundAt(ground, x)));
+  }
+  return line;
+}
+
+namespace {
+
+/// The crack's walls: the slide's at x (the slide surface starts at its top and goes down it to
+/// the sliding surface), the base's a gap behind. Checked against the section (paths relative to
+/// the section object).
+CrackGeometry cutCrack(const SectionSpec& s, const Extent& e, std::vector<Vec2>& slideSurface,
+                       std::vector<Vec2>& baseSurface) {
+  const TensionCrack& t = *s.tensionCrack;
+  const Vec2 crown = s.slidingSurface.front(), toe = s.slidingSurface.back();
+  CrackGeometry c;
+  // Open by a thousandth of the model's half size: far beyond the contacts' initial tolerance
+  // (1e-6 of it), so the crack carries its water and nothing else.
+  const double w0 = 0.5 * std::max(s.ground.back().x() - s.ground.front().x(), e.highest - e.lowest + s.baseDepth);
+  c.gap = 1e-3 * w0;
+  c.x = t.x;
+  c.toe = toe;
+  c.waterFraction = t.waterFraction;
+  if (!(t.x > crown.x() + c.gap && t.x < toe.x())) {
+    std::ostringstream m;
+    m << "expected x between the crown (" << crown.x() << " m, plus the crack's width " << c.gap << " m) and the toe ("
+      << toe.x() << " m), found " << t.x;
+    fail("tension_crack.x", m.str());
+  }
+  c.top = groundAt(s.ground, t.x);
+  c.bottom = groundAt(s.slidingSurface, t.x);
+  if (!(c.depth() > e.tol)) fail("tension_crack.x", "the ground and the sliding surface meet there: no crack to cut");
+  const double wall = t.x - c.gap;
+  const auto after = [&](double x) {
+    std::vector<Vec2> v;
+    for (const Vec2& p : s.slidingSurface)
+      if (p.x() > x + e.tol) v.push_back(p);
+    return v;
+  };
+  slideSurface = {Vec2(t.x, c.top), Vec2(t.x, c.bottom)};
+  for (const Vec2& p : after(t.x)) slideSurface.push_back(p);
+  baseSurface = {Vec2(wall, groundAt(s.ground, wall)), Vec2(wall, groundAt(s.slidingSurface, wall))};
+  for (const Vec2& p : after(wall)) baseSurface.push_back(p);
+  return c;
+}
+
+}  // namespace
+
+SectionBlocks cutSection(const SectionSpec& given) {
+  const Extent e = checkLines(given);
+  SectionSpec s = given;
+  std::vector<Vec2> slideSurface = s.slidingSurface, baseSurface = s.slidingSurface;
+  std::optional<CrackGeometry> crack;
+  if (s.tensionCrack) {
+    crack = cutCrack(s, e, slideSurface, baseSurface);
+    // The sliding surface the slide rests on: from the crack's bottom to the toe (its kinks).
+    s.slidingSurface.assign(slideSurface.begin() + 1, slideSurface.end());
+  }
+  const auto [mass, base] = massAndBase(s, e, slideSurface, baseSurface);
   std::vector<std::vector<Vec2>> pieces{mass};
   cutByJoints(pieces, s, e, mass);
   cutKinkBlocks(pieces, s, e);
@@ -292,6 +382,7 @@ SectionBlocks cutSection(const SectionSpec& s) {
   SectionBlocks out;
   out.base = makeBlock("base", true, base);
   for (size_t k = 0; k < pieces.size(); ++k) out.slide.push_back(makeBlock("slide_" + std::to_string(k + 1), false, pieces[k]));
+  out.crack = crack;
   return out;
 }
 

@@ -10,6 +10,7 @@
 #include "ddaslope/model/block.hpp"
 #include "ddaslope/model/block_point.hpp"
 #include "ddaslope/model/materials.hpp"
+#include "ddaslope/model/section.hpp"
 #include "ddaslope/model/seismic.hpp"
 #include "ddaslope/model/support.hpp"
 #include "ddaslope/model/water.hpp"
@@ -101,6 +102,10 @@ struct Scene {
   std::vector<EdgeLoad> edgeLoads;
   std::vector<Expectation> expectations;
   WaterTable water;  ///< no water unless its line is set
+  /// A section's tension crack (section.tension_crack), in the case's coordinates (not shifted
+  /// by `origin`), with the range its position is searched in, when given.
+  std::optional<CrackGeometry> tensionCrack;
+  std::optional<std::pair<double, double>> crackSearch;
   SeismicLoad seismic;  ///< none unless set
   /// Joints the reader moved off concave bends of a fixed block (analysis.joint_end_offset).
   std::vector<MovedJointEnd> movedJointEnds;

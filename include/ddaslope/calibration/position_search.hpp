@@ -1,0 +1,39 @@
+#pragma once
+// The least safe position of a feature along a range (a tension crack behind the crest): the
+// position where the factor of safety is least, or the critical strength greatest. Each value is
+// a search of its own with a finite precision, and near the extreme the curve is flat (on Hoek &
+// Bray's dry planar failure F changes by 1e-5 over 0.1 m), so a golden-section search would follow
+// the searches' rounding. Instead: a grid over the range, a finer grid around its best point, and a
+// least-squares parabola through the fine points, whose vertex is the answer.
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace ddaslope::calibration {
+
+struct PositionSample {
+  double x = 0;
+  double value = 0;
+  bool found = false;  ///< the search at x gave a value
+  std::string message;  ///< why not, when it did not
+};
+
+struct PositionSearchResult {
+  double best = 0;          ///< the least safe position
+  bool atEnd = false;       ///< it lies at an end of the range (widen the range to look beyond)
+  bool fitted = false;      ///< from the parabola's vertex (else the best sample)
+  /// Positions whose value is within `precision` of the extreme: how sharply the range decides it.
+  double flatLo = 0, flatHi = 0;
+  std::vector<PositionSample> samples;  ///< every position searched, by x
+};
+
+/// Values at a batch of positions (run at once by the caller).
+using PositionEvaluator = std::function<std::vector<PositionSample>(const std::vector<double>& xs)>;
+
+/// The extreme of the values over [lo, hi]: the least (`maximise` false: a factor of safety) or the
+/// greatest (a critical strength). `points` positions per grid (≥ 5); `precision` is the values'
+/// own (a search's bracket width).
+PositionSearchResult searchLeastSafePosition(double lo, double hi, int points, bool maximise, double precision,
+                                             const PositionEvaluator& evaluate);
+
+}  // namespace ddaslope::calibration

@@ -1,0 +1,100 @@
+#include "crack_search.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <memory>
+
+#include "ddaslope/core/byte_record.hpp"
+#include "ddaslope/core/task_farm.hpp"
+
+namespace ddaslope::cli {
+
+std::vector<io::CaseOverride> crackAt(double x) {
+  // A crack given by its depth is moved by its position.
+  return {io::CaseOverride::removal("section.tension_crack.depth"), io::CaseOverride("section.tension_crack.x", x)};
+}
+
+CrackSearch searchCrackPosition(const std::string& casePath, const Overrides& o, const model::Scene& scene, int threads,
+                                bool maximise, double precision, const std::string& quantity, const ProgressOptions& progress,
+                                const std::function<CrackValue(const model::Scene&)>& valueAt) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const auto log = startProgress("tension crack search", progress, false);
+  const std::unique_ptr<TaskFarm> farm = makeTaskFarm(threads);
+  CrackSearch out;
+  int done = 0;
+  const auto evaluate = [&](const std::vector<double>& xs) {
+    std::vector<calibration::PositionSample> samples(xs.size());
+    std::vector<int> indices(xs.size());
+    for (size_t i = 0; i < xs.size(); ++i) indices[i] = static_cast<int>(i);
+    farm->run(
+        indices,
+        [&](int i) {
+          const CrackValue v = valueAt(loadCase(casePath, o, crackAt(xs[i])));
+          BytePacker b;
+          b.put(v.found).put(v.value).put(v.runs).put(v.message);
+          return b.bytes();
+        },
+        [&](int i, const TaskResult& bytes) {
+          ByteUnpacker b(bytes);
+          calibration::PositionSample& s = samples[i];
+          s.x = xs[i];
+          s.found = b.get<bool>();
+          s.value = b.get<double>();
+          out.runs += b.get<int>();
+          s.message = b.getString();
+          if (log->active())
+            log->report({"positions", ++done, 0,
+                         "crack at x = " + std::to_string(xs[i]) + ": " + quantity + " " +
+                             (s.found ? std::to_string(s.value) : "not found"),
+                         {{"x", xs[i]}, {"value", s.found ? s.value : NAN}}});
+        });
+    return samples;
+  };
+  out.result = calibration::searchLeastSafePosition(scene.crackSearch->first, scene.crackSearch->second, 9, maximise,
+                                                    precision, evaluate);
+  out.wallTime = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  log->finish(true, "least safe crack at x = " + std::to_string(out.result.best));
+  return out;
+}
+
+void printCrackSearch(const CrackSearch& s, const model::Scene& scene, const std::string& quantity) {
+  const auto& r = s.result;
+  std::printf("tension crack position searched in x = [%g, %g] m (%zu positions, %d forward runs, %.2f s wall):\n",
+              scene.crackSearch->first, scene.crackSearch->second, r.samples.size(), s.runs, s.wallTime);
+  bool missing = false;
+  for (const auto& p : r.samples) {
+    std::printf("  x = %-10.4g %s %s\n", p.x, quantity.c_str(), p.found ? std::to_string(p.value).c_str() : ("none: " + p.message).c_str());
+    missing |= !p.found;
+  }
+  const model::CrackGeometry& c = *scene.tensionCrack;
+  std::printf("least safe crack: x = %.4g m, %.4g m deep, water %.4g m deep (%s); %s within the search's width for x "
+              "in [%.4g, %.4g] m\n",
+              c.x, c.depth(), c.waterDepth(), r.fitted ? "the vertex of a parabola through the nearest positions" : "the best position tried",
+              quantity.c_str(), r.flatLo, r.flatHi);
+  if (missing)
+    std::printf("  note: some positions gave no %s (above): where the slope fails at every strength tried, it is less "
+                "safe there than at the position reported\n",
+                quantity.c_str());
+  if (r.atEnd)
+    std::printf("  note: the least safe position lies at an end of the range: widen section.tension_crack.search to "
+                "look beyond it\n");
+}
+
+void appendCrackSearch(io::JsonRecord& j, const CrackSearch& s, const model::Scene& scene) {
+  const model::CrackGeometry& c = *scene.tensionCrack;
+  io::JsonRecord t;
+  t.set("x", c.x).set("depth", c.depth()).set("water_depth", c.waterDepth()).set("water_fraction", c.waterFraction);
+  if (scene.crackSearch) {
+    const auto& r = s.result;
+    std::vector<double> xs, values;
+    for (const auto& p : r.samples) xs.push_back(p.x), values.push_back(p.found ? p.value : NAN);
+    t.set("searched", std::vector<double>{scene.crackSearch->first, scene.crackSearch->second});
+    t.set("positions", xs).set("values", values).set("fitted", r.fitted).set("at_end", r.atEnd);
+    t.set("within_width", std::vector<double>{r.flatLo, r.flatHi});
+    t.set("forward_runs", s.runs).set("wall_time_s", s.wallTime);
+  }
+  j.set("tension_crack", t);
+}
+
+}  // namespace ddaslope::cli

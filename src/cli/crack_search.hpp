@@ -1,0 +1,41 @@
+#pragma once
+// A tension crack's least safe position (section.tension_crack.search), for fos and critical:
+// the case's search at each position tried, run at once on the threads or ranks.
+#include <functional>
+#include <string>
+
+#include "cli_common.hpp"
+#include "ddaslope/calibration/position_search.hpp"
+#include "ddaslope/io/json_record.hpp"
+
+namespace ddaslope::cli {
+
+/// The search's value at one crack position (the case read with the crack there).
+struct CrackValue {
+  bool found = false;
+  double value = 0;
+  int runs = 0;
+  std::string message;  ///< why no value, when none
+};
+
+struct CrackSearch {
+  calibration::PositionSearchResult result;
+  int runs = 0;  ///< forward runs over every position
+  double wallTime = 0;
+};
+
+/// The overrides that put the case's crack at x.
+std::vector<io::CaseOverride> crackAt(double x);
+
+/// Searches the crack's position over the case's range: the least `value` (maximise false) or the
+/// greatest. `valueAt` runs one position's search on one thread.
+CrackSearch searchCrackPosition(const std::string& casePath, const Overrides& o, const model::Scene& scene, int threads,
+                                bool maximise, double precision, const std::string& quantity, const ProgressOptions& progress,
+                                const std::function<CrackValue(const model::Scene&)>& valueAt);
+
+/// The positions tried and the least safe one, for the text output.
+void printCrackSearch(const CrackSearch& s, const model::Scene& scene, const std::string& quantity);
+/// The same in a command's JSON record (key "tension_crack").
+void appendCrackSearch(io::JsonRecord& j, const CrackSearch& s, const model::Scene& scene);
+
+}  // namespace ddaslope::cli
