@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -12,7 +13,9 @@
 #include "ddaslope/assembly/water_terms.hpp"
 #include "ddaslope/calibration/strength_search.hpp"
 #include "ddaslope/io/case_reader.hpp"
+#include "ddaslope/model/pressure_grid.hpp"
 #include "scene_builders.hpp"
+#include "test_io.hpp"
 
 using namespace ddaslope;
 
@@ -118,4 +121,79 @@ TEST(Water, PorePressureRatioOnThePlanarFailureMatchesTheClosedForm) {
     ASSERT_TRUE(r.found) << r.message;
     EXPECT_NEAR(r.factor, expected, 0.01 * expected) << "r_u = " << ru;
   }
+}
+
+// A pressure grid's thin-plate spline passes through every point (any data), and an affine field
+// (a hydrostatic pressure under a planar water table) comes back exactly everywhere, also far
+// from the points and with the points 1e5 m from the origin.
+TEST(Water, PressureGridSplineIsExactAtItsPointsAndForAnAffineField) {
+  std::vector<Vec2> pts;
+  std::vector<double> bumpy, affine;
+  for (int i = 0; i < 6; ++i)
+    for (int j = 0; j < 5; ++j) {
+      const Vec2 p(1e5 + 3.0 * i + 0.4 * j, 2.5 * j);
+      pts.push_back(p);
+      bumpy.push_back(1e4 * std::sin(0.7 * i) * std::cos(1.3 * j));
+      affine.push_back(9810 * (4 + 0.3 * (p.x() - 1e5) - p.y()));
+    }
+  const model::PressureGrid g(pts, bumpy), a(pts, affine);
+  for (size_t k = 0; k < pts.size(); ++k) EXPECT_NEAR(g.spline(pts[k]), bumpy[k], 1e-6 * 1e4);
+  for (const Vec2& q : {Vec2(1e5 + 1.7, 3.3), Vec2(1e5 + 40, -20), Vec2(1e5 - 10, 1)})
+    EXPECT_NEAR(a.spline(q), 9810 * (4 + 0.3 * (q.x() - 1e5) - q.y()), 1e-6 * 9810 * 30);
+  EXPECT_EQ(a.at(Vec2(1e5, 50)), 0.0);  // above the table: suction taken as 0
+}
+
+// Hoek & Bray's water-filled crack (cases/planar_failure_water.json) given as a grid of points
+// instead of its phreatic line: the line runs from the toe (0, 0) to (20, 20), so the pressure
+// γw (x − y) is affine, and a grid sampling it below the line gives the line's F, which is
+// Hoek & Bray's 0.8327 (benchmarks.md §C), within 1e-3. The grid read from a CSV file gives the same.
+TEST(Water, PressureGridGivesThePhreaticLinesFactorOfSafety) {
+  std::ifstream in(std::string(DDASLOPE_SOURCE_DIR) + "/cases/planar_failure_water.json");
+  std::stringstream text;
+  text << in.rdbuf();
+  nlohmann::json doc = nlohmann::json::parse(text.str());
+  doc.erase("expected");
+  const auto fos = [](const nlohmann::json& d, const std::string& file) {
+    const model::Scene s = io::parseCase(d.dump(), file);
+    const calibration::FactorOfSafetyResult r = calibration::factorOfSafety(s, {}, 1e-3);
+    EXPECT_TRUE(r.found) << r.message;
+    return r.factor;
+  };
+  const double line = fos(doc, "line.json");
+  EXPECT_NEAR(line, 0.8327, 0.01 * 0.8327);
+  nlohmann::json points = nlohmann::json::array();
+  std::string csv = "x,y,pressure\n";
+  for (int i = 0; i <= 5; ++i)
+    for (int j = 0; j <= 5; ++j) {
+      const double x = 5.0 * i, y = -5.0 + 5.0 * j;
+      if (y > x) continue;  // above the line: a grid lists what it knows, the wet points
+      points.push_back({x, y, 9810 * (x - y)});
+      csv += std::to_string(x) + "," + std::to_string(y) + "," + std::to_string(9810 * (x - y)) + "\n";
+    }
+  doc["water"] = {{"pressure_grid", {{"points", points}}}};
+  EXPECT_NEAR(fos(doc, "grid.json"), line, 1e-3);
+  const std::string csvPath = clitest::writeTemp("grid.csv", csv);
+  doc["water"] = {{"pressure_grid", {{"csv", std::filesystem::path(csvPath).filename().string()}}}};
+  EXPECT_NEAR(fos(doc, (std::filesystem::path(csvPath).parent_path() / "grid_case.json").string()), line, 1e-3);
+}
+
+// Every bad value of a pressure grid is refused with the file and its JSON path.
+TEST(Water, BadPressureGridsAreRefusedWithTheirPath) {
+  std::ifstream in(std::string(DDASLOPE_SOURCE_DIR) + "/cases/planar_failure.json");
+  std::stringstream text;
+  text << in.rdbuf();
+  const auto refused = [&](const nlohmann::json& water, const std::string& path, const std::string& what) {
+    nlohmann::json doc = nlohmann::json::parse(text.str());
+    doc["water"] = water;
+    clitest::expectInputError([&] { io::parseCase(doc.dump(), "bad.json"); }, "bad.json", path, what);
+  };
+  const nlohmann::json three = {{0, 0, 1e4}, {10, 0, 2e4}, {0, 10, 0}};
+  refused({{"pressure_grid", {{"points", {{0, 0, 1e4}, {10, 0, 2e4}}}}}}, "water.pressure_grid.points", "at least three");
+  refused({{"pressure_grid", {{"points", {{0, 0, 1e4}, {5, 5, 2e4}, {10, 10, 0}}}}}}, "water.pressure_grid.points", "one line");
+  refused({{"pressure_grid", {{"points", {{0, 0, 1e4}, {10, 0, 2e4}, {0, 0, 0}}}}}}, "water.pressure_grid.points[2]", "repeats point 0");
+  refused({{"pressure_grid", {{"points", {{0, 0}, {10, 0, 2e4}, {0, 10, 0}}}}}}, "water.pressure_grid.points[0]", "[x, y, p]");
+  refused({{"pressure_grid", {{"points", three}, {"csv", "g.csv"}}}}, "water.pressure_grid", "exactly one of points");
+  refused({{"pressure_grid", {{"points", three}}}, {"unit_weight", 9810}}, "water.unit_weight", "not used with pressure_grid");
+  refused({{"pressure_grid", {{"points", three}}}, {"level", 3}}, "water", "exactly one of level");
+  refused({{"pressure_grid", {{"csv", "missing_grid.csv"}}}}, "water.pressure_grid.csv", "");
 }

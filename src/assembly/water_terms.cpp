@@ -11,6 +11,18 @@ namespace {
 /// on which the pressure is linear and positive.
 template <class F>
 void integrateEdge(const Vec2& a, const Vec2& b, const model::WaterTable& w, F&& f) {
+  if (w.grid) {
+    // A grid's spline is smooth: 2-point Gauss on pieces a quarter of its points' spacing long.
+    const double length = (b - a).norm();
+    const int pieces = std::clamp(static_cast<int>(std::ceil(4 * length / w.grid->spacing())), 2, 64);
+    const double g = 1 / std::sqrt(3.0), half = 0.5 / pieces;
+    for (int k = 0; k < pieces; ++k)
+      for (double s : {-g, g}) {
+        const Vec2 p = a + ((k + 0.5) / pieces + s * half) * (b - a);
+        f(p, w.grid->at(p) * half * length);
+      }
+    return;
+  }
   // Breakpoints: where the edge passes a vertex of the phreatic line (its slope changes there).
   std::vector<double> ts{0.0, 1.0};
   if (b.x() != a.x())

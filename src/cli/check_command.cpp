@@ -46,6 +46,10 @@ int checkCommand(const std::string& casePath, const Overrides& o) {
     std::printf("  pore pressure: r_u = %g, u = r_u·γ·h on every block face, γ = %g N/m³, h the depth below the "
                 "ground surface (the blocks' upper envelope, %zu points)\n",
                 scene.water.ru, scene.water.unitWeight / scene.water.ru, scene.water.line.size());
+  if (scene.water.grid)
+    std::printf("  pore pressure: a grid of %zu points, interpolated by a thin-plate spline (exact at the points, an "
+                "affine field exactly; suction taken as 0), on every block face\n",
+                scene.water.grid->points().size());
   for (const auto& m : scene.materials)
     if (m.youngModulus > ddaslope::model::limits::kStiffestRock)
       std::printf("  note: material %s: E = %g Pa is stiffer than any rock: a rigid stand-in (as in RS2 and UDEC). "

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <set>
 #include <sstream>
 
@@ -253,6 +254,50 @@ void readJointPairs(const Reader& r, const json& doc, model::Scene& s, const std
   }
 }
 
+/// water.pressure_grid: points [x, y, p] given in the case or as three columns of a CSV file.
+std::shared_ptr<const model::PressureGrid> readPressureGrid(const Reader& r, const json& g, const std::string& p) {
+  r.onlyKeys(g, p, {"points", "csv", "x_column", "y_column", "pressure_column"});
+  if (g.contains("points") == g.contains("csv"))
+    r.fail(p, "expected exactly one of points ([[x, y, p], …] in m and Pa) or csv (a file with x, y and pressure columns)");
+  std::vector<Vec2> points;
+  std::vector<double> pressures;
+  std::string where = p + ".points";
+  if (g.contains("points")) {
+    const json& a = g.at("points");
+    if (!a.is_array()) r.fail(where, "expected an array of points [x, y, p]");
+    for (size_t i = 0; i < a.size(); ++i) {
+      const std::string q = Reader::index(where, i);
+      if (!a[i].is_array() || a[i].size() != 3) r.fail(q, "expected [x, y, p] (m, m, Pa)");
+      points.emplace_back(r.number(a[i][0], q + "[0]"), r.number(a[i][1], q + "[1]"));
+      pressures.push_back(r.number(a[i][2], q + "[2]"));
+    }
+  } else {
+    where = p + ".csv";
+    const std::string csv = r.string(g.at("csv"), where);
+    const auto column = [&](const char* key, const char* def) {
+      return g.contains(key) ? r.string(g.at(key), p + "." + key) : std::string(def);
+    };
+    const std::string file = (std::filesystem::path(r.file()).parent_path() / csv).string();
+    const io::Series xp = readCsvColumns(file, column("x_column", "x"), column("pressure_column", "pressure"), r.file(), where);
+    const io::Series yp = readCsvColumns(file, column("y_column", "y"), column("pressure_column", "pressure"), r.file(), where);
+    for (size_t i = 0; i < xp.x.size(); ++i) points.emplace_back(xp.x[i], yp.x[i]), pressures.push_back(xp.y[i]);
+  }
+  if (points.size() < 3) r.fail(where, "expected at least three points");
+  if (points.size() > 1000) r.fail(where, "expected at most 1000 points (the spline's system grows as their cube)");
+  Vec2 lo = points[0], hi = points[0];
+  for (const Vec2& q : points) lo = lo.cwiseMin(q), hi = hi.cwiseMax(q);
+  const double tol = 1e-9 * std::max((hi - lo).maxCoeff(), 1e-300);
+  for (size_t i = 0; i < points.size(); ++i)
+    for (size_t j = 0; j < i; ++j)
+      if ((points[i] - points[j]).norm() <= tol)
+        r.fail(Reader::index(where, i), "this point repeats point " + std::to_string(j) + ": give each place once");
+  try {
+    return std::make_shared<const model::PressureGrid>(points, pressures);
+  } catch (const std::invalid_argument&) {
+    r.fail(where, "expected points that span an area: these lie on one line");
+  }
+}
+
 void readWater(const Reader& r, const json& doc, model::Scene& s) {
   const bool crackWater = s.tensionCrack && s.tensionCrack->waterFraction > 0;
   const bool drawn = s.water.active() && !crackWater;  // the section's drawing gave the water line
@@ -261,16 +306,17 @@ void readWater(const Reader& r, const json& doc, model::Scene& s) {
     r.fail("water", "the tension crack's water (section.tension_crack.water_fraction) is the case's water: remove "
                     "water, or give the crack no water_fraction");
   const json& w = doc.at("water");
-  r.onlyKeys(w, "water", {"level", "phreatic_line", "level_series", "unit_weight", "ru", "ground_unit_weight"});
+  r.onlyKeys(w, "water", {"level", "phreatic_line", "level_series", "unit_weight", "ru", "ground_unit_weight", "pressure_grid"});
   s.water.unitWeight = r.optionalIn(w, "water", "unit_weight", 9810, 10, 1e6, false, false, "a unit weight in [10, 1e6] N/m³");
-  const int given = w.contains("level") + w.contains("phreatic_line") + w.contains("level_series") + w.contains("ru");
+  const int given = w.contains("level") + w.contains("phreatic_line") + w.contains("level_series") + w.contains("ru") +
+                    w.contains("pressure_grid");
   if (drawn && given > 0)
     r.fail("water", "the water line is drawn (section.dxf.layers.water_line): remove level, phreatic_line and "
                     "level_series here, or the water_line layer from the section");
   if (drawn) return;
   if (given != 1)
-    r.fail("water", "expected exactly one of level (a horizontal water surface), phreatic_line, level_series or ru "
-                    "(a pore-pressure ratio)");
+    r.fail("water", "expected exactly one of level (a horizontal water surface), phreatic_line, level_series, ru "
+                    "(a pore-pressure ratio) or pressure_grid");
   if (w.contains("ru")) {
     const double ru = r.numberIn(w.at("ru"), "water.ru", 0, 1, false, false, "a pore-pressure ratio r_u in [0, 1]");
     // γ of the ground above: the material's, if the case has one; else the user's.
@@ -288,6 +334,11 @@ void readWater(const Reader& r, const json& doc, model::Scene& s) {
     return;
   }
   if (w.contains("ground_unit_weight")) r.fail("water.ground_unit_weight", "used only with ru");
+  if (w.contains("pressure_grid")) {
+    if (w.contains("unit_weight")) r.fail("water.unit_weight", "not used with pressure_grid (its pressures are in Pa)");
+    s.water.grid = readPressureGrid(r, w.at("pressure_grid"), "water.pressure_grid");
+    return;
+  }
   if (w.contains("level_series")) {
     const json& ls = w.at("level_series");
     r.onlyKeys(ls, "water.level_series", {"csv", "time_column", "level_column"});

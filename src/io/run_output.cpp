@@ -204,6 +204,8 @@ void writeSummary(const fs::path& dir, const model::Scene& scene, const RunOptio
   j["joints"] = jointsEcho(scene);
   if (scene.water.ru > 0)
     j["water"] = {{"ru", scene.water.ru}, {"ground_unit_weight_kn_per_m3", scene.water.unitWeight / scene.water.ru / 1e3}};
+  else if (scene.water.grid)
+    j["water"] = {{"pressure_grid_points", scene.water.grid->points().size()}, {"interpolation", "thin-plate spline"}};
   else if (scene.water.active())
     j["water"] = {{"unit_weight_n_per_m3", scene.water.unitWeight}, {"line", [&] {
                     nlohmann::ordered_json l = nlohmann::ordered_json::array();

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 
 #include "ddaslope/geometry/polygon.hpp"
 #include "ddaslope/model/kinks.hpp"
@@ -126,6 +127,7 @@ void localiseOrigin(model::Scene& s) {
   s.forEachBlockPoint(shift);
   for (model::EdgeLoad& l : s.edgeLoads) l.from -= o, l.to -= o;
   for (Vec2& p : s.water.line) p -= o;
+  if (s.water.grid) s.water.grid = std::make_shared<const model::PressureGrid>(s.water.grid->translated(-o));
   for (model::MovedJointEnd& m : s.movedJointEnds) m.kink -= o;
   for (double& level : s.water.seriesLevels) level -= o.y();
 }

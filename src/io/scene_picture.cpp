@@ -7,6 +7,7 @@
 #include <cstdio>
 
 #include "ddaslope/core/errors.hpp"
+#include "ddaslope/geometry/polygon.hpp"
 
 namespace ddaslope::io {
 
@@ -51,9 +52,9 @@ void writeScenePicture(const solver::Simulation& sim, const PictureFrame& frame,
   cairo_t* cr = cairo_create(surface);
   cairo_set_source_rgb(cr, 1, 1, 1);
   cairo_paint(cr);
-  // Water below the phreatic line (a pore-pressure ratio has no free water to draw: the legend
-  // names it).
-  if (scene.water.active() && scene.water.ru <= 0) {
+  // Water below the phreatic line (a pore-pressure ratio or a pressure grid has no free water to
+  // draw: the legend names it).
+  if (scene.water.active() && scene.water.ru <= 0 && !scene.water.grid) {
     cairo_set_source_rgba(cr, 0.55, 0.75, 0.95, 0.5);
     const int steps = 200;
     for (int i = 0; i <= steps; ++i) {
@@ -83,6 +84,66 @@ void writeScenePicture(const solver::Simulation& sim, const PictureFrame& frame,
     cairo_fill_preserve(cr);
     cairo_set_source_rgb(cr, 0.15, 0.15, 0.15);
     cairo_stroke(cr);
+  }
+  // Water pressure on the free blocks' faces: a diagram outside each face, its depth the pressure
+  // (the greatest 40 px), as the pressure on a sliding surface or crack is drawn by hand.
+  double maxPressure = 0;
+  if (scene.water.active()) {
+    const model::WaterTable water = scene.water.at(sim.time());
+    // Faces between two free blocks are left out: their pressures cancel, and the diagrams of
+    // both sides would hide each other.
+    const double near = 1e-3 * std::max(worldW, worldH);
+    const auto sharedWithAFreeBlock = [&](const model::Block& own, const Vec2& mid) {
+      for (const model::Block& other : scene.blocks) {
+        if (&other == &own || other.fixed) continue;
+        for (size_t m = 0; m < other.vertices.size(); ++m)
+          if (geometry::distanceToSegment(mid, other.vertices[m], other.vertices[(m + 1) % other.vertices.size()], nullptr) <= near)
+            return true;
+      }
+      return false;
+    };
+    const auto forEachFace = [&](auto&& f) {
+      for (const model::Block& blk : scene.blocks) {
+        if (blk.fixed) continue;
+        for (size_t k = 0; k < blk.vertices.size(); ++k) {
+          const Vec2 &a = blk.vertices[k], &b = blk.vertices[(k + 1) % blk.vertices.size()];
+          if (!sharedWithAFreeBlock(blk, 0.5 * (a + b))) f(a, b);
+        }
+      }
+    };
+    const auto samples = [&](const Vec2& a, const Vec2& b) {
+      return std::clamp(static_cast<int>((b - a).norm() * scale / 6), 2, 400);
+    };
+    forEachFace([&](const Vec2& a, const Vec2& b) {
+      const int n = samples(a, b);
+      for (int i = 0; i <= n; ++i) maxPressure = std::max(maxPressure, water.pressureAt(a + (b - a) * (double(i) / n)));
+    });
+    if (maxPressure > 0) {
+      cairo_set_line_width(cr, 0.8);
+      forEachFace([&](const Vec2& a, const Vec2& b) {
+        const int n = samples(a, b);
+        const Vec2 d = (b - a).normalized(), outward(d.y(), -d.x());  // counter-clockwise blocks
+        bool any = false;
+        const auto [ax, ay] = px(a);
+        cairo_new_path(cr);
+        cairo_move_to(cr, ax, ay);
+        for (int i = 0; i <= n; ++i) {
+          const Vec2 q = a + (b - a) * (double(i) / n);
+          const double depth = 40 * water.pressureAt(q) / maxPressure;
+          any |= depth > 0;
+          const auto [x, y] = px(q);
+          cairo_line_to(cr, x + depth * outward.x(), y - depth * outward.y());
+        }
+        const auto [bx, by] = px(b);
+        cairo_line_to(cr, bx, by);
+        cairo_close_path(cr);
+        if (!any) return;
+        cairo_set_source_rgba(cr, 0.15, 0.4, 0.9, 0.35);
+        cairo_fill_preserve(cr);
+        cairo_set_source_rgba(cr, 0.1, 0.3, 0.8, 0.9);
+        cairo_stroke(cr);
+      });
+    }
   }
   // Contacts: green locked, orange sliding (open contacts are not drawn).
   for (const contact::Contact& c : sim.contacts().contacts()) {
@@ -154,13 +215,19 @@ void writeScenePicture(const solver::Simulation& sim, const PictureFrame& frame,
   cairo_set_font_size(cr, 12);
   cairo_move_to(cr, 20, height - 18);
   cairo_show_text(cr, legend);
-  if (!scene.supports.empty() || !scene.pointLoads.empty() || scene.water.ru > 0) {
-    char second[200];
+  if (!scene.supports.empty() || !scene.pointLoads.empty() || maxPressure > 0) {
+    char water[120] = "";
+    if (maxPressure > 0)
+      std::snprintf(water, sizeof water, "blue: water pressure on the faces, up to %.3g kPa%s", maxPressure / 1e3,
+                    scene.water.ru > 0   ? (" (r_u = " + std::to_string(scene.water.ru).substr(0, 5) + ")").c_str()
+                    : scene.water.grid ? " (pressure grid)"
+                                       : "");
+    char second[300];
     std::snprintf(second, sizeof second, "%s%s",
                   scene.supports.empty() && scene.pointLoads.empty()
                       ? ""
                       : "supports: dark blue holding, magenta yielded, grey dashed slack or broken   arrows: loads   ",
-                  scene.water.ru > 0 ? ("pore pressure r_u = " + std::to_string(scene.water.ru).substr(0, 5)).c_str() : "");
+                  water);
     cairo_move_to(cr, 20, height - 4);
     cairo_show_text(cr, second);
   }

@@ -105,7 +105,7 @@ VtkGrid contactsGrid(const solver::Simulation& sim) {
 VtkGrid waterGrid(const solver::Simulation& sim) {
   const model::Scene& scene = sim.scene();
   VtkGrid g;
-  if (!scene.water.active()) return g;
+  if (scene.water.line.empty()) return g;  // a pressure grid has no line to draw
   const model::WaterTable water = scene.water.at(sim.time());
   double lo = INFINITY, hi = -INFINITY;
   for (const model::Block& b : scene.blocks)
@@ -142,7 +142,7 @@ VtkGrid supportsGrid(const solver::Simulation& sim) {
 
 VtkRecorder::VtkRecorder(const std::string& dir, const model::Scene& scene)
     : dir_(dir),
-      water_(scene.water.active()),
+      water_(!scene.water.line.empty()),
       supports_(!scene.supports.empty()),
       blocks_(dir + "/blocks.pvd"),
       contacts_(dir + "/contacts.pvd"),

@@ -60,6 +60,7 @@ WaterTable WaterTable::at(double t) const {
 }
 
 double WaterTable::pressureAt(const Vec2& p) const {
+  if (grid) return grid->at(p);
   return std::max(0.0, unitWeight * (headAt(p.x()) - p.y()));
 }
 

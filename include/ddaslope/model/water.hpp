@@ -2,10 +2,12 @@
 // Water: a phreatic line (polyline) above which there is no water; below it the pressure is
 // hydrostatic, p = γw (h(x) − y), on every block edge: outer faces and joint faces alike, so a
 // sliding surface feels uplift. A horizontal reservoir level is a one-segment line.
+#include <memory>
 #include <vector>
 
 #include "ddaslope/core/types.hpp"
 #include "ddaslope/model/block.hpp"
+#include "ddaslope/model/pressure_grid.hpp"
 
 namespace ddaslope::model {
 
@@ -28,8 +30,10 @@ struct WaterTable {
   std::vector<double> seriesTimes, seriesLevels;
   /// Set when the pressure is r_u's (porePressureRatio): the ratio, for the record.
   double ru = 0;
-  bool active() const { return !line.empty(); }
-  /// Height of the phreatic line at x (m).
+  /// A pressure grid (water.pressure_grid) in place of the line: the pressure is the grid's.
+  std::shared_ptr<const PressureGrid> grid;
+  bool active() const { return !line.empty() || grid; }
+  /// Height of the phreatic line at x (m); a line is needed (not with a grid).
   double headAt(double x) const;
   /// Pressure at point p (Pa), zero above the line.
   double pressureAt(const Vec2& p) const;
