@@ -46,6 +46,18 @@ int checkCommand(const std::string& casePath, const Overrides& o) {
     std::printf("  pore pressure: r_u = %g, u = r_u·γ·h on every block face, γ = %g N/m³, h the depth below the "
                 "ground surface (the blocks' upper envelope, %zu points)\n",
                 scene.water.ru, scene.water.unitWeight / scene.water.ru, scene.water.line.size());
+  for (const auto& j : scene.joints)
+    if (j.normalStiffness > 0 || j.shearStiffness > 0) {
+      const auto stiffness = [](double k, const char* otherwise) {
+        char text[64];
+        std::snprintf(text, sizeof text, "%g GPa/m", k / 1e9);
+        return k > 0 ? std::string(text) : std::string(otherwise);
+      };
+      std::printf("  joint %s: kn = %s, ks = %s (a contact's spring is k·L over its share L of an edge-to-edge contact; "
+                  "the penalty %g N/m stands in for what is not given, and at corners)\n",
+                  j.name.c_str(), stiffness(j.normalStiffness, "the penalty").c_str(),
+                  stiffness(j.shearStiffness, "the penalty's share").c_str(), scene.normalPenalty());
+    }
   if (scene.water.grid)
     std::printf("  pore pressure: a grid of %zu points, interpolated by a thin-plate spline (exact at the points, an "
                 "affine field exactly; suction taken as 0), on every block face\n",

@@ -120,7 +120,8 @@ void readJoints(const Reader& r, const json& doc, model::Scene& s, std::map<std:
   for (const auto& [name, jn] : joints.items()) {
     const std::string p = "joints." + name;
     r.onlyKeys(jn, p, {"law", "friction_angle", "cohesion", "tensile_strength", "bond", "residual_friction_angle",
-                       "residual_cohesion", "weakening_distance", "weakening_law", "jrc", "jcs", "scale"});
+                       "residual_cohesion", "weakening_distance", "weakening_law", "jrc", "jcs", "scale",
+                       "normal_stiffness", "shear_stiffness"});
     model::JointProperties jp;
     jp.name = r.identifier(name, p);
     if (r.choice(jn, p, "law", "mohr_coulomb", {"mohr_coulomb", "barton_bandis"}) == "barton_bandis") {
@@ -139,6 +140,10 @@ void readJoints(const Reader& r, const json& doc, model::Scene& s, std::map<std:
                              : (bond == "always" ? model::BondPolicy::Always : model::BondPolicy::Initial);
     readWeakening(r, jn, p, jp);
     if (jp.bartonBandis) jp.bartonBandis->wears = jn.contains("weakening_distance");
+    // From a soft infilled joint (1e7 Pa/m) to a rigid stand-in (RS2's 1e14, UDEC's up to 1e15).
+    const std::string range = "a stiffness in [1e6, 1e15] Pa/m (stress per metre of closure or slip)";
+    jp.normalStiffness = r.optionalIn(jn, p, "normal_stiffness", 0, 1e6, 1e15, false, false, range);
+    jp.shearStiffness = r.optionalIn(jn, p, "shear_stiffness", 0, 1e6, 1e15, false, false, range);
     ids[name] = static_cast<int>(s.joints.size());
     s.joints.push_back(jp);
   }

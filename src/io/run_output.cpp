@@ -60,6 +60,12 @@ nlohmann::ordered_json jointsEcho(const model::Scene& scene) {
                     {"bond", jp.bond == model::BondPolicy::Initial ? "initial"
                                                                     : (jp.bond == model::BondPolicy::None ? "none" : "always")}};
   }
+  // Joint stiffness: the joint's own, or null where the model's penalty acts.
+  for (const model::JointProperties& jp : scene.joints) {
+    const auto given = [](double k) { return k > 0 ? nlohmann::ordered_json(k) : nlohmann::ordered_json(nullptr); };
+    out[jp.name]["normal_stiffness"] = given(jp.normalStiffness);
+    out[jp.name]["shear_stiffness"] = given(jp.shearStiffness);
+  }
   return out;
 }
 

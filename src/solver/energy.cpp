@@ -16,8 +16,8 @@ double kineticEnergy(const model::Block& b, double mass) {
 
 EnergyBudget storedEnergy(const model::Scene& scene, const std::vector<double>& mass,
                           const std::vector<Eigen::Matrix3d>& elasticity,
-                          const std::vector<contact::Contact>& contacts, double normalStiffness,
-                          double shearStiffness) {
+                          const std::vector<contact::Contact>& contacts, double pointStiffness,
+                          const ContactStiffness& stiffness) {
   EnergyBudget e;
   for (size_t k = 0; k < scene.blocks.size(); ++k) {
     const model::Block& b = scene.blocks[k];
@@ -28,12 +28,13 @@ EnergyBudget storedEnergy(const model::Scene& scene, const std::vector<double>& 
     e.elastic += 0.5 * b.moments.area * b.stress.dot(elasticity[b.material].ldlt().solve(b.stress));
   }
   for (const model::FixedPoint& f : scene.fixedPoints)
-    e.elastic += 0.5 * normalStiffness * (f.point.current - f.point.initial).squaredNorm();
+    e.elastic += 0.5 * pointStiffness * (f.point.current - f.point.initial).squaredNorm();
   // A support's work: stored while it is elastic, dissipated once it yields (counted either way:
   // the budget then only misses a gain, never invents one).
   for (const model::Support& s : scene.supports) e.elastic += s.work;
   for (const contact::Contact& c : contacts) {
     if (!c.closed()) continue;
+    const auto [normalStiffness, shearStiffness] = stiffness(c);
     e.elastic += 0.5 * c.normalForce * c.normalForce / normalStiffness;
     // The shear spring is elastic-plastic: locked, it holds S; sliding, it stays stretched to
     // the friction it slides against (Simulation::slidingFriction: N tan φ plus c·L while a

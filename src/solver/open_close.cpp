@@ -57,8 +57,8 @@ std::vector<ContactResponse> Simulation::contactResponses(const StepState& s) co
   parallelFor(static_cast<int>(s.a.contacts.size()), threads_, [&](int k) {
     const size_t q = static_cast<size_t>(k);
     const Vec12 d = s.gather(s.a.contacts[q]);
-    response[q].normalForce = penalty_ * s.kin[q].penetration(d);
-    response[q].lockedShear = s.ps * s.kin[q].shearFromAnchor(d);
+    response[q].normalForce = normalStiffness(s.a.contacts[q]) * s.kin[q].penetration(d);
+    response[q].lockedShear = shearStiffness(s.a.contacts[q]) * s.kin[q].shearFromAnchor(d);
     response[q].slip = s.kin[q].slip(d);
   });
   return response;
@@ -115,7 +115,7 @@ double Simulation::heldViolation(const StepState& s, size_t q, const ContactJudg
   const ContactResponse& r = response[q];
   if (c.state == ContactState::Sliding && j.state == ContactState::Sliding) return double(INFINITY);
   if (c.state == ContactState::Sliding)
-    return std::max(0.0, -r.normalForce) + (j.state == ContactState::Locked ? s.ps * std::abs(r.slip) : 0.0);
+    return std::max(0.0, -r.normalForce) + (j.state == ContactState::Locked ? shearStiffness(c) * std::abs(r.slip) : 0.0);
   const auto excess = [&](size_t k) {
     const Contact& h = s.a.contacts[k];
     return std::abs(response[k].lockedShear) - contact::shearStrength(h.bonded, response[k].normalForce, strengthOf(h));
@@ -153,7 +153,7 @@ void Simulation::applyJudgement(StepState& s, size_t q, const ContactJudgement& 
     // sliding keeps the friction force it carried (force continuity), or the load it drops
     // would jump onto its neighbours and break them.
     c.lockRatio = c.geometry.ratio;
-    if (c.state == ContactState::Sliding) c.lockRatio -= c.slideDirection * s.friction[q] / (s.ps * edgeLength(c));
+    if (c.state == ContactState::Sliding) c.lockRatio -= c.slideDirection * s.friction[q] / (shearStiffness(c) * edgeLength(c));
     s.kin.replace(q, assembly::linearise(scene_.blocks[c.key().vertexBlock], scene_.blocks[c.key().edgeBlock], c));
   }
   // A brittle joint's contact drops to its residual strength the moment it slides.

@@ -42,6 +42,11 @@ Simulation::Simulation(model::Scene scene)
     if (!b.fixed) stepLimit_ = std::min(stepLimit_, 0.1 * 2 * b.moments.area / geometry::perimeter(b.vertices));
   searchDistance_ = 2.5 * stepLimit_;
   penalty_ = scene_.normalPenalty();
+  shearPenalty_ = penalty_ * scene_.settings.shearPenaltyRatio;
+  for (const model::JointProperties& j : scene_.joints) {
+    jointNormalStiffness_.push_back(j.normalStiffness);
+    jointShearStiffness_.push_back(j.shearStiffness);
+  }
   for (const model::Material& m : scene_.materials)
     elasticity_.push_back(assembly::elasticityMatrix(m.youngModulus, m.poissonRatio, scene_.settings.plane));
   for (size_t b = 0; b < scene_.blocks.size(); ++b) {
@@ -84,7 +89,7 @@ void Simulation::commit(Attempt& a, double dt, bool weakens) {
     blk.applyDisplacement(d);
   }
   for (const Contact& c : a.contacts)
-    if (c.closed()) stats_.maxPenetration = std::max(stats_.maxPenetration, c.normalForce / penalty_);
+    if (c.closed()) stats_.maxPenetration = std::max(stats_.maxPenetration, c.normalForce / normalStiffness(c));
   contacts_.contacts() = std::move(a.contacts);
   a.contacts.clear();
   if (weakens)
@@ -201,8 +206,9 @@ StepRecord Simulation::advance() {
 }
 
 EnergyBudget Simulation::energy() const {
-  EnergyBudget e = storedEnergy(scene_, mass_, elasticity_, contacts_.contacts(), penalty_,
-                                penalty_ * scene_.settings.shearPenaltyRatio);
+  EnergyBudget e = storedEnergy(scene_, mass_, elasticity_, contacts_.contacts(), penalty_, [&](const Contact& c) {
+    return std::pair{normalStiffness(c), shearStiffness(c)};
+  });
   e.loadWork = loadWork_;
   e.groundMotionWork = groundMotionWork_;
   return e;

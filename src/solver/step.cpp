@@ -34,8 +34,7 @@ constexpr double kJudgingResidual = 1e-8;
 }  // namespace
 
 Simulation::Attempt Simulation::tryStep(double dt, Regime regime, bool freezeCycling, bool holdSmallViolations) {
-  StepState s(dt, regime, freezeCycling, holdSmallViolations, penalty_ * scene_.settings.shearPenaltyRatio,
-              active_, contacts_.contacts(), kinematics_, matrix_);
+  StepState s(dt, regime, freezeCycling, holdSmallViolations, active_, contacts_.contacts(), kinematics_, matrix_);
   updatePattern(s.a.contacts);
   assembleBlockTerms(dt, regime, s.blockK, s.blockF, s.a.loads, s.blockMagnitude, &s.a.groundLoads);
   s.rhs.resize(6 * nActive_);
@@ -140,12 +139,12 @@ void Simulation::assembleContactTerms(StepState& s) {
     if (!c.closed()) continue;
     if (s.stiffnessChanged) {
       const auto [i, j] = s.ends(c);
-      s.terms.addSpring(i, j, penalty_, s.kin[q].normal);
-      if (c.state == ContactState::Locked) s.terms.addSpring(i, j, s.ps, s.kin[q].shearLocked);
+      s.terms.addSpring(i, j, normalStiffness(c), s.kin[q].normal);
+      if (c.state == ContactState::Locked) s.terms.addSpring(i, j, shearStiffness(c), s.kin[q].shearLocked);
     }
-    s.addTerm(c, -penalty_ * s.kin[q].penetration0, s.kin[q].normal);
+    s.addTerm(c, -normalStiffness(c) * s.kin[q].penetration0, s.kin[q].normal);
     if (c.state == ContactState::Locked) {
-      s.addTerm(c, -s.ps * s.kin[q].shearLocked0, s.kin[q].shearLocked);
+      s.addTerm(c, -shearStiffness(c) * s.kin[q].shearLocked0, s.kin[q].shearLocked);
     } else {
       // Friction N tanφ (plus c·L while a softening bond lasts) opposite to the slip, as a pair
       // of point loads: K stays symmetric.
@@ -165,9 +164,10 @@ void Simulation::assembleContactTerms(StepState& s) {
 }
 
 void Simulation::followStateChanges(StepState& s) {
+  const auto springsOf = [&](const Contact& c) { return std::pair{normalStiffness(c), shearStiffness(c)}; };
   if (!s.followFactor || !s.stiffnessChanged || !factorSprings_.valid() || factorSprings_.holdsSame(s.a.contacts))
     return;
-  factorSprings_.changes(s.springs(penalty_), matrix_.blockSize(), s.added, s.removed);
+  factorSprings_.changes(s.springs(springsOf), matrix_.blockSize(), s.added, s.removed);
   const size_t rank = s.added.size() + s.removed.size();
   if (rank > kMaxFactorModificationRank || !linearSolver_.modifyFactor(matrix_, s.added, s.removed))
     factorSprings_.invalidate();
@@ -199,7 +199,7 @@ bool Simulation::solveIterate(StepState& s) {
   const bool solved = nActive_ == 0 || solveSystem(s.system(), s.rhs, s.a.d, floors.solve);
   s.solvedStrictly = nActive_ == 0 || linearSolver_.lastSolveWithin(floors.roundOff);
   if (s.followFactor && linearSolver_.stats().factorisations > factorisationsBefore) {
-    factorSprings_.reset(s.springs(penalty_));
+    factorSprings_.reset(s.springs([&](const Contact& c) { return std::pair{normalStiffness(c), shearStiffness(c)}; }));
     factorBlockTerms_ = s.blockTerms;
   }
   // Time in a refactorising solve counts as factorisation, the rest as solve.

@@ -67,14 +67,12 @@ struct Simulation::StepState {
   /// An attempt at a step of `dt` in `regime` from the step's contacts (copied: the attempt
   /// judges its own) and kinematics (edited in place, restored when the attempt ends).
   /// `freezeCycling`, `holdSmallViolations`: see Simulation::tryStep.
-  StepState(double dt, Regime regime, bool freezeCycling, bool holdSmallViolations, double shearPenalty,
-            const std::vector<int>& active, const std::vector<contact::Contact>& contacts,
+  StepState(double dt, Regime regime, bool freezeCycling, bool holdSmallViolations, const std::vector<int>& active, const std::vector<contact::Contact>& contacts,
             std::vector<assembly::ContactKinematics>& kinematics, assembly::BlockSparseMatrix& matrix)
       : dt(dt),
         regime(regime),
         freezeCycling(freezeCycling),
         holdSmallViolations(holdSmallViolations),
-        ps(shearPenalty),
         active(active),
         kin(kinematics),
         lazySystem(terms, matrix),
@@ -119,16 +117,19 @@ struct Simulation::StepState {
     if (j >= 0) d.tail<6>() = a.d.segment<6>(6 * j);
     return d;
   }
-  /// The springs the closed contacts put into K now (what a factor that follows them holds).
-  std::vector<ContactSprings> springs(double penalty) const {
+  /// The springs the closed contacts put into K now (what a factor that follows them holds), with
+  /// their normal and shear stiffness from `stiffness(contact)`.
+  template <class Stiffness>
+  std::vector<ContactSprings> springs(const Stiffness& stiffness) const {
     std::vector<ContactSprings> out;
     out.reserve(a.contacts.size());
     for (size_t q = 0; q < a.contacts.size(); ++q) {
       const contact::Contact& c = a.contacts[q];
       if (!c.closed()) continue;
       const auto [i, j] = ends(c);
-      ContactSprings sp{c.key(), i, j, penalty, 0, kin[q].normal, Vec12::Zero()};
-      if (c.state == contact::ContactState::Locked) sp.shearK = ps, sp.shear = kin[q].shearLocked;
+      const auto [kn, ks] = stiffness(c);
+      ContactSprings sp{c.key(), i, j, kn, 0, kin[q].normal, Vec12::Zero()};
+      if (c.state == contact::ContactState::Locked) sp.shearK = ks, sp.shear = kin[q].shearLocked;
       out.push_back(sp);
     }
     return out;
@@ -141,7 +142,6 @@ struct Simulation::StepState {
   const double dt;
   const Regime regime;
   const bool freezeCycling, holdSmallViolations;
-  const double ps;  ///< shear penalty (N/m)
   const std::vector<int>& active;
   Stopwatch sw;
   Attempt a;

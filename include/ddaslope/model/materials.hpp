@@ -60,6 +60,11 @@ struct JointProperties {
     bool wears = false;    ///< JRC falls to 0 over the weakening distance (given one)
   };
   std::optional<BartonBandis> bartonBandis;
+  /// Joint stiffness per unit joint length, normal and shear (Pa/m), as RS2 and UDEC take it;
+  /// 0: the model's penalty. A contact's spring is kn·L (ks·L) over the share L of an
+  /// edge-to-edge contact it stands for (half the overlap); a corner touching an edge, which has
+  /// no length, keeps the penalty (docs/contact-model.md, "Joint stiffness").
+  double normalStiffness = 0, shearStiffness = 0;
 
   /// A joint of constant strength (no softening besides the brittle bond).
   static JointProperties coulomb(std::string name, double frictionAngle, double cohesion = 0, double tensileStrength = 0);

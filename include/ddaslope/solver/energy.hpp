@@ -2,6 +2,8 @@
 // The mechanical energy of a scene, for the energy-balance check: no spurious gain.
 // Friction, the open-close law and the γ = 1 integrator only dissipate, so
 // kinetic + gravity potential + elastic − work of the other loads never rises in a correct run.
+#include <functional>
+#include <utility>
 #include <vector>
 
 #include "ddaslope/contact/contact_set.hpp"
@@ -24,10 +26,12 @@ struct EnergyBudget {
 double kineticEnergy(const model::Block& b, double mass);
 
 /// The stored energies of the scene's current state; `loadWork` is left 0 (the caller sums it).
-/// `mass[b]`: block b's mass (kg/m); the spring stiffnesses are those of every contact.
+/// `mass[b]`: block b's mass (kg/m); `pointStiffness` the fixed points' springs (N/m), and
+/// `stiffness(c)` a contact's normal and shear springs (N/m).
+using ContactStiffness = std::function<std::pair<double, double>(const contact::Contact&)>;
 EnergyBudget storedEnergy(const model::Scene& scene, const std::vector<double>& mass,
                           const std::vector<Eigen::Matrix3d>& elasticity,
-                          const std::vector<contact::Contact>& contacts, double normalStiffness,
-                          double shearStiffness);
+                          const std::vector<contact::Contact>& contacts, double pointStiffness,
+                          const ContactStiffness& stiffness);
 
 }  // namespace ddaslope::solver

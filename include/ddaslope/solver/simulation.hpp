@@ -298,6 +298,16 @@ class Simulation {
   /// True (with the attempt's failure) once the contact states repeat in a cycle.
   bool stopCycling(StepState& s);
   contact::ContactStrength strengthOf(const contact::Contact& c) const;
+  /// The normal and shear springs of contact c (N/m): its joint's kn·L and ks·L over the share L
+  /// of the edge-to-edge contact it stands for, or the model's penalties.
+  double normalStiffness(const contact::Contact& c) const {
+    const double kn = jointNormalStiffness_[c.joint];
+    return kn > 0 && c.geometry.overlap > 0 ? kn * 0.5 * c.geometry.overlap : penalty_;
+  }
+  double shearStiffness(const contact::Contact& c) const {
+    const double ks = jointShearStiffness_[c.joint];
+    return ks > 0 && c.geometry.overlap > 0 ? ks * 0.5 * c.geometry.overlap : shearPenalty_;
+  }
   /// Shear a sliding contact resists with: N tanφ, plus c·L while a softening bond lasts.
   double slidingResistance(const contact::Contact& c) const;
   /// The friction force each sliding contact applies (0 for the others): its own resistance, but
@@ -325,6 +335,9 @@ class Simulation {
   double stepLimit_ = 0;       ///< largest vertex displacement in one step (m)
   double searchDistance_ = 0;  ///< 2.5 × stepLimit_
   double penalty_ = 0;
+  double shearPenalty_ = 0;  ///< penalty_ × the shear ratio
+  /// Each joint's kn and ks (Pa/m), 0 where it has none.
+  std::vector<double> jointNormalStiffness_, jointShearStiffness_;
   double lightestPenetration_ = INFINITY;  ///< 1e-3 of the lightest free block's W/p (m)
   double time_ = 0;
   double loadWork_ = 0;  ///< work of water and point loads since t = 0 (J/m)
