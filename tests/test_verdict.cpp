@@ -10,6 +10,7 @@
 #include "ddaslope/calibration/strength_search.hpp"
 #include "ddaslope/calibration/verdict.hpp"
 #include "ddaslope/io/case_reader.hpp"
+#include "ddaslope/model/incline_scene.hpp"
 #include "ddaslope/model/settings_override.hpp"
 #include "ddaslope/solver/simulation.hpp"
 
@@ -149,4 +150,76 @@ TEST(Verdict, ElasticSettlementIsNotFailure) {
   for (size_t k = 0; k < drawn.size(); ++k)
     settled = std::max(settled, (sim.monitorsAfterHeldEquilibrium()[k] - drawn[k].point.current).norm());
   EXPECT_GT(settled, r.failureDisplacement);
+}
+
+namespace {
+
+calibration::TrialResult judged(model::Scene s, bool earlyRest) {
+  s.settings.earlyRest = earlyRest;
+  return calibration::judgeStability(s);
+}
+
+}  // namespace
+
+// Early rest (issue #42) stops a trial that stands for good, with the verdict of its whole run: a
+// block on 30° with φ = 35° stands (benchmarks.md A3) and stops within a quarter of its run,
+// where the whole run ends at rest too.
+TEST(EarlyRest, AStandingBlockStopsEarlyWithTheWholeRunsVerdict) {
+  model::InclineSpec spec;
+  spec.alphaDeg = 30, spec.phiDeg = 35, spec.duration = 2;
+  const calibration::TrialResult early = judged(model::makeInclineScene(spec), true);
+  const calibration::TrialResult whole = judged(model::makeInclineScene(spec), false);
+  EXPECT_TRUE(whole.stable) << whole.reason;
+  EXPECT_FALSE(whole.earlyRest);
+  EXPECT_NEAR(whole.timeReached, spec.duration, 1e-9);
+  EXPECT_TRUE(early.stable) << early.reason;
+  EXPECT_TRUE(early.earlyRest);
+  EXPECT_LE(early.timeReached, 0.25 * spec.duration);
+}
+
+// A creep too slow to see at first is never stopped as rest: on 30° with φ 0.02° below it the
+// block slides at g (sin α − cos α tan φ) = 3.95e-3 m/s² (benchmarks.md A2), a smooth path with
+// no scatter that grows as t²; the early and whole runs agree that it fails, and neither stops
+// as rest.
+TEST(EarlyRest, ASlowCreepIsNeverCalledRest) {
+  model::InclineSpec spec;
+  spec.alphaDeg = 30, spec.phiDeg = 29.98, spec.duration = 2;
+  ASSERT_NEAR(model::slidingAcceleration(spec), 3.95e-3, 1e-4);
+  const calibration::TrialResult early = judged(model::makeInclineScene(spec), true);
+  const calibration::TrialResult whole = judged(model::makeInclineScene(spec), false);
+  EXPECT_FALSE(whole.stable) << whole.reason;
+  EXPECT_FALSE(early.stable) << early.reason;
+  EXPECT_FALSE(early.earlyRest);
+  EXPECT_EQ(early.rule, whole.rule);
+}
+
+// A scene that changes with time (a load growing at a rate) runs its whole duration, however
+// still it stands now.
+TEST(EarlyRest, AGrowingLoadKeepsTheRunGoing) {
+  model::InclineSpec spec;
+  spec.alphaDeg = 30, spec.phiDeg = 35, spec.duration = 2;
+  model::Scene s = model::makeInclineScene(spec);
+  model::PointLoad load;
+  load.point = s.monitors[0].point;
+  load.rate = Vec2(1e-3, 0);
+  s.pointLoads.push_back(load);
+  const calibration::TrialResult r = judged(s, true);
+  EXPECT_TRUE(r.stable) << r.reason;
+  EXPECT_FALSE(r.earlyRest);
+  EXPECT_NEAR(r.timeReached, spec.duration, 1e-9);
+}
+
+// The property that matters: the factor of safety is the same with and without early rest, on a
+// rigid wedge, a toppling slope and a two-joint slab (the searches' own trials, bit for bit the
+// same verdicts; the shipped Vajont and toppling cases likewise in docs/performance.md).
+TEST(EarlyRest, FactorOfSafetyIsTheSameWithAndWithout) {
+  for (const char* name : {"planar_failure.json", "toppling_slope.json", "bilinear_slab.json"}) {
+    model::Scene s = io::readCase(std::string(DDASLOPE_SOURCE_DIR) + "/cases/" + name);
+    s.settings.earlyRest = false;
+    const calibration::FactorOfSafetyResult whole = calibration::factorOfSafety(s, {}, 5e-3);
+    s.settings.earlyRest = true;
+    const calibration::FactorOfSafetyResult early = calibration::factorOfSafety(s, {}, 5e-3);
+    ASSERT_TRUE(whole.found && early.found) << name;
+    EXPECT_EQ(early.factor, whole.factor) << name;
+  }
 }

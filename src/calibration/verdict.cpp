@@ -163,6 +163,34 @@ void judgeAllWindows(const PointPaths& paths, const std::vector<std::string>& na
   }
 }
 
+/// Whether the scene can change by itself: no ground motion record, load rates, water level
+/// series or supports (whose states are judged apart from the contacts').
+bool timeInvariant(const model::Scene& s) {
+  if (s.seismic.ground.active() || !s.water.seriesTimes.empty() || !s.supports.empty()) return false;
+  for (const model::PointLoad& l : s.pointLoads)
+    if (l.rate.squaredNorm() > 0) return false;
+  return true;
+}
+
+/// Early rest's condition (3) on one set of paths at time t of a run of `duration`, windows w:
+/// every point's net motion over the last window is noise (within kNoiseFactor times its scatter
+/// about a smooth path over the two windows, itself under 1e-3 of `endFloor`), or, grown to the end of the run by the larger of its
+/// last growth and a doubling every window, stays under half the end's floor `endFloor`.
+bool restsToTheEnd(const PointPaths& paths, double t, double w, double duration, double endFloor) {
+  const double windowsLeft = (duration - t) / w;
+  for (size_t m = 0; m < paths.points; ++m) {
+    const Vec3 a = paths.at(m, t - 2 * w), b = paths.at(m, t - w), c = paths.at(m, t);
+    const double last = (c - b).norm(), previous = (b - a).norm();
+    // Noise: round-off, far below what the end's floor could notice (a vibration loud enough to
+    // hide a creep is not let through).
+    const double noise = kNoiseFactor * paths.scatter(m, t - 2 * w, t);
+    if (last <= noise && previous <= noise && noise <= 1e-3 * endFloor) continue;
+    const double growth = std::max(2.0, previous > 0 ? last / previous : INFINITY);
+    if (!(last * std::pow(growth, windowsLeft) <= 0.5 * endFloor)) return false;
+  }
+  return true;
+}
+
 }  // namespace
 
 const char* describe(VerdictRule rule) {
@@ -230,11 +258,32 @@ TrialResult judgeStability(const model::Scene& scene, const VerdictSettings& set
   for (int b : watch.blocks) blockNames.push_back("block " + scene.blocks[static_cast<size_t>(b)].id);
   std::vector<Vec2> start;  // monitor positions at t = 0, after the equilibrium
   PointPaths monitorPath(0), blockPath(scene.settings.duration / 64);
+  // Early rest (verdict.hpp): the contact state changes so far at each block sample.
+  const bool earlyRest = scene.settings.earlyRest && timeInvariant(scene);
+  std::vector<long> changesAt;
+  const auto changes = [&] {
+    const solver::RunStatistics& st = sim.statistics();
+    return st.stickSlipChanges + st.openCloseChanges + st.frozenSteps + st.cycles + st.cuts;
+  };
   const auto record = [&] {
     std::vector<Vec3> p;
     for (const model::Monitor& m : sim.scene().monitors) p.emplace_back(m.point.current.x(), m.point.current.y(), 0);
     monitorPath.record(sim.time(), p);
-    if (blockPath.due(sim.time())) blockPath.record(sim.time(), watch.positions(sim.scene()));
+    if (blockPath.due(sim.time())) {
+      blockPath.record(sim.time(), watch.positions(sim.scene()));
+      changesAt.push_back(changes());
+    }
+  };
+  const auto atRestForGood = [&] {
+    const double t = sim.time(), w = 0.25 * t, duration = sim.scene().settings.duration;
+    if (t < duration / 8 || blockPath.time.size() < 9) return false;
+    // (2) No change since the last two windows began (the sample at or before t − 2w).
+    const size_t k0 = static_cast<size_t>(std::upper_bound(blockPath.time.begin(), blockPath.time.end(), t - 2 * w) -
+                                          blockPath.time.begin());
+    if (k0 == 0 || changesAt.back() != changesAt[k0 - 1]) return false;
+    // (3) Every point rests to the end of the run.
+    const double endFloor = resting * 0.25 * duration;
+    return restsToTheEnd(monitorPath, t, w, duration, endFloor) && restsToTheEnd(blockPath, t, w, duration, endFloor);
   };
   // The largest motion since t = 0 of any monitor or any point of a free block: monitors report
   // where the user looks, but a slope fails wherever it moves. Each point's own largest motion
@@ -311,8 +360,14 @@ TrialResult judgeStability(const model::Scene& scene, const VerdictSettings& set
     for (;;) {
       while (!sim.finished()) {
         sim.advance();
+        const bool sampled = blockPath.due(sim.time());
         record();
         if (passedThreshold()) return finish(VerdictRule::PassedDisplacement);
+        if (earlyRest && sampled && atRestForGood()) {
+          r.earlyRest = true;
+          r.decidedBy = "every point (early rest)";
+          return finish(VerdictRule::AtRest);
+        }
       }
       WindowJudgement j;
       double worstScore = -1;

@@ -418,7 +418,7 @@ void readAnalysis(const Reader& r, const json& doc, model::Scene& s) {
   r.onlyKeys(a, p, {"duration", "time_step", "mode", "plane", "penalty", "penalty_factor",
                     "shear_penalty_ratio", "max_displacement_ratio", "open_close_max_iterations",
                     "friction_tolerance", "max_step_cuts", "max_steps", "wall_clock_limit", "step_cut_factor", "initial_equilibrium",
-                    "settle_dynamically",
+                    "settle_dynamically", "early_rest",
                     "equilibrium_max_steps", "edge_parallel_tolerance", "initial_contact_tolerance",
                     "contact_state_tolerance", "contact_treatment", "failure_displacement", "resting_speed", "preset",
                     "blocks", "strain_damping", "joint_end_offset", "system_path"});
@@ -467,6 +467,7 @@ void readAnalysis(const Reader& r, const json& doc, model::Scene& s) {
   st.stepCutFactor = r.optionalIn(a, p, "step_cut_factor", st.stepCutFactor, 0, 1, true, true, "a factor in (0, 1)");
   st.initialEquilibrium = r.boolean(a, p, "initial_equilibrium", st.initialEquilibrium);
   st.settleDynamically = r.boolean(a, p, "settle_dynamically", st.settleDynamically);
+  st.earlyRest = r.boolean(a, p, "early_rest", st.earlyRest);
   st.equilibriumMaxSteps = r.integerIn(a, p, "equilibrium_max_steps", st.equilibriumMaxSteps, 1, 100000);
   st.edgeParallelToleranceDeg = r.optionalIn(a, p, "edge_parallel_tolerance", st.edgeParallelToleranceDeg, 0, 10,
                                              true, false, "an angle in (0, 10] degrees");

@@ -239,6 +239,7 @@ void writeSummary(const fs::path& dir, const model::Scene& scene, const RunOptio
                    {"step_cut_factor", s.stepCutFactor},
                    {"initial_equilibrium", s.initialEquilibrium},
                    {"settle_dynamically", s.settleDynamically},
+                   {"early_rest", s.earlyRest},
                    {"edge_parallel_tolerance", s.edgeParallelToleranceDeg},
                    {"initial_contact_tolerance", s.initialContactTolerance},
                    {"contact_state_tolerance", s.contactStateTolerance},

@@ -34,6 +34,18 @@ namespace ddaslope::calibration {
 /// or a transient that neither grows nor dies), is not guessed: the run is extended once by its
 /// duration and judged again on quarters of the longer run. Neither rule depends on Δt: sliding
 /// at constant acceleration is integrated exactly by Newmark β = 1/2, γ = 1.
+///
+/// **Early rest** (analysis.early_rest, on by default): a run stops as stable before its duration
+/// once it cannot change by itself. Checked from an eighth of the duration on, at each of the 64
+/// samples of the blocks' paths, with windows the quarters of the time so far: (1) nothing in the
+/// scene changes with time (no ground motion record, load rates, water level series or supports);
+/// (2) no contact changed state, slid or was held frozen over the last two windows; (3) every
+/// monitor's and free block's net motion over each of them is under 1e-3 of the resting
+/// speed's floor, and not growing; (4) the contacts' reserve (Simulation::stateReserve: the least
+/// displacement that would open, close or let slide one of them) is at least ten times the
+/// largest excursion of any point over those windows. Then every contact stays as it is, the
+/// scene is an elastic system settling under constant loads (Newmark γ = 1 dissipates), and the
+/// end-of-run verdict could only be "at rest".
 struct VerdictSettings {
   /// m; ≤ 0: 1e-3 of the model half-size w0.
   double failureDisplacement = 0;
@@ -80,6 +92,7 @@ struct TrialResult {
   int extensions = 0;              ///< how many times, each by the duration
   bool marginal = false;           ///< still marginal after the extension: decided by the 90 % rule
   bool converged = true;           ///< false if the run hit non-convergence (counted as failing)
+  bool earlyRest = false;          ///< stopped before its duration: at rest for good (early rest)
   const char* reason = "";         ///< describe(rule)
 };
 

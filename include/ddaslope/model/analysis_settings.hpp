@@ -101,6 +101,9 @@ struct AnalysisSettings {
   /// the analysis starts at rest. Off: the analysis may start with an out-of-balance force whose
   /// release slides and softens joints (kept for comparison).
   bool settleDynamically = true;
+  /// A trial of a search stops as soon as it is at rest for good (calibration/verdict.hpp, early
+  /// rest); off: every stable trial runs its whole duration (for comparison).
+  bool earlyRest = true;
   /// Largest number of static solves spent on the initial equilibrium.
   int equilibriumMaxSteps = 200;
   /// Two edges of different blocks within this angle (degrees) are an edge-to-edge contact.
