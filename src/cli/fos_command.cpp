@@ -123,8 +123,8 @@ int fosCommand(const std::string& casePath, const Overrides& o, const FosOptions
   // A tension crack searched: F at its least safe position, the search's table printed first.
   std::optional<CrackSearch> crack;
   if (scene.crackSearch) {
-    // Near the least safe position F is flat (1e-5 over 0.1 m on Hoek & Bray's planar failure):
-    // the positions are searched ten times finer than the answer, which is cheap beside them.
+    // Near the least safe position F is flat (docs/case-format.md, "Tension crack"): the positions
+    // are searched ten times finer than the answer, which is cheap beside them.
     FosOptions single = opt;
     single.threads = 1;
     single.vtkDir.clear();

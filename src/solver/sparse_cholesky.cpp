@@ -127,8 +127,8 @@ SparseCholesky::~SparseCholesky() = default;
 bool SparseCholesky::factorise(const assembly::BlockSparseMatrix& k) {
   cholmod_sparse a = Impl::view(k);
   // Debian's CHOLMOD opens an OpenMP team in every factorisation, whatever OMP_NUM_THREADS says.
-  // On a small system (a real slope's search) the team's wake-ups cost 10 % of the search and the
-  // work is too small to share; a large one gains 2–4 % a step from it (docs/performance.md).
+  // On a small system (a real slope's search) the work is too small to share and the team's
+  // wake-ups cost more than they save; a large one gains a little (docs/performance.md).
   // The setting is the process's: searches' threads factorising side by side agree on it.
   omp_set_max_active_levels(a.nrow < static_cast<size_t>(model::kLargeSystemMinUnknowns) ? 0 : 1);
   if (!impl_->factor || impl_->patternVersion != k.patternVersion() || impl_->patternOwner != &k) {

@@ -2,8 +2,8 @@
 // The least safe position of a feature along a range (a tension crack behind the crest): the
 // position where the factor of safety is least, or the critical strength greatest. Each value is
 // a search of its own with a finite precision, and near the extreme the curve is flat (on Hoek &
-// Bray's dry planar failure F changes by 1e-5 over 0.1 m), so a golden-section search would follow
-// the searches' rounding. Instead: a grid over the range, a finer grid around its best point, and a
+// Bray's dry planar failure, far flatter than the searches' rounding), so a golden-section search
+// would follow that rounding. Instead: a grid over the range, a finer grid around its best point, and a
 // least-squares parabola through the fine points, whose vertex is the answer.
 #include <functional>
 #include <string>
