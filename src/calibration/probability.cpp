@@ -10,6 +10,7 @@
 #include <Eigen/Core>
 
 #include "ddaslope/core/errors.hpp"
+#include "ddaslope/calibration/reliability.hpp"
 
 namespace ddaslope::calibration {
 namespace {
@@ -180,6 +181,9 @@ const char* name(DistributionKind kind) {
 const char* name(model::Sampling s) { return s == model::Sampling::MonteCarlo ? "monte_carlo" : "latin_hypercube"; }
 
 const char* name(model::ProbabilityMeasure m) { return m == model::ProbabilityMeasure::Verdict ? "verdict" : "fos"; }
+const char* name(model::ProbabilityMethod m) {
+  return m == model::ProbabilityMethod::Sampling ? "sampling" : "importance_sampling";
+}
 
 std::string describe(const Distribution& d) {
   const std::string kind = name(d.kind);
@@ -224,25 +228,47 @@ SampleDesign::SampleDesign(const model::ProbabilitySpec& spec)
   }
 }
 
-std::vector<double> SampleDesign::normals(int index) const {
+std::vector<double> SampleDesign::independent(int index) const {
   DDASLOPE_ASSERT(index >= 0 && index < samples_, "sample index out of range");
   const int n = inputs();
-  std::vector<double> z(static_cast<size_t>(n)), x(static_cast<size_t>(n), 0.0);
+  std::vector<double> z(static_cast<size_t>(n));
   for (int i = 0; i < n; ++i) {
     const double v = counterUniform(seed_, static_cast<std::uint64_t>(i), static_cast<std::uint64_t>(index));
     z[static_cast<size_t>(i)] = sampling_ == model::Sampling::LatinHypercube
                                     ? stratumNormal(permutations_[static_cast<size_t>(i)][static_cast<size_t>(index)], samples_, v)
                                     : stratumNormal(0, 1, v);
   }
+  return z;
+}
+
+std::vector<double> SampleDesign::correlated(const std::vector<double>& u) const {
+  const int n = inputs();
+  std::vector<double> x(static_cast<size_t>(n), 0.0);
   for (int i = 0; i < n; ++i)
-    for (int j = 0; j <= i; ++j) x[static_cast<size_t>(i)] += cholesky_[static_cast<size_t>(i) * n + j] * z[static_cast<size_t>(j)];
+    for (int j = 0; j <= i; ++j) x[static_cast<size_t>(i)] += cholesky_[static_cast<size_t>(i) * n + j] * u[static_cast<size_t>(j)];
   return x;
+}
+
+std::vector<double> SampleDesign::normals(int index) const {
+  std::vector<double> u = independent(index);
+  for (size_t i = 0; i < centre_.size(); ++i) u[i] += centre_[i];
+  return correlated(u);
 }
 
 std::vector<double> SampleDesign::values(int index) const {
   std::vector<double> x = normals(index);
   for (size_t i = 0; i < x.size(); ++i) x[i] = valueAt(inputs_[i].distribution, x[i]);
   return x;
+}
+
+std::vector<double> SampleDesign::valuesAt(const std::vector<double>& u) const {
+  std::vector<double> x = correlated(u);
+  for (size_t i = 0; i < x.size(); ++i) x[i] = valueAt(inputs_[i].distribution, x[i]);
+  return x;
+}
+
+double SampleDesign::weight(int index) const {
+  return centre_.empty() ? 1.0 : importanceWeight(independent(index), centre_);
 }
 
 const char* name(SampleOutcome outcome) {
@@ -265,35 +291,100 @@ Interval wilsonInterval(int failures, int n, double z) {
 
 double reliabilityIndex(double pf) { return -normalQuantile(pf); }
 
-ProbabilitySummary summarise(const std::vector<SampleResult>& samples, int planned, bool factor) {
+namespace {
+
+/// The mean of terms and its 95 % interval by the normal approximation (importance sampling).
+struct MeanEstimate {
+  double mean = 0, standardError = 0;
+  Interval interval;
+};
+
+MeanEstimate meanOf(const std::vector<double>& terms) {
+  MeanEstimate e;
+  const double n = static_cast<double>(terms.size());
+  if (terms.empty()) return {std::numeric_limits<double>::quiet_NaN(), 0, {0, 1}};
+  double sum = 0;
+  for (double t : terms) sum += t;
+  e.mean = sum / n;
+  double ss = 0;
+  for (double t : terms) ss += (t - e.mean) * (t - e.mean);
+  e.standardError = terms.size() > 1 ? std::sqrt(ss / (n - 1) / n) : 0;
+  // No failing sample: the sample variance is 0 and says nothing about Pf's upper end.
+  const bool none = sum == 0;
+  e.interval = {std::max(0.0, e.mean - kZ95 * e.standardError),
+                none ? std::numeric_limits<double>::quiet_NaN() : e.mean + kZ95 * e.standardError};
+  return e;
+}
+
+}  // namespace
+
+ProbabilitySummary summarise(const std::vector<SampleResult>& samples, int planned, bool factor,
+                             const std::vector<double>* weights) {
   ProbabilitySummary s;
   s.planned = planned;
   s.finished = static_cast<int>(samples.size());
   s.hasFactor = factor;
+  s.weighted = weights != nullptr;
   std::map<std::string, int> rules;
   std::vector<double> f;
-  for (const SampleResult& r : samples) {
+  // Importance sampling: each sample's term I·w of Pf's estimate; and those with the
+  // non-converged samples counted as stable and as failing, over every finished sample.
+  std::vector<double> terms, asStable, asFailing;
+  double runningMean = 0, runningSquares = 0;
+  for (size_t k = 0; k < samples.size(); ++k) {
+    const SampleResult& r = samples[k];
+    const double w = weights ? (*weights)[k] : 1.0;
     ++rules[r.rule];
+    asStable.push_back(r.outcome == SampleOutcome::Fails ? w : 0.0);
+    asFailing.push_back(r.outcome != SampleOutcome::Stable ? w : 0.0);
     if (r.outcome == SampleOutcome::NotConverged) {
       ++s.notConverged;
       continue;
     }
     ++s.converged;
     s.failures += r.outcome == SampleOutcome::Fails;
-    const Interval w = wilsonInterval(s.failures, s.converged);
-    s.runningPf.push_back(static_cast<double>(s.failures) / s.converged);
-    s.runningLow.push_back(w.low);
-    s.runningHigh.push_back(w.high);
+    terms.push_back(r.outcome == SampleOutcome::Fails ? w : 0.0);
+    if (s.weighted) {
+      // The estimate after each converged sample, in index order (Welford's running variance).
+      const double n = static_cast<double>(terms.size()), delta = terms.back() - runningMean;
+      runningMean += delta / n;
+      runningSquares += delta * (terms.back() - runningMean);
+      const double se = n > 1 ? std::sqrt(runningSquares / (n - 1) / n) : 0;
+      s.runningPf.push_back(runningMean);
+      s.runningLow.push_back(std::max(0.0, runningMean - kZ95 * se));
+      s.runningHigh.push_back(runningMean + kZ95 * se);
+    } else {
+      const Interval wi = wilsonInterval(s.failures, s.converged);
+      s.runningPf.push_back(static_cast<double>(s.failures) / s.converged);
+      s.runningLow.push_back(wi.low);
+      s.runningHigh.push_back(wi.high);
+    }
     if (factor && std::isfinite(r.factor)) f.push_back(r.factor);
   }
   s.rules.assign(rules.begin(), rules.end());
-  s.pf = s.converged > 0 ? static_cast<double>(s.failures) / s.converged : std::numeric_limits<double>::quiet_NaN();
-  s.pfInterval = wilsonInterval(s.failures, s.converged);
-  if (s.finished > 0) {
-    s.pfNotConvergedStable = static_cast<double>(s.failures) / s.finished;
-    s.pfNotConvergedFailing = static_cast<double>(s.failures + s.notConverged) / s.finished;
-    s.pfBounds = {wilsonInterval(s.failures, s.finished).low,
-                  wilsonInterval(s.failures + s.notConverged, s.finished).high};
+  if (s.weighted) {
+    const MeanEstimate e = meanOf(terms);
+    s.pf = e.mean;
+    s.pfStandardError = e.standardError;
+    s.pfInterval = e.interval;
+    s.coefficientOfVariation = e.mean > 0 ? e.standardError / e.mean : std::numeric_limits<double>::quiet_NaN();
+    if (s.finished > 0) {
+      const MeanEstimate a = meanOf(asStable), b = meanOf(asFailing);
+      s.pfNotConvergedStable = a.mean;
+      s.pfNotConvergedFailing = b.mean;
+      s.pfBounds = {a.interval.low, b.interval.high};
+    }
+  } else {
+    s.pf = s.converged > 0 ? static_cast<double>(s.failures) / s.converged : std::numeric_limits<double>::quiet_NaN();
+    s.pfInterval = wilsonInterval(s.failures, s.converged);
+    if (s.converged > 0 && s.failures > 0)
+      s.coefficientOfVariation = std::sqrt((1 - s.pf) / (s.pf * s.converged));
+    if (s.finished > 0) {
+      s.pfNotConvergedStable = static_cast<double>(s.failures) / s.finished;
+      s.pfNotConvergedFailing = static_cast<double>(s.failures + s.notConverged) / s.finished;
+      s.pfBounds = {wilsonInterval(s.failures, s.finished).low,
+                    wilsonInterval(s.failures + s.notConverged, s.finished).high};
+    }
   }
   s.beta = reliabilityIndex(s.pf);
   s.betaInterval = {reliabilityIndex(s.pfInterval.high), reliabilityIndex(s.pfInterval.low)};

@@ -70,10 +70,10 @@ int checkCommand(const std::string& casePath, const Overrides& o) {
                   m.name.c_str(), m.youngModulus);
   if (ddaslope::io::hasProbabilitySection(casePath)) {
     const ddaslope::io::ProbabilityJob job = ddaslope::io::readProbabilityJob(casePath);
-    std::printf("  probability section: %zu uncertain inputs, %d samples (%s, measure %s): valid; run it with "
+    std::printf("  probability section: %zu uncertain inputs, %d samples (%s, %s, measure %s): valid; run it with "
                 "ddaslope probability\n",
-                job.spec.inputs.size(), job.spec.samples, ddaslope::calibration::name(job.spec.sampling),
-                ddaslope::calibration::name(job.spec.measure));
+                job.spec.inputs.size(), job.spec.samples, ddaslope::calibration::name(job.spec.method),
+                ddaslope::calibration::name(job.spec.sampling), ddaslope::calibration::name(job.spec.measure));
   }
   return kExitOk;
 }

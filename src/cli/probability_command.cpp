@@ -8,8 +8,10 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 #include <set>
 
+#include "ddaslope/calibration/reliability.hpp"
 #include "ddaslope/calibration/sample_runner.hpp"
 #include "ddaslope/core/errors.hpp"
 #include "ddaslope/core/task_farm.hpp"
@@ -39,6 +41,13 @@ io::ProbabilityJob readStudy(const std::string& path, const ProbabilityOptions& 
     s.measure = opt.measure == "fos" ? model::ProbabilityMeasure::FactorOfSafety : model::ProbabilityMeasure::Verdict;
   if (!opt.sampling.empty())
     s.sampling = opt.sampling == "monte_carlo" ? model::Sampling::MonteCarlo : model::Sampling::LatinHypercube;
+  if (!opt.method.empty())
+    s.method = opt.method == "importance_sampling" ? model::ProbabilityMethod::ImportanceSampling
+                                                   : model::ProbabilityMethod::Sampling;
+  if (s.method == model::ProbabilityMethod::ImportanceSampling && s.measure == model::ProbabilityMeasure::FactorOfSafety)
+    throw InputError(job.file, "probability.measure",
+                     "importance sampling judges each sample by one forward run's verdict: expected the measure "
+                     "verdict, found fos (F's statistics over weighted samples are not computed)");
   return job;
 }
 
@@ -110,7 +119,7 @@ std::vector<SampleResult> prepareFolder(const ProbabilityOptions& opt, SampleTab
                                        "starts again");
   if (opt.overwrite)
     for (const char* name : {"samples.csv", "probability_settings.json", "summary.json", "summary.partial.json",
-                             "pf_convergence.png", "samples_plane.png", "fos_histogram.png"})
+                             "pf_convergence.png", "samples_plane.png", "fos_histogram.png", "sensitivities.png"})
       fs::remove(opt.outDir + "/" + name);
   std::vector<SampleResult> done;
   if (opt.resume && fs::exists(table.path())) {
@@ -121,11 +130,65 @@ std::vector<SampleResult> prepareFolder(const ProbabilityOptions& opt, SampleTab
   return done;
 }
 
+/// FORM's design point of the study (docs/probability.md, *Importance sampling*), found with
+/// forward runs' verdicts, and what the summary reports of it.
+io::DesignPointReport designPoint(const calibration::SampleDesign& design, const SceneMaker& make, const calibration::SampleSettings& settings, int threads) {
+  calibration::LimitState limit;
+  limit.dimensions = design.inputs();
+  limit.accepts = [&](const std::vector<double>& u) {
+    try {
+      make(design.valuesAt(u));
+      return true;
+    } catch (const InputError&) {
+      return false;
+    }
+  };
+  limit.judge = [&](const std::vector<double>& u) {
+    const std::vector<double> values = design.valuesAt(u);
+    model::Scene scene;
+    try {
+      scene = make(values);
+    } catch (const InputError&) {
+      // A combination the case refuses inside a ray's reach: counted as failing, which only
+      // moves the sampling centre (the samples themselves are checked before they run).
+      return calibration::PointVerdict::NotConverged;
+    }
+    const SampleResult r = calibration::evaluateSample(scene, settings, -1, values);
+    return r.outcome == calibration::SampleOutcome::Stable ? calibration::PointVerdict::Stable
+           : r.outcome == calibration::SampleOutcome::Fails ? calibration::PointVerdict::Fails
+                                                            : calibration::PointVerdict::NotConverged;
+  };
+  calibration::DesignPointSettings s;
+  s.threads = threads;
+  io::DesignPointReport report;
+  report.point = calibration::findDesignPoint(limit, s);
+  if (!report.point.found) return report;
+  report.values = design.valuesAt(report.point.u);
+  report.importance = calibration::importanceVector(report.point.alpha, design.cholesky());
+  return report;
+}
+
+void printDesignPoint(const io::ProbabilityJob& job, const io::DesignPointReport& d) {
+  const calibration::DesignPoint& p = d.point;
+  std::printf("  design point (FORM): β = %.4f, Pf ≈ Φ(−β) = %.4g; %d forward runs on %d rays, %d secant steps%s\n",
+              p.beta, calibration::normalCdf(-p.beta), p.runs, p.rays, p.steps,
+              p.converged ? "" : " (the direction did not settle: the sampling centre is the nearest point found)");
+  std::printf("    %-44s %14s %9s %9s %8s\n", "input", "value", "alpha", "gamma", "gamma^2");
+  for (size_t i = 0; i < d.values.size(); ++i)
+    std::printf("    %-44s %14.6g %9.4f %9.4f %7.1f%%\n", job.spec.inputs[i].path.c_str(), d.values[i], p.alpha[i],
+                d.importance[i], 100 * d.importance[i] * d.importance[i]);
+  if (!p.otherRegions.empty())
+    std::fprintf(stderr, "ddaslope: warning: %s: failure was also found in %zu direction(s) more than 90° from the "
+                         "design point's: importance sampling around one point may miss their share of Pf (compare "
+                         "with \"method\": \"sampling\")\n",
+                 job.file.c_str(), p.otherRegions.size());
+}
+
 void printStudy(const io::ProbabilityJob& job) {
   const model::ProbabilitySpec& s = job.spec;
-  std::printf("probability of failure: %s (%s), measure %s, %s, %d samples, seed %llu\n", job.casePath.c_str(),
-              job.file.c_str(), calibration::name(s.measure), calibration::name(s.sampling), s.samples,
-              static_cast<unsigned long long>(s.seed));
+  std::printf("probability of failure: %s (%s), %s, measure %s, %s, %d samples, seed %llu\n", job.casePath.c_str(),
+              job.file.c_str(), calibration::name(s.method), calibration::name(s.measure), calibration::name(s.sampling),
+              s.samples, static_cast<unsigned long long>(s.seed));
   for (const auto& in : s.inputs)
     std::printf("  %s: %s\n", in.path.c_str(), calibration::describe(in.distribution).c_str());
   for (const auto& c : s.correlations)
@@ -137,8 +200,17 @@ void printSummary(const calibration::ProbabilitySummary& s) {
   if (s.converged == 0) {
     std::printf("  no sample converged: no probability of failure\n");
   } else {
-    std::printf("  Pf = %.4g: %d of %d converged samples fail; 95 %% interval %.4g-%.4g (Wilson score)\n", s.pf,
-                s.failures, s.converged, s.pfInterval.low, s.pfInterval.high);
+    if (s.weighted && std::isfinite(s.pfInterval.high))
+      std::printf("  Pf = %.4g (importance sampling: %d of %d converged samples fail, weighted); standard error "
+                  "%.3g, coefficient of variation %.3f; 95 %% interval %.4g-%.4g (normal approximation)\n",
+                  s.pf, s.failures, s.converged, s.pfStandardError, s.coefficientOfVariation, s.pfInterval.low,
+                  s.pfInterval.high);
+    else if (s.weighted)
+      std::printf("  Pf: no estimate, none of %d importance samples fails (the design point is not where failure "
+                  "is)\n", s.converged);
+    else
+      std::printf("  Pf = %.4g: %d of %d converged samples fail; 95 %% interval %.4g-%.4g (Wilson score)\n", s.pf,
+                  s.failures, s.converged, s.pfInterval.low, s.pfInterval.high);
     if (std::isfinite(s.beta))
       std::printf("  reliability index β = Φ⁻¹(1 − Pf) = %.4g (%.4g to %.4g)\n", s.beta, s.betaInterval.low,
                   s.betaInterval.high);
@@ -180,6 +252,10 @@ void addProbabilityOptions(CLI::App* cmd, std::string& path, ProbabilityOptions&
           "0 to 2^64 - 1"));
   cmd->add_option("--measure", opt.measure, "verdict (one run per sample) or fos (a strength-reduction search per sample)")
       ->check(CLI::IsMember({"verdict", "fos"}));
+  cmd->add_option("--method", opt.method,
+                  "sampling (from the inputs' distribution) or importance_sampling (around FORM's design point: "
+                  "small Pf); default: the section's")
+      ->check(CLI::IsMember({"sampling", "importance_sampling"}));
   cmd->add_option("--sampling", opt.sampling, "monte_carlo or latin_hypercube (default: the section's)")
       ->check(CLI::IsMember({"monte_carlo", "latin_hypercube"}));
   cmd->add_option("--threads", opt.threads, "samples run at once (the result does not depend on it)")
@@ -205,7 +281,23 @@ int probabilityCommand(const std::string& path, const Overrides& o, const Probab
   settings.measure = spec.measure;
   settings.fosWidth = spec.fosWidth;
   for (const auto& name : spec.fosJoints) settings.fosJoints.push_back(jointIndex(reference, name, job.casePath));
-  const calibration::SampleDesign design(spec);
+  calibration::SampleDesign design(spec);
+  std::optional<io::DesignPointReport> form;
+  if (spec.method == model::ProbabilityMethod::ImportanceSampling) {
+    // Every process finds the same design point (its runs depend on the study only), so the
+    // samples it deals need nothing but their index.
+    if (processRank() == 0 && !opt.json)
+      std::printf("probability of failure: searching the design point (FORM) of %s with forward runs, %d at once\n",
+                  job.casePath.c_str(), opt.threads);
+    std::fflush(stdout);
+    form = designPoint(design, make, settings, opt.threads);
+    if (!form->point.found) {
+      std::fprintf(stderr, "ddaslope: %s: no design point: %s (%d forward runs)\n", job.file.c_str(),
+                   form->point.message.c_str(), form->point.runs);
+      return kExitNonConvergence;
+    }
+    design.centreOn(form->point.u);
+  }
   checkDrawnValues(job, design, make);
   const std::string line = settingsLine(reference);
   // One sample's run: the same on any thread or rank (its values come from its index).
@@ -229,7 +321,8 @@ int probabilityCommand(const std::string& path, const Overrides& o, const Probab
   const std::string csv = opt.outDir + "/samples.csv";
   const std::string summaryPath = opt.outDir + "/summary.json", partialPath = opt.outDir + "/summary.partial.json";
   SampleTable table(csv, spec);
-  std::vector<SampleResult> done = prepareFolder(opt, table, design, settingsFingerprint(job, o.settings, line));
+  std::vector<SampleResult> done =
+      prepareFolder(opt, table, design, settingsFingerprint(job, o.settings, line, design.centre()));
   std::set<int> have;
   for (const auto& r : done) have.insert(r.index);
   std::vector<int> todo;
@@ -238,6 +331,7 @@ int probabilityCommand(const std::string& path, const Overrides& o, const Probab
   const int resumed = static_cast<int>(done.size());
   if (!opt.json) {
     printStudy(job);
+    if (form) printDesignPoint(job, *form);
     std::printf("  forward runs at %s\n", line.c_str());
     if (opt.resume) std::printf("  resumed: %d samples in %s, %zu to run now\n", resumed, csv.c_str(), todo.size());
   }
@@ -251,7 +345,8 @@ int probabilityCommand(const std::string& path, const Overrides& o, const Probab
   double sampleTime = 0;
   table.open();
   farm->run(todo, runSample, [&](int, const TaskResult& bytes) {
-    const SampleResult r = calibration::unpackSample(bytes);
+    SampleResult r = calibration::unpackSample(bytes);
+    r.weight = design.weight(r.index);
     table.append(r);
     done.push_back(r);
     sampleTime += r.runTime;
@@ -266,13 +361,17 @@ int probabilityCommand(const std::string& path, const Overrides& o, const Probab
   });
   log->finish(true, std::to_string(finished) + " samples run");
   std::sort(done.begin(), done.end(), [](const SampleResult& a, const SampleResult& b) { return a.index < b.index; });
+  std::vector<double> weights;
+  for (const SampleResult& r : done) weights.push_back(r.weight);
   const calibration::ProbabilitySummary summary =
-      calibration::summarise(done, spec.samples, spec.measure == model::ProbabilityMeasure::FactorOfSafety);
+      calibration::summarise(done, spec.samples, spec.measure == model::ProbabilityMeasure::FactorOfSafety,
+                             form ? &weights : nullptr);
   const bool complete = summary.finished == spec.samples;
-  const std::string json = summaryJson(job, summary, line, complete);
+  const io::DesignPointReport* formReport = form ? &*form : nullptr;
+  const std::string json = summaryJson(job, summary, line, complete, formReport);
   writeAtomically(complete ? summaryPath : partialPath, json);
   if (complete) fs::remove(partialPath);
-  const std::vector<std::string> pictures = writePictures(job, summary, done, opt.outDir);
+  const std::vector<std::string> pictures = writePictures(job, summary, done, opt.outDir, formReport);
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (opt.json) {
     std::printf("%s", json.c_str());
@@ -280,6 +379,8 @@ int probabilityCommand(const std::string& path, const Overrides& o, const Probab
     printSummary(summary);
     std::printf("  %zu samples run now (%d resumed), %.2f s wall on %s (%.2f s of sample run time)\n", todo.size(),
                 resumed, wall, farm->describe().c_str(), sampleTime);
+    if (form)
+      std::printf("  forward runs: %d for the design point, %d samples\n", form->point.runs, summary.finished);
     std::string files;
     for (const auto& p : pictures) files += ", " + p;
     std::printf("  wrote %s, %s%s\n", csv.c_str(), complete ? "summary.json" : "summary.partial.json", files.c_str());

@@ -15,6 +15,7 @@ struct ProbabilityOptions {
   bool seedGiven = false;     ///< --seed given (0 is a seed)
   std::string measure;        ///< verdict or fos; empty: the section's
   std::string sampling;       ///< monte_carlo or latin_hypercube; empty: the section's
+  std::string method;         ///< sampling or importance_sampling; empty: the section's
   int threads = 2;            ///< samples run at once
   bool resume = false;        ///< continue the study in outDir, running only the samples it lacks
   bool overwrite = false;     ///< start again in an outDir that holds a study

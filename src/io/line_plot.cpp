@@ -84,7 +84,9 @@ void writePng(const LinePlot& plot, const std::string& path) {
   text(cr, (px(x0) + px(x1)) / 2, height - 22, plot.xLabel, 0.5, 0);
   text(cr, 28, (py(y0) + py(y1)) / 2, plot.yLabel, 0.5, 0, -M_PI / 2);
   // Series.
-  const double colours[][3] = {{0.12, 0.35, 0.70}, {0.80, 0.25, 0.15}, {0.15, 0.60, 0.25}, {0.50, 0.30, 0.65}};
+  // Eight colours a reader tells apart (the first four as before, then orange, black, sky blue, pink).
+  const double colours[][3] = {{0.12, 0.35, 0.70}, {0.80, 0.25, 0.15}, {0.15, 0.60, 0.25}, {0.50, 0.30, 0.65},
+                               {0.90, 0.60, 0.00}, {0.10, 0.10, 0.10}, {0.34, 0.71, 0.91}, {0.80, 0.47, 0.65}};
   cairo_set_font_size(cr, 13);
   double labelWidth = 0;
   for (const auto& s : plot.series) {
@@ -95,7 +97,7 @@ void writePng(const LinePlot& plot, const std::string& path) {
   const double legendX = width - right - 45 - labelWidth;
   for (size_t k = 0; k < plot.series.size(); ++k) {
     const PlotSeries& s = plot.series[k];
-    const double* c = colours[k % 4];
+    const double* c = colours[k % 8];
     cairo_set_source_rgb(cr, c[0], c[1], c[2]);
     cairo_set_line_width(cr, 2);
     bool pen = false;
@@ -112,8 +114,17 @@ void writePng(const LinePlot& plot, const std::string& path) {
       for (size_t i = 0; i < s.x.size(); ++i)
         if (std::isfinite(s.y[i])) {
           cairo_new_path(cr);
-          cairo_arc(cr, px(s.x[i]), py(s.y[i]), 3.5, 0, 2 * M_PI);
-          cairo_fill(cr);
+          cairo_arc(cr, px(s.x[i]), py(s.y[i]), s.markerRadius, 0, 2 * M_PI);
+          if (s.markerRadius > 3.5) {
+            // A large marker stands out on a cloud of small ones: filled, with a white ring.
+            cairo_fill_preserve(cr);
+            cairo_set_source_rgb(cr, 1, 1, 1);
+            cairo_set_line_width(cr, 1.5);
+            cairo_stroke(cr);
+            cairo_set_source_rgb(cr, c[0], c[1], c[2]);
+          } else {
+            cairo_fill(cr);
+          }
         }
     // Legend, top right.
     const double ly = top + 18 + 20 * k;

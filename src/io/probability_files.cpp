@@ -24,6 +24,10 @@ bool factorMeasure(const model::ProbabilitySpec& spec) {
   return spec.measure == model::ProbabilityMeasure::FactorOfSafety;
 }
 
+bool importance(const model::ProbabilitySpec& spec) {
+  return spec.method == model::ProbabilityMethod::ImportanceSampling;
+}
+
 std::vector<std::string> splitFields(const std::string& line) {
   std::vector<std::string> out;
   size_t start = 0;
@@ -98,6 +102,7 @@ std::string SampleTable::header() const {
   for (const auto& in : spec_.inputs) h += "," + in.path;
   h += ",outcome,rule";
   if (factorMeasure(spec_)) h += ",factor_of_safety";
+  if (importance(spec_)) h += ",weight";
   return h + ",max_displacement_m,run_time_s";
 }
 
@@ -115,7 +120,7 @@ std::vector<SampleResult> SampleTable::read(const calibration::SampleDesign& des
   if (line != header())
     throw InputError(path_, "line 1", "expected the header \"" + header() + "\", found \"" + line +
                                           "\": the samples of another study (other inputs or measure)");
-  const size_t n = spec_.inputs.size(), fields = n + (factorMeasure(spec_) ? 6 : 5);
+  const size_t n = spec_.inputs.size(), fields = n + 5 + factorMeasure(spec_) + importance(spec_);
   std::set<int> seen;
   for (int number = 2; std::getline(lines, line); ++number) {
     const std::string where = "line " + std::to_string(number);
@@ -148,6 +153,13 @@ std::vector<SampleResult> SampleTable::read(const calibration::SampleDesign& des
     size_t k = n + 3;
     bool ok = true;
     if (factorMeasure(spec_)) ok &= parseNumber(f[k++], &r.factor);
+    if (importance(spec_)) {
+      ok &= parseNumber(f[k++], &r.weight);
+      if (ok && r.weight != design.weight(r.index))
+        throw InputError(path_, where, "sample " + f[0] + " has the weight " + f[k - 1] + ", but this study's design "
+                                           "point gives " + exactText(design.weight(r.index)) +
+                                           ": the samples of another study");
+    }
     ok &= parseNumber(f[k++], &r.maxDisplacement);
     ok &= parseNumber(f[k], &r.runTime);
     if (!ok) throw InputError(path_, where, "expected numbers after the rule, found \"" + line + "\"");
@@ -174,6 +186,7 @@ void SampleTable::append(const SampleResult& r) {
   field(calibration::name(r.outcome));
   field(r.rule);
   if (factorMeasure(spec_)) field(exactText(r.factor));
+  if (importance(spec_)) field(exactText(r.weight));
   field(exactText(r.maxDisplacement));
   char time[32];
   std::snprintf(time, sizeof time, "%.4f", r.runTime);
@@ -185,11 +198,18 @@ void SampleTable::append(const SampleResult& r) {
 }
 
 std::string settingsFingerprint(const io::ProbabilityJob& job, const std::vector<std::string>& caseSettings,
-                                const std::string& settingsLine) {
+                                const std::string& settingsLine, const std::vector<double>& centre) {
   const model::ProbabilitySpec& s = job.spec;
   io::JsonRecord j;
   j.set("format", "ddaslope probability study 1").set("case_digest", job.caseDigest);
   j.set("measure", calibration::name(s.measure)).set("sampling", calibration::name(s.sampling)).set("seed", s.seed);
+  if (importance(s)) {
+    // The digits that read back to the same doubles: a design point that moved by one ulp changes
+    // every sample.
+    std::vector<std::string> u;
+    for (double v : centre) u.push_back(exactText(v));
+    j.set("method", calibration::name(s.method)).set("design_point_u", u);
+  }
   // Monte Carlo samples do not depend on N (more may be added by resuming with a larger --samples);
   // a Latin hypercube's strata do.
   if (s.sampling == model::Sampling::LatinHypercube) j.set("samples", s.samples);
@@ -235,16 +255,35 @@ void writeAtomically(const std::string& path, const std::string& text) {
 }
 
 std::string summaryJson(const io::ProbabilityJob& job, const calibration::ProbabilitySummary& s,
-                        const std::string& settingsLine, bool complete) {
+                        const std::string& settingsLine, bool complete, const DesignPointReport* design) {
   const model::ProbabilitySpec& spec = job.spec;
   io::JsonRecord j;
   j.set("study", job.file).set("case", job.casePath).set("complete", complete);
+  j.set("method", calibration::name(spec.method));
   j.set("measure", calibration::name(spec.measure)).set("sampling", calibration::name(spec.sampling));
   j.set("seed", spec.seed).set("samples_planned", s.planned).set("samples_finished", s.finished);
   appendStudy(j, spec);
   j.set("converged", s.converged).set("not_converged", s.notConverged).set("failing", s.failures);
   j.set("probability_of_failure", s.pf);
-  j.set("interval_95", std::vector<double>{s.pfInterval.low, s.pfInterval.high}).set("interval_method", "Wilson score");
+  j.set("interval_95", std::vector<double>{s.pfInterval.low, s.pfInterval.high});
+  j.set("interval_method", s.weighted ? "normal approximation, Pf ± 1.96 standard errors" : "Wilson score");
+  if (s.weighted) j.set("standard_error", s.pfStandardError);
+  j.set("coefficient_of_variation", s.coefficientOfVariation);
+  if (design) {
+    const calibration::DesignPoint& d = design->point;
+    j.set("forward_runs", d.runs + s.finished);
+    io::JsonRecord dp;
+    dp.set("reliability_index_form", d.beta).set("probability_of_failure_form", calibration::normalCdf(-d.beta));
+    dp.set("u", d.u).set("runs", d.runs).set("rays", d.rays).set("secant_steps", d.steps);
+    dp.set("converged", d.converged).set("other_failure_regions", static_cast<int>(d.otherRegions.size()));
+    for (size_t i = 0; i < spec.inputs.size(); ++i) {
+      io::JsonRecord in;
+      in.set("path", spec.inputs[i].path).set("value", design->values[i]).set("alpha", d.alpha[i]);
+      in.set("importance_gamma", design->importance[i]).set("importance_share", design->importance[i] * design->importance[i]);
+      dp.append("inputs", in);
+    }
+    j.set("design_point", dp);
+  }
   j.set("not_converged_as_stable", s.pfNotConvergedStable).set("not_converged_as_failing", s.pfNotConvergedFailing);
   j.set("bounds_95_with_not_converged", std::vector<double>{s.pfBounds.low, s.pfBounds.high});
   // β is ±∞ at Pf = 0 or 1: JSON has no infinity, so null there.
@@ -265,13 +304,15 @@ std::string summaryJson(const io::ProbabilityJob& job, const calibration::Probab
 }
 
 std::vector<std::string> writePictures(const io::ProbabilityJob& job, const calibration::ProbabilitySummary& s,
-                                       const std::vector<SampleResult>& sorted, const std::string& dir) {
+                                       const std::vector<SampleResult>& sorted, const std::string& dir,
+                                       const DesignPointReport* design) {
   std::vector<std::string> written;
   const std::string title = job.casePath;
   {
     // The interval as one outline: its lower end forward, its upper end back.
     io::PlotSeries pf{"Pf", {}, s.runningPf, false};
-    io::PlotSeries band{"95 % interval (Wilson)", {}, s.runningLow, false};
+    io::PlotSeries band{s.weighted ? "95 % interval (normal approximation)" : "95 % interval (Wilson)", {}, s.runningLow,
+                        false};
     for (size_t k = 0; k < s.runningPf.size(); ++k) pf.x.push_back(static_cast<double>(k + 1));
     band.x = pf.x;
     band.x.insert(band.x.end(), pf.x.rbegin(), pf.x.rend());
@@ -288,6 +329,13 @@ std::vector<std::string> writePictures(const io::ProbabilityJob& job, const cali
       for (const SampleResult& r : sorted)
         if (r.outcome == o) p.x.push_back(r.inputs[ax]), p.y.push_back(r.inputs[ay]);
       series.push_back(p);
+    }
+    if (design) {
+      series.push_back({"design point (FORM)", {design->values[ax]}, {design->values[ay]}, true, false, 7});
+      std::vector<double> median(job.spec.inputs.size(), 0.0);
+      calibration::SampleDesign centred(job.spec);
+      const std::vector<double> m = centred.valuesAt(median);
+      series.push_back({"medians", {m[ax]}, {m[ay]}, true, false, 7});
     }
     io::writePng({"Samples: " + title, job.spec.inputs[ax].path, job.spec.inputs[ay].path, series},
                  dir + "/samples_plane.png");
@@ -321,6 +369,23 @@ std::vector<std::string> writePictures(const io::ProbabilityJob& job, const cali
     io::writePng({"Factor of safety: " + title, "F (strength reduction)", "samples", {hist, normal, one}},
                  dir + "/fos_histogram.png");
     written.push_back("fos_histogram.png");
+  }
+  if (design) {
+    // One bar per input, each its own series so that the legend names it.
+    std::vector<io::PlotSeries> bars;
+    for (size_t i = 0; i < design->importance.size(); ++i) {
+      const double g = design->importance[i], x = static_cast<double>(i + 1);
+      // γᵢ > 0: the limit state falls as input i grows, so failure lies at its high values.
+      const std::string side = g > 0 ? "high" : "low";
+      char label[64];
+      std::snprintf(label, sizeof label, ": %.0f %%, failure at %s values", 100 * g * g, side.c_str());
+      bars.push_back({job.spec.inputs[i].path + label, {x - 0.3, x - 0.3, x + 0.3, x + 0.3, x - 0.3},
+                      {0, g * g, g * g, 0, 0}, false});
+    }
+    io::writePng({"Sensitivities at the design point: " + title, "input", "importance γ²",
+                  bars},
+                 dir + "/sensitivities.png");
+    written.push_back("sensitivities.png");
   }
   return written;
 }

@@ -187,7 +187,7 @@ void readFos(const SectionReader& r, const json& j, model::ProbabilitySpec& s) {
 
 model::ProbabilitySpec readSection(const SectionReader& r, const json& j) {
   const std::string p = "probability";
-  r.onlyKeys(j, p, {"samples", "sampling", "measure", "seed", "inputs", "correlations", "fos"});
+  r.onlyKeys(j, p, {"samples", "method", "sampling", "measure", "seed", "inputs", "correlations", "fos"});
   model::ProbabilitySpec s;
   const json& n = r.required(j, p, "samples");
   if (!n.is_number_integer() || n.get<long long>() < 1 || n.get<long long>() > kMaxSamples)
@@ -198,6 +198,10 @@ model::ProbabilitySpec readSection(const SectionReader& r, const json& j) {
     s.sampling = r.choice(j.at("sampling"), p + ".sampling", {"monte_carlo", "latin_hypercube"}) == "monte_carlo"
                      ? model::Sampling::MonteCarlo
                      : model::Sampling::LatinHypercube;
+  if (j.contains("method"))
+    s.method = r.choice(j.at("method"), p + ".method", {"sampling", "importance_sampling"}) == "importance_sampling"
+                   ? model::ProbabilityMethod::ImportanceSampling
+                   : model::ProbabilityMethod::Sampling;
   if (j.contains("measure"))
     s.measure = r.choice(j.at("measure"), p + ".measure", {"verdict", "fos"}) == "fos"
                     ? model::ProbabilityMeasure::FactorOfSafety
@@ -225,6 +229,9 @@ model::ProbabilitySpec readSection(const SectionReader& r, const json& j) {
                                               : std::vector<model::InputCorrelation>{};
   // Read whatever the measure: `--measure fos` may choose it for a section that says "verdict".
   if (j.contains("fos")) readFos(r, j.at("fos"), s);
+  if (s.method == model::ProbabilityMethod::ImportanceSampling && s.measure == model::ProbabilityMeasure::FactorOfSafety)
+    r.fail(p + ".measure", "importance sampling judges each sample by one forward run's verdict: expected the "
+                           "measure verdict, found fos (F's statistics over weighted samples are not computed)");
   return s;
 }
 

@@ -47,6 +47,7 @@ double distributionSd(const model::Distribution& d);
 const char* name(model::DistributionKind kind);
 const char* name(model::Sampling sampling);      ///< "monte_carlo", "latin_hypercube"
 const char* name(model::ProbabilityMeasure m);   ///< "verdict", "fos"
+const char* name(model::ProbabilityMethod m);    ///< "sampling", "importance_sampling"
 /// E.g. "normal (mean 20000, sd 5000)", "truncated_normal (mean 30, sd 3 before truncation to [20, 40])".
 std::string describe(const model::Distribution& d);
 
@@ -71,8 +72,23 @@ class SampleDesign {
   std::vector<double> normals(int index) const;
   /// The input values of sample `index`, in case units.
   std::vector<double> values(int index) const;
+  /// The input values at the independent standard normals u: the marginals at L u.
+  std::vector<double> valuesAt(const std::vector<double>& u) const;
+
+  /// Importance sampling: every sample's independent normals are shifted by `centre` (the design
+  /// point, reliability.hpp), and the sample is weighted by importanceWeight.
+  void centreOn(std::vector<double> centre) { centre_ = std::move(centre); }
+  const std::vector<double>& centre() const { return centre_; }
+  /// The weight of sample `index` in Pf's estimate: 1 without a centre.
+  double weight(int index) const;
+  /// L, row-major.
+  const std::vector<double>& cholesky() const { return cholesky_; }
 
  private:
+  /// Sample `index`'s independent standard normals, before the centre and the correlation.
+  std::vector<double> independent(int index) const;
+  std::vector<double> correlated(const std::vector<double>& u) const;
+  std::vector<double> centre_;                   ///< empty: no importance sampling
   std::vector<model::UncertainInput> inputs_;
   int samples_ = 0;
   model::Sampling sampling_ = model::Sampling::LatinHypercube;
@@ -96,6 +112,7 @@ struct SampleResult {
   double factor = std::numeric_limits<double>::quiet_NaN();  ///< F (factor-of-safety measure)
   double maxDisplacement = 0;  ///< m, the largest monitor displacement after t = 0 (at F = 1)
   double runTime = 0;          ///< s of wall time; never part of a summary
+  double weight = 1;           ///< importance sampling: SampleDesign::weight of its index
 };
 
 struct Interval {
@@ -116,8 +133,16 @@ struct ProbabilitySummary {
   int converged = 0;     ///< stable + failing
   int notConverged = 0;
   int failures = 0;
-  double pf = 0;         ///< failures / converged
-  Interval pfInterval;   ///< Wilson, 95 %, on the converged samples
+  /// Sampling: failures / converged. Importance sampling (weighted): Σ w over the failing
+  /// samples / converged, w the samples' weights.
+  double pf = 0;
+  /// Sampling: Wilson, 95 %, on the converged samples. Importance sampling: pf ± 1.96 standard
+  /// errors (the normal approximation; its upper end NaN when no sample fails).
+  Interval pfInterval;
+  bool weighted = false;
+  double pfStandardError = 0;  ///< importance sampling
+  /// The estimate's standard error over Pf: √((1 − Pf)/(Pf n)) for sampling; NaN when no sample fails.
+  double coefficientOfVariation = std::numeric_limits<double>::quiet_NaN();
   /// The non-converged samples counted as stable, and as failing, over all finished samples; and
   /// the Wilson interval from the lower end of the first to the upper end of the second.
   double pfNotConvergedStable = 0, pfNotConvergedFailing = 0;
@@ -134,7 +159,9 @@ struct ProbabilitySummary {
 };
 
 /// The summary of `samples` (sorted by index, as resumed or finished) of a study of `planned`
-/// samples; `factor`: the factor-of-safety measure.
-ProbabilitySummary summarise(const std::vector<SampleResult>& samples, int planned, bool factor);
+/// samples; `factor`: the factor-of-safety measure; `weights`: importance sampling's weight of
+/// each sample (in the order of `samples`), none for plain sampling.
+ProbabilitySummary summarise(const std::vector<SampleResult>& samples, int planned, bool factor,
+                             const std::vector<double>* weights = nullptr);
 
 }  // namespace ddaslope::calibration

@@ -10,6 +10,7 @@ struct PlotSeries {
   std::vector<double> x, y;
   bool markers = true;
   bool lines = true;  ///< false: markers only (a scatter)
+  double markerRadius = 3.5;  ///< px; larger markers are drawn with a white ring (a point to find)
 };
 
 struct LinePlot {

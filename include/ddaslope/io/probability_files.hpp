@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "ddaslope/calibration/probability.hpp"
+#include "ddaslope/calibration/reliability.hpp"
 #include "ddaslope/io/probability_reader.hpp"
 
 namespace ddaslope::io {
@@ -44,11 +45,19 @@ class SampleTable {
   long keepBytes_ = -1;  ///< the file's length up to its last whole row (-1: all of it)
 };
 
+/// Importance sampling's design point, as the summary and the pictures report it.
+struct DesignPointReport {
+  calibration::DesignPoint point;
+  std::vector<double> values;      ///< the inputs at the design point, in case units
+  std::vector<double> importance;  ///< γ (calibration::importanceVector)
+};
+
 /// probability_settings.json's text: the case's digest, the study's settings (the sample count
-/// only for a Latin hypercube, whose strata depend on it: a Monte Carlo study may be extended)
-/// and the settings every forward run uses.
+/// only for a Latin hypercube, whose strata depend on it: a Monte Carlo study may be extended),
+/// the settings every forward run uses, and the design point the samples are centred on
+/// (importance sampling), so that a resumed study checks it too.
 std::string settingsFingerprint(const ProbabilityJob& job, const std::vector<std::string>& caseSettings,
-                                const std::string& settingsLine);
+                                const std::string& settingsLine, const std::vector<double>& centre = {});
 
 /// Refuses (InputError) a resumed study whose probability_settings.json differs from `expected`,
 /// naming the first line that differs.
@@ -59,12 +68,13 @@ void writeAtomically(const std::string& path, const std::string& text);
 
 /// The summary as JSON: no run times and no thread counts, so equal samples give equal bytes.
 std::string summaryJson(const ProbabilityJob& job, const calibration::ProbabilitySummary& s,
-                        const std::string& settingsLine, bool complete);
+                        const std::string& settingsLine, bool complete, const DesignPointReport* design = nullptr);
 
 /// pf_convergence.png, and samples_plane.png (two inputs, cohesion and friction angle when
-/// both are inputs, coloured by outcome) and fos_histogram.png (fos measure). Returns the names
-/// written.
+/// both are inputs, coloured by outcome, with the design point), fos_histogram.png (fos measure)
+/// and sensitivities.png (importance sampling: γ² of each input). Returns the names written.
 std::vector<std::string> writePictures(const ProbabilityJob& job, const calibration::ProbabilitySummary& s,
-                                       const std::vector<calibration::SampleResult>& sorted, const std::string& dir);
+                                       const std::vector<calibration::SampleResult>& sorted, const std::string& dir,
+                                       const DesignPointReport* design = nullptr);
 
 }  // namespace ddaslope::io

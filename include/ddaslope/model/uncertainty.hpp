@@ -41,11 +41,16 @@ enum class Sampling { MonteCarlo, LatinHypercube };
 /// of safety (a search of forward runs).
 enum class ProbabilityMeasure { Verdict, FactorOfSafety };
 
+/// Where the samples are drawn: from the inputs' distribution (plain sampling), or around the
+/// design point that FORM finds first, each sample weighted (importance sampling: small Pf).
+enum class ProbabilityMethod { Sampling, ImportanceSampling };
+
 struct ProbabilitySpec {
   std::vector<UncertainInput> inputs;
   std::vector<InputCorrelation> correlations;
   int samples = 0;  ///< N, in [1, 1e7]
   Sampling sampling = Sampling::LatinHypercube;
+  ProbabilityMethod method = ProbabilityMethod::Sampling;
   ProbabilityMeasure measure = ProbabilityMeasure::Verdict;
   std::uint64_t seed = 1;  ///< with the sample index, the only source of a sample's random numbers
   /// FactorOfSafety: the joints whose strengths are reduced (empty: all) and the final bracket
