@@ -4,8 +4,14 @@
 #include <cmath>
 
 #include "ddaslope/calibration/strength_search.hpp"
+#include <filesystem>
+#include <fstream>
+
+#include <nlohmann/json.hpp>
+
 #include "ddaslope/io/case_reader.hpp"
 #include "scene_builders.hpp"
+#include "test_io.hpp"
 
 using namespace ddaslope;
 using scenes::InclineSpec;
@@ -186,4 +192,44 @@ TEST(StrengthReduction, TopplingSlopeWithObstructedToeFailsOnlyByBaseSliding) {
   const double toeCapacity = tan31 / (c30 - s30 * tan31) + c30 * tan31;  // × W_t
   const double upperBound = c30 * tan31 / (s30 - toeCapacity * a / (1 - a));
   EXPECT_LE(r.factor, upperBound);
+}
+
+// `run --at-fos F` is the search's trial at F, for a user to look at (issue #43): on the planar
+// failure (Hoek & Bray, FS 1.1133) it reduces c and tan φ by F as `fos` does (c/F, the printed
+// values against the closed form), and at the bracket's stable end the wedge holds (the case's
+// own bar: at most 0.01 m) while at its failing end it slides past it, as the search found.
+// summary.json names the factor and the joints; the case's expectations (made for its own
+// strengths) are not checked.
+TEST(StrengthReduction, RunAtFosShowsTheSearchsVerdicts) {
+  namespace fs = std::filesystem;
+  const std::string c = std::string(DDASLOPE_SOURCE_DIR) + "/cases/planar_failure.json";
+  std::string err;
+  const auto fos = nlohmann::json::parse(clitest::captureCli("fos " + c + " --width 1e-3 --json", &err));
+  const double stable = fos["bracket"][0], failing = fos["bracket"][1];
+  const fs::path dir = fs::temp_directory_path() / ("ddaslope_atfos_" + std::to_string(::getpid()));
+  const auto displacement = [&](double f, std::string* printed) {
+    char digits[32];
+    std::snprintf(digits, sizeof digits, "%.17g", f);
+    *printed = clitest::captureCli("run " + c + " --at-fos " + digits + " --out " + dir.string(), &err);
+    const auto s = nlohmann::json::parse(std::ifstream(dir / "summary.json"));
+    EXPECT_DOUBLE_EQ(s["strength_reduction"]["factor"].get<double>(), f);
+    EXPECT_EQ(s["strength_reduction"]["joints"], nlohmann::json::array({"sliding_plane"}));
+    EXPECT_FALSE(s.contains("expectations") && !s["expectations"].empty());
+    return std::hypot(s["monitors"]["wedge"]["ux"].get<double>(), s["monitors"]["wedge"]["uy"].get<double>());
+  };
+  std::string printed;
+  const double held = displacement(stable, &printed);
+  char expected[96];
+  std::snprintf(expected, sizeof expected, "cohesion 25000 -> %.6g Pa, friction angle 30.0000 -> %.4f deg",
+                25000 / stable, std::atan(std::tan(30 * M_PI / 180) / stable) * 180 / M_PI);
+  EXPECT_NE(printed.find(expected), std::string::npos) << printed;
+  EXPECT_NE(printed.find("not checked at F"), std::string::npos) << printed;
+  const double slid = displacement(failing, &printed);
+  EXPECT_LT(held, 0.01);
+  EXPECT_GT(slid, 0.01);
+  std::printf("F %.5f: %.3g m; F %.5f: %.3g m\n", stable, held, failing, slid);
+  EXPECT_EQ(clitest::runCli("run " + c + " --at-fos 1.1 --joints nope --out " + dir.string(), &err), 2);
+  EXPECT_NE(err.find("no joint named \"nope\""), std::string::npos) << err;
+  EXPECT_EQ(clitest::runCli("run " + c + " --joints sliding_plane --out " + dir.string(), &err), 2);
+  fs::remove_all(dir);
 }

@@ -34,6 +34,15 @@ void appendReview(io::JsonRecord& j, const TrialReview& review) {
   j.set("review", r);
 }
 
+namespace {
+std::string shortNumber(double v) {
+  std::ostringstream o;
+  o.precision(8);
+  o << v;
+  return o.str();
+}
+}  // namespace
+
 std::string smallMotionWarning(const std::vector<TrialRecord>& trials, const std::string& valueLabel) {
   int n = 0;
   const TrialRecord* least = nullptr;
@@ -48,7 +57,10 @@ std::string smallMotionWarning(const std::vector<TrialRecord>& trials, const std
     << 100 * kSmallFailureMotion << " % of the failure displacement (least: " << valueLabel << " = " << least->value
     << " moved " << least->result.maxDisplacement << " m of " << least->result.failureDisplacement
     << " m; rule: " << name(least->result.rule) << "). Such a verdict rests on the trend of the motion, not its "
-    << "size: check it with `ddaslope run` at that strength (history.png), or lengthen analysis.duration";
+    << "size: check it with "
+    << (valueLabel == "F" ? "`ddaslope run CASE --at-fos " + shortNumber(least->value) + "`"
+                          : "`ddaslope run CASE --set ...` at that value")
+    << " (history.png), or lengthen analysis.duration";
   return m.str();
 }
 

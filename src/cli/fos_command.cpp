@@ -159,6 +159,12 @@ int fosCommand(const std::string& casePath, const Overrides& o, const FosOptions
     std::printf("%d forward runs in %d rounds of %d, %.2f s wall; %s\n", r.runs, r.rounds, opt.threads, r.wallTime,
                 settingsLine(scene).c_str());
     printTrialStatesNote(opt.vtkDir, r.runs);
+    std::string joints;
+    for (const auto& n : opt.joints) joints += (joints.empty() ? " --joints " : ",") + n;
+    std::printf("  the mechanism: ddaslope run %s --at-fos %.6g%s --out DIR --vtk (the first failing trial; with this "
+                "command's model options%s)\n",
+                casePath.c_str(), r.failingEnd, joints.c_str(),
+                crack ? " and --set section.tension_crack.x at the least safe position" : "");
   } else {
     std::fprintf(stderr, "ddaslope: %s: no factor of safety found after %d forward runs: %s\n", casePath.c_str(),
                  r.runs, r.message.c_str());

@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <iostream>
 
@@ -27,6 +28,14 @@ void addRunOptions(CLI::App* run, std::string& casePath, Overrides& overrides, R
   run->add_option("--vtk-every", opt.vtkEvery, "simulated seconds between VTK frames (default: a hundredth of the run)")
       ->needs(vtk)
       ->check(finiteIn(1e-9, model::limits::kMaxDuration, "an interval in (0, 1e6] s"));
+  CLI::Option* atFos = run->add_option(
+      "--at-fos", opt.atFactor,
+      "run with the joints' strengths reduced by this factor as `fos` reduces them (c/F, tan φ/F): the mechanism at a "
+      "factor of safety")
+      ->check(finiteIn(0.01, 100, "a factor in [0.01, 100]"));
+  run->add_option("--joints", opt.reducedJoints, "the joints --at-fos reduces (default: all), e.g. a,b")
+      ->delimiter(',')
+      ->needs(atFos);
   // One run's contact search and judgement may share the cores (the result does not change). One
   // by default: with the pair cache the work they share is small, and on large walls two threads
   // did not make a step measurably cheaper (docs/performance.md, "Threads").
@@ -35,8 +44,44 @@ void addRunOptions(CLI::App* run, std::string& casePath, Overrides& overrides, R
       ->check(CLI::Range(1, 256));
 }
 
+namespace {
+
+/// --at-fos: every named joint (all by default) reduced as a `fos` trial at that factor reduces it
+/// (model::JointProperties::reducedBy), and what changed, printed.
+std::vector<std::string> reduceStrengths(model::Scene& scene, const std::string& casePath, const RunCommandOptions& c) {
+  std::vector<int> joints;
+  for (const auto& name : c.reducedJoints) joints.push_back(jointIndex(scene, name, casePath));
+  if (joints.empty())
+    for (size_t j = 0; j < scene.joints.size(); ++j) joints.push_back(static_cast<int>(j));
+  std::printf("strengths reduced by F = %.6g, as `ddaslope fos` reduces them:\n", c.atFactor);
+  for (int j : joints) {
+    model::JointProperties& joint = scene.joints[static_cast<size_t>(j)];
+    const model::JointProperties reduced = joint.reducedBy(c.atFactor);
+    if (joint.bartonBandis)
+      std::printf("  %s: Barton-Bandis, tan of the mobilised angle / %.6g, tensile strength %.4g -> %.4g Pa\n",
+                  joint.name.c_str(), c.atFactor, joint.tensileStrength, reduced.tensileStrength);
+    else
+      std::printf("  %s: cohesion %.6g -> %.6g Pa, friction angle %.4f -> %.4f deg\n", joint.name.c_str(),
+                  joint.cohesion, reduced.cohesion, joint.frictionAngle * 180 / M_PI, reduced.frictionAngle * 180 / M_PI);
+    joint = reduced;
+  }
+  std::vector<std::string> names;
+  for (int j : joints) names.push_back(scene.joints[static_cast<size_t>(j)].name);
+  return names;
+}
+
+}  // namespace
+
 int runCommand(const std::string& casePath, const Overrides& o, const RunCommandOptions& c) {
   model::Scene scene = loadCase(casePath, o);
+  std::vector<std::string> reduced;
+  if (c.atFactor > 0) {
+    reduced = reduceStrengths(scene, casePath, c);
+    // The case's expectations are claims about its own strengths, not about reduced ones.
+    if (!scene.expectations.empty())
+      std::printf("  the case's expectations are for its own strengths: not checked at F = %.6g\n", c.atFactor);
+    scene.expectations.clear();
+  }
   const std::string& outDir = c.outDir;
   io::RunOptions opt;
   opt.outputDir = outDir;
@@ -47,6 +92,8 @@ int runCommand(const std::string& casePath, const Overrides& o, const RunCommand
   opt.threads = c.threads;
   opt.vtk = c.vtk;
   opt.vtkEvery = c.vtkEvery;
+  opt.strengthReduction = c.atFactor;
+  opt.reducedJoints = reduced;
   const io::RunOutcome r = io::runScene(scene, opt);
   if (!r.completed) {
     std::cerr << "ddaslope: " << casePath << (r.budgetStop ? ": budget exceeded: " : ": non-convergence: ") << r.failure << "\n"

@@ -16,6 +16,9 @@ struct RunCommandOptions {
   int threads = 1;                ///< of the run's contact search and judgement
   bool vtk = false;               ///< the VTK series in outDir/vtk
   double vtkEvery = 0;            ///< s between VTK frames; 0: a hundredth of the duration
+  /// --at-fos: the joints' strengths reduced by this factor as `fos` reduces them (0: not)
+  double atFactor = 0;
+  std::vector<std::string> reducedJoints;  ///< --joints: the joints --at-fos reduces (empty: all)
 };
 
 /// Registers the subcommand's options on `cmd` (its case, --out, --snapshots, --vtk, the model

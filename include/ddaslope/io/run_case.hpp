@@ -72,6 +72,10 @@ struct RunOptions {
   const solver::HeldEquilibrium* sharedEquilibrium = nullptr;
   /// Threads of this one run (solver::Simulation::setThreads); the result does not depend on it.
   int threads = 1;
+  /// `run --at-fos`: the factor the scene's joint strengths were reduced by, and which joints
+  /// (names), for summary.json. 0: none.
+  double strengthReduction = 0;
+  std::vector<std::string> reducedJoints;
 };
 
 /// Runs to the scene's duration. Non-convergence is returned, not thrown; the partial history is
