@@ -233,3 +233,32 @@ TEST(StrengthReduction, RunAtFosShowsTheSearchsVerdicts) {
   EXPECT_EQ(clitest::runCli("run " + c + " --joints sliding_plane --out " + dir.string(), &err), 2);
   fs::remove_all(dir);
 }
+
+// `fos` draws the mechanism (issue #43): on the shipped planar and toppling cases it writes the
+// pictures of the trials at its bracket's ends, mechanism_stable.png and mechanism_failed.png,
+// into --out and lists them in its JSON; `critical` does the same for its bracket.
+TEST(StrengthReduction, FosWritesTheMechanismAtItsBracketsEnds) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / ("ddaslope_mechanism_" + std::to_string(::getpid()));
+  std::string err;
+  const auto isPng = [](const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    char magic[8] = {};
+    in.read(magic, 8);
+    return in && std::string(magic + 1, 3) == "PNG" && fs::file_size(p) > 1000;
+  };
+  for (const std::string name : {"planar_failure", "toppling_slope"}) {
+    fs::remove_all(dir);
+    const std::string c = std::string(DDASLOPE_SOURCE_DIR) + "/cases/" + name + ".json";
+    const auto fos = nlohmann::json::parse(clitest::captureCli("fos " + c + " --json --out " + dir.string(), &err));
+    ASSERT_TRUE(fos["found"].get<bool>()) << name;
+    ASSERT_EQ(fos["mechanism_pictures"].size(), 2u) << name;
+    for (const char* f : {"mechanism_stable.png", "mechanism_failed.png"}) EXPECT_TRUE(isPng(dir / f)) << name << " " << f;
+  }
+  fs::remove_all(dir);
+  const auto critical = nlohmann::json::parse(clitest::captureCli(
+      "critical " + std::string(DDASLOPE_SOURCE_DIR) + "/cases/planar_failure.json --json --out " + dir.string(), &err));
+  EXPECT_EQ(critical["mechanism_pictures"].size(), 2u);
+  EXPECT_TRUE(isPng(dir / "mechanism_failed.png"));
+  fs::remove_all(dir);
+}

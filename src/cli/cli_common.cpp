@@ -5,12 +5,17 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
+#include <map>
+#include <mutex>
+#include <tuple>
 #include <iomanip>
 #include <memory>
 #include <sstream>
 
 #include "ddaslope/core/errors.hpp"
 #include "ddaslope/core/task_farm.hpp"
+#include "ddaslope/io/scene_picture.hpp"
 #include "ddaslope/io/scene_vtk.hpp"
 #include "ddaslope/io/ground_motion.hpp"
 #include "ddaslope/io/input_file.hpp"
@@ -179,6 +184,42 @@ void recordTrialStates(calibration::SearchSettings& s, const std::string& dir, c
                      {"stable", 1, {}, std::vector<std::int32_t>{r.stable ? 1 : 0}},
                      {"verdict", 1, {}, std::vector<std::string>{calibration::name(r.rule)}}});
   };
+}
+
+struct MechanismPictures::Kept {
+  std::mutex mutex;
+  io::PictureFrame frame;
+  std::map<double, std::pair<io::SceneState, calibration::TrialResult>> states;
+};
+
+MechanismPictures::MechanismPictures(calibration::SearchSettings& s, const model::Scene& scene)
+    : kept_(std::make_shared<Kept>()) {
+  kept_->frame = io::frameScene(scene);
+  auto before = std::move(s.finalStates);
+  s.finalStates = [kept = kept_, before](double value, const solver::Simulation& sim, const calibration::TrialResult& r) {
+    if (before) before(value, sim, r);
+    io::SceneState state = io::captureState(sim);
+    const std::lock_guard<std::mutex> lock(kept->mutex);
+    kept->states[value] = {std::move(state), r};
+  };
+}
+
+std::vector<std::string> MechanismPictures::write(const std::string& dir, const std::string& casePath,
+                                                  const std::string& quantity, double stable, double failing) const {
+  std::vector<std::string> written;
+  std::filesystem::create_directories(dir);
+  for (const auto& [value, file, verdict] : {std::tuple{stable, "mechanism_stable.png", "stable"},
+                                            std::tuple{failing, "mechanism_failed.png", "fails"}}) {
+    const auto found = kept_->states.find(value);
+    if (found == kept_->states.end()) continue;
+    const auto& [state, result] = found->second;
+    char title[256];
+    std::snprintf(title, sizeof title, "%s: %s = %.6g, %s (%s; largest motion %.3g m)", casePath.c_str(), quantity.c_str(),
+                  value, verdict, calibration::name(result.rule), result.maxDisplacement);
+    io::writeScenePicture(state, kept_->frame, dir + "/" + file, title);
+    written.push_back(dir + "/" + file);
+  }
+  return written;
 }
 
 int jointIndex(const ddaslope::model::Scene& scene, const std::string& name, const std::string& casePath) {

@@ -53,6 +53,24 @@ std::string settingsLine(const ddaslope::model::Scene& scene);
 /// by value; its verdict rides along as field data (stable, verdict). Written by the root process.
 void recordTrialStates(calibration::SearchSettings& s, const std::string& dir, const model::Scene& scene);
 
+/// The mechanism at a search's answer (issue #43): the final state of every trial is kept (a
+/// copy of the blocks and contact states, not a picture), and the trials at the bracket's ends
+/// are drawn once the search is done: mechanism_stable.png and mechanism_failed.png, blocks
+/// coloured by displacement, contacts locked or sliding, supports, loads, water.
+class MechanismPictures {
+ public:
+  /// Observes the search's final states, after any observer `s` has (recordTrialStates).
+  MechanismPictures(calibration::SearchSettings& s, const model::Scene& scene);
+  /// Draws the trials at `stable` and `failing` (of `quantity`, "F" or a strength) into `dir`;
+  /// returns the files written (none for a value no trial ran).
+  std::vector<std::string> write(const std::string& dir, const std::string& casePath, const std::string& quantity,
+                                 double stable, double failing) const;
+
+ private:
+  struct Kept;
+  std::shared_ptr<Kept> kept_;
+};
+
 int jointIndex(const ddaslope::model::Scene& scene, const std::string& name, const std::string& casePath);
 
 /// Progress of a long command: a line on stderr unless --quiet, a --json result or

@@ -233,9 +233,13 @@ int criticalCommand(const std::string& casePath, const Overrides& o, const Criti
     if (!opt.json) printCrackSearch(*crack, scene, "critical " + opt.solve);
     recordTrialStates(s, opt.vtkDir, scene);
   }
+  const MechanismPictures pictures(s, scene);
   const auto r = solve(scene, s);
   log->finish(r.found, r.found ? "critical " + opt.solve + " " + std::to_string(r.critical) : r.message);
   const char* unit = cohesion ? "Pa" : "degrees";
+  const std::vector<std::string> drawn =
+      r.found ? pictures.write(opt.outDir, casePath, cohesion ? "c (Pa)" : "φ (°)", r.stableEnd, r.failingEnd)
+              : std::vector<std::string>{};
   if (opt.json) {
     ddaslope::io::JsonRecord j;
     j.set("case", casePath).set("joint", opt.joint).set("solve", opt.solve).set("found", r.found);
@@ -246,6 +250,7 @@ int criticalCommand(const std::string& casePath, const Overrides& o, const Criti
     ddaslope::calibration::appendReview(j, r.review);
     ddaslope::calibration::appendTrials(j, r.trials, cohesion ? "cohesion_pa" : "friction_angle_deg");
     if (!opt.vtkDir.empty()) j.set("vtk", opt.vtkDir);
+    j.set("mechanism_pictures", drawn);
     if (scene.tensionCrack) appendCrackSearch(j, crack ? *crack : CrackSearch{}, scene);
     std::printf("%s\n", j.dump().c_str());
   } else if (r.found) {
@@ -259,6 +264,9 @@ int criticalCommand(const std::string& casePath, const Overrides& o, const Criti
                 r.critical, unit, r.failingEnd, r.stableEnd, r.message.empty() ? "" : ": ", r.message.c_str());
     std::printf("%d forward runs, %.2f s wall; %s\n", r.runs, r.wallTime, settingsLine(scene).c_str());
     printTrialStatesNote(opt.vtkDir, r.runs);
+    std::string files;
+    for (const auto& f : drawn) files += (files.empty() ? "" : ", ") + f;
+    if (!files.empty()) std::printf("  the mechanism: %s (the trials at the bracket's ends)\n", files.c_str());
   } else {
     std::fprintf(stderr, "ddaslope: %s: no critical %s found after %d forward runs: %s\n", casePath.c_str(),
                  opt.solve.c_str(), r.runs, r.message.c_str());
@@ -302,7 +310,8 @@ void addCriticalOptions(CLI::App* cmd, std::string& casePath, Overrides& overrid
   cmd->add_option("--curve", opt.curve,
                   "φmin:φmax:n: the critical (c, φ) curve; with --solve support, min:max:n (N/m): F against the "
                   "support; as CSV and PNG in --out");
-  cmd->add_option("--out", opt.outDir, "output directory for --curve")->capture_default_str();
+  cmd->add_option("--out", opt.outDir, "output directory: the mechanism pictures (and --curve's CSV and PNG)")
+      ->capture_default_str();
   cmd->add_option("--vtk", opt.vtkDir, "write each trial's final state as a VTK series in this folder (ParaView)");
 }
 

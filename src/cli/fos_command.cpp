@@ -25,13 +25,15 @@ namespace {
 
 
 ddaslope::calibration::FactorOfSafetyResult factorFor(const ddaslope::model::Scene& scene, const std::string& casePath,
-                                                      const FosOptions& opt, ddaslope::io::ProgressSink progress = {}) {
+                                                      const FosOptions& opt, ddaslope::io::ProgressSink progress = {},
+                                                      std::unique_ptr<MechanismPictures>* pictures = nullptr) {
   std::vector<int> joints;
   for (const auto& n : opt.joints) joints.push_back(jointIndex(scene, n, casePath));
   ddaslope::calibration::SearchSettings s;
   s.threads = opt.threads;
   s.progress = std::move(progress);
   recordTrialStates(s, opt.vtkDir, scene);
+  if (pictures) *pictures = std::make_unique<MechanismPictures>(s, scene);
   return ddaslope::calibration::factorOfSafety(scene, joints, opt.width, s);
 }
 
@@ -138,8 +140,11 @@ int fosCommand(const std::string& casePath, const Overrides& o, const FosOptions
     if (!opt.json) printCrackSearch(*crack, scene, "F");
   }
   const auto log = startProgress("fos", opt.progress, opt.json);
-  const auto r = factorFor(scene, casePath, opt, ddaslope::io::sinkOf(log.get()));
+  std::unique_ptr<MechanismPictures> pictures;
+  const auto r = factorFor(scene, casePath, opt, ddaslope::io::sinkOf(log.get()), &pictures);
   log->finish(r.found, r.found ? "F " + std::to_string(r.factor) : r.message);
+  const std::vector<std::string> drawn =
+      r.found ? pictures->write(opt.outDir, casePath, "F", r.stableEnd, r.failingEnd) : std::vector<std::string>{};
   if (opt.json) {
     ddaslope::io::JsonRecord j;
     // No answer, no number: the bracket and the message say what is known.
@@ -150,6 +155,7 @@ int fosCommand(const std::string& casePath, const Overrides& o, const FosOptions
     ddaslope::calibration::appendReview(j, r.review);
     ddaslope::calibration::appendTrials(j, r.trials, "factor");
     if (!opt.vtkDir.empty()) j.set("vtk", opt.vtkDir);
+    j.set("mechanism_pictures", drawn);
     if (scene.tensionCrack) appendCrackSearch(j, crack ? *crack : CrackSearch{}, scene);
     std::printf("%s\n", j.dump().c_str());
   } else if (r.found) {
@@ -161,9 +167,11 @@ int fosCommand(const std::string& casePath, const Overrides& o, const FosOptions
     printTrialStatesNote(opt.vtkDir, r.runs);
     std::string joints;
     for (const auto& n : opt.joints) joints += (joints.empty() ? " --joints " : ",") + n;
-    std::printf("  the mechanism: ddaslope run %s --at-fos %.6g%s --out DIR --vtk (the first failing trial; with this "
-                "command's model options%s)\n",
-                casePath.c_str(), r.failingEnd, joints.c_str(),
+    std::string files;
+    for (const auto& f : drawn) files += (files.empty() ? "" : ", ") + f;
+    std::printf("  the mechanism: %s (the trials at the bracket's ends); to run the failing one again: ddaslope run "
+                "%s --at-fos %.6g%s --out DIR --vtk (with this command's model options%s)\n",
+                files.c_str(), casePath.c_str(), r.failingEnd, joints.c_str(),
                 crack ? " and --set section.tension_crack.x at the least safe position" : "");
   } else {
     std::fprintf(stderr, "ddaslope: %s: no factor of safety found after %d forward runs: %s\n", casePath.c_str(),
@@ -182,7 +190,8 @@ void addFosOptions(CLI::App* cmd, std::string& casePath, Overrides& overrides, F
       ->check(finiteIn(1e-4, 1, "a width of F in [1e-4, 1]"));
   cmd->add_option("--threads", opt.threads, "trial factors per round, run at once")->capture_default_str()->check(CLI::Range(1, 256));
   cmd->add_option("--sweep", opt.sweep, "json.path=min:max:n: F at n values of one case number (CSV and PNG in --out)");
-  cmd->add_option("--out", opt.outDir, "output directory for --sweep")->capture_default_str();
+  cmd->add_option("--out", opt.outDir, "output directory: the mechanism pictures (and --sweep's CSV and PNG)")
+      ->capture_default_str();
   cmd->add_option("--vtk", opt.vtkDir, "write each trial's final state as a VTK series in this folder (ParaView)");
   addModelOptions(cmd, overrides);
   cmd->add_flag("--json", opt.json, "print the result as JSON");

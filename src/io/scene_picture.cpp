@@ -1,10 +1,12 @@
 #include "ddaslope/io/scene_picture.hpp"
 
 #include <cairo.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <string>
 
 #include "ddaslope/core/errors.hpp"
 #include "ddaslope/geometry/polygon.hpp"
@@ -26,9 +28,24 @@ PictureFrame frameScene(const model::Scene& scene) {
   return f;
 }
 
+SceneState captureState(const solver::Simulation& sim) {
+  SceneState s;
+  s.scene = sim.scene();
+  s.time = sim.time();
+  for (const contact::Contact& c : sim.contacts().contacts())
+    if (c.closed())
+      s.contacts.push_back({c.key().vertexBlock, c.key().vertex, c.state == contact::ContactState::Locked});
+  return s;
+}
+
 void writeScenePicture(const solver::Simulation& sim, const PictureFrame& frame, const std::string& path,
                        const std::string& title) {
-  const model::Scene& scene = sim.scene();
+  writeScenePicture(captureState(sim), frame, path, title);
+}
+
+void writeScenePicture(const SceneState& state, const PictureFrame& frame, const std::string& path,
+                       const std::string& title) {
+  const model::Scene& scene = state.scene;
   const double worldW = frame.view.hi.x() - frame.view.lo.x(), worldH = frame.view.hi.y() - frame.view.lo.y();
   const int width = 1000, top = 40, bottom = 50;
   const double scale = (width - 40) / worldW;
@@ -89,7 +106,7 @@ void writeScenePicture(const solver::Simulation& sim, const PictureFrame& frame,
   // (the greatest 40 px), as the pressure on a sliding surface or crack is drawn by hand.
   double maxPressure = 0;
   if (scene.water.active()) {
-    const model::WaterTable water = scene.water.at(sim.time());
+    const model::WaterTable water = scene.water.at(state.time);
     // Faces between two free blocks are left out: their pressures cancel, and the diagrams of
     // both sides would hide each other.
     const double near = 1e-3 * std::max(worldW, worldH);
@@ -145,11 +162,31 @@ void writeScenePicture(const solver::Simulation& sim, const PictureFrame& frame,
       });
     }
   }
+  // Displacement vectors: from each free block's first centroid towards where it went, the
+  // longest 40 px (a mechanism of centimetres on a slope of tens of metres is seen in them).
+  if (maxMoved > 0) {
+    cairo_set_source_rgb(cr, 0.35, 0.0, 0.25);
+    cairo_set_line_width(cr, 1.5);
+    for (size_t b = 0; b < scene.blocks.size(); ++b) {
+      if (scene.blocks[b].fixed || moved[b] < 0.05 * maxMoved) continue;
+      const Vec2 d = (scene.blocks[b].moments.centroid - frame.initialCentroids[b]) / maxMoved;
+      const auto [x, y] = px(scene.blocks[b].moments.centroid);
+      const double ex = x + 40 * d.x(), ey = y - 40 * d.y(), len = 40 * d.norm();
+      const double ux = (ex - x) / len, uy = (ey - y) / len;
+      cairo_move_to(cr, x, y);
+      cairo_line_to(cr, ex, ey);
+      cairo_stroke(cr);
+      cairo_move_to(cr, ex, ey);
+      cairo_line_to(cr, ex - 7 * ux + 3.5 * uy, ey - 7 * uy - 3.5 * ux);
+      cairo_line_to(cr, ex - 7 * ux - 3.5 * uy, ey - 7 * uy + 3.5 * ux);
+      cairo_close_path(cr);
+      cairo_fill(cr);
+    }
+  }
   // Contacts: green locked, orange sliding (open contacts are not drawn).
-  for (const contact::Contact& c : sim.contacts().contacts()) {
-    if (!c.closed()) continue;
-    const auto [x, y] = px(scene.blocks[c.key().vertexBlock].vertices[c.key().vertex]);
-    if (c.state == contact::ContactState::Locked) cairo_set_source_rgb(cr, 0.1, 0.6, 0.2);
+  for (const SceneState::ContactMark& c : state.contacts) {
+    const auto [x, y] = px(scene.blocks[static_cast<size_t>(c.block)].vertices[static_cast<size_t>(c.vertex)]);
+    if (c.locked) cairo_set_source_rgb(cr, 0.1, 0.6, 0.2);
     else cairo_set_source_rgb(cr, 0.95, 0.5, 0.0);
     cairo_new_path(cr);
     cairo_arc(cr, x, y, 3.5, 0, 2 * M_PI);
@@ -178,7 +215,7 @@ void writeScenePicture(const solver::Simulation& sim, const PictureFrame& frame,
   cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);
   cairo_set_line_width(cr, 1.5);
   for (const model::PointLoad& l : scene.pointLoads) {
-    const Vec2 f = l.at(sim.time());
+    const Vec2 f = l.at(state.time);
     if (!(f.norm() > 0)) continue;
     const auto [x, y] = px(l.point.current);
     const double ux = f.x() / f.norm(), uy = -f.y() / f.norm();  // picture y runs down
@@ -208,10 +245,11 @@ void writeScenePicture(const solver::Simulation& sim, const PictureFrame& frame,
   cairo_set_source_rgb(cr, 0, 0, 0);
   cairo_move_to(cr, 20, 26);
   cairo_show_text(cr, title.c_str());
-  char legend[200];
+  char legend[300];
   std::snprintf(legend, sizeof legend,
-                "t = %.4g s   colour: block displacement, blue 0 to red %.3g m   contacts: green locked, orange sliding   x: monitors",
-                sim.time(), maxMoved);
+                "t = %.4g s   colour and purple arrows: block displacement, blue 0 to red %.3g m (longest arrow)   "
+                "contacts: green locked, orange sliding   x: monitors",
+                state.time, maxMoved);
   cairo_set_font_size(cr, 12);
   cairo_move_to(cr, 20, height - 18);
   cairo_show_text(cr, legend);
@@ -232,9 +270,11 @@ void writeScenePicture(const solver::Simulation& sim, const PictureFrame& frame,
     cairo_show_text(cr, second);
   }
   cairo_destroy(cr);
-  const cairo_status_t st = cairo_surface_write_to_png(surface, (path + ".tmp").c_str());
+  // A temporary of this process's own: two commands drawing into one folder never share it.
+  const std::string temporary = path + "." + std::to_string(::getpid()) + ".tmp";
+  const cairo_status_t st = cairo_surface_write_to_png(surface, temporary.c_str());
   cairo_surface_destroy(surface);
-  if (st != CAIRO_STATUS_SUCCESS || std::rename((path + ".tmp").c_str(), path.c_str()) != 0)
+  if (st != CAIRO_STATUS_SUCCESS || std::rename(temporary.c_str(), path.c_str()) != 0)
     throw InputError(path, "", "cannot write the picture");
 }
 

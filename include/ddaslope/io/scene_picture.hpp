@@ -17,8 +17,23 @@ struct PictureFrame {
 /// Frames the whole scene (its bounding box with a 5 % margin) as it is now.
 PictureFrame frameScene(const model::Scene& scene);
 
+/// What a picture shows of a simulation at one moment, kept apart from it: a search keeps the
+/// final state of its trials and draws only those at its bracket's ends.
+struct SceneState {
+  model::Scene scene;  ///< blocks where they are, supports in their states
+  struct ContactMark {
+    int block = 0, vertex = 0;  ///< the contact's vertex
+    bool locked = true;         ///< locked or sliding (open contacts are not kept)
+  };
+  std::vector<ContactMark> contacts;
+  double time = 0;
+};
+SceneState captureState(const solver::Simulation& sim);
+
 /// Draws the simulation's current state to `path` (PNG, 1000 px wide).
 void writeScenePicture(const solver::Simulation& sim, const PictureFrame& frame, const std::string& path,
+                       const std::string& title);
+void writeScenePicture(const SceneState& state, const PictureFrame& frame, const std::string& path,
                        const std::string& title);
 
 }  // namespace ddaslope::io
