@@ -884,3 +884,117 @@ TEST(CaseReader, BadPorePressureRatio) {
   d["materials"]["clay"] = {{"density", 1900}, {"young_modulus", 1e8}, {"poisson_ratio", 0.3}};
   expectError(d, "water.ground_unit_weight", "several materials");
 }
+
+// An index in an override's path (--set blocks[1].id, a job's path) names an element or is bad
+// input saying what an index is: never a conversion that throws (stoul's "internal error") or
+// wraps, whatever its length or sign.
+TEST(CaseReader, OverrideIndexIsAWholeNumberBelowTheArraysSize) {
+  const auto expect = [](const std::string& path, const std::string& what) {
+    clitest::expectInputError([&] { io::parseCase(kMinimal, "case.json", {io::CaseOverride(path, 1)}); }, "case.json",
+                              path, what);
+  };
+  expect("blocks[x].id", "blocks[x]: expected an index (a whole number from 0), found \"x\"");
+  expect("blocks[-1].id", "blocks[-1]: expected an index (a whole number from 0), found \"-1\"");
+  expect("blocks[].id", "expected an index (a whole number from 0), found \"\"");
+  expect("blocks[1.5].id", "found \"1.5\"");
+  expect("blocks[2].id", "blocks[2]: expected an index below 2 (blocks has 2 entries), found 2");
+  expect("blocks[99999999999999999999].id", "expected an index below 2 (blocks has 2 entries), found 99999999999999999999");
+  expect("blocks[18446744073709551617].vertices[0][0]", "expected an index below 2");
+  expect("blocks[1].vertices[0][7]", "blocks[1].vertices[0][7]: expected an index below 2 (blocks[1].vertices[0] has 2 entries)");
+  expect("analysis[0]", "analysis[0]: expected an array at analysis to index, found an object");
+  expect("blocks[0.id", "expected an index closed by ]");
+  // Leading zeros name the same element.
+  const model::Scene s = io::parseCase(kMinimal, "case.json", {io::CaseOverride("blocks[0001].vertices[1][0]", 4.5)});
+  EXPECT_EQ(s.blocks[1].vertices[1].x(), 4.5);
+}
+
+// The same from the command line: exit 2, the case, the path and what an index is.
+TEST(Cli, SetPathWithABadIndexExitsWithTwoAndSaysWhatAnIndexIs) {
+  const std::string path = std::string(DDASLOPE_SOURCE_DIR) + "/cases/stable_block_40deg.json";
+  std::string err;
+  for (const auto& [set, expected] : std::vector<std::pair<std::string, std::string>>{
+           {"blocks[x].id=1", "blocks[x]: expected an index (a whole number from 0), found \"x\""},
+           {"blocks[-1].id=1", "blocks[-1]: expected an index (a whole number from 0), found \"-1\""},
+           {"blocks[99999999999999999999].id=1", "expected an index below 2 (blocks has 2 entries), found 99999999999999999999"},
+           {"blocks[7].id=1", "expected an index below 2 (blocks has 2 entries), found 7"}}) {
+    EXPECT_EQ(runCli("check " + path + " --set '" + set + "'", &err), 2) << set << ": " << err;
+    EXPECT_NE(err.find(path), std::string::npos) << set << ": " << err;
+    EXPECT_NE(err.find(expected), std::string::npos) << set << ": " << err;
+    EXPECT_EQ(err.find("internal error"), std::string::npos) << set << ": " << err;
+  }
+}
+
+// --set takes a JSON literal: a number (read exactly as before: the value std::stod gives, to the
+// bit), true or false, a bare word or a quoted string (any text, even one that reads as a number);
+// the reader then checks its type as in the file. null is refused: a key is not unset this way.
+TEST(Cli, SetTakesJsonLiterals) {
+  const std::string path = std::string(DDASLOPE_SOURCE_DIR) + "/cases/stable_block_40deg.json";
+  const fs::path out = fs::temp_directory_path() / ("ddaslope_setliteral_" + std::to_string(::getpid()));
+  std::string err;
+  ASSERT_EQ(runCli("run " + path + " --quiet --duration 0.01 --set 'description=\"two \\\"quoted\\\" words\"' "
+                   "--set 'analysis.blocks=\"rigid\"' --set analysis.settle_dynamically=false "
+                   "--set analysis.time_step=0.00123456789012345678 --out " + out.string(), &err), 0) << err;
+  const json summary = json::parse(std::ifstream(out / "summary.json"));
+  EXPECT_EQ(summary["description"], "two \"quoted\" words");
+  EXPECT_EQ(summary["settings"]["blocks"], "rigid");
+  EXPECT_EQ(summary["settings"]["settle_dynamically"], false);
+  EXPECT_EQ(summary["settings"]["time_step"].get<double>(), std::stod("0.00123456789012345678"));
+  ASSERT_EQ(runCli("run " + path + " --quiet --duration 0.01 --set 'description=\"1e3\"' --out " + out.string(), &err), 0) << err;
+  EXPECT_EQ(json::parse(std::ifstream(out / "summary.json"))["description"], "1e3");
+  for (const auto& [set, expected] : std::vector<std::pair<std::string, std::string>>{
+           {"analysis.duration=null", "found null"},
+           {"analysis.duration=\"2\"", "analysis.duration: expected a number here, as the case has it, found a string \"2\""},
+           {"analysis.settle_dynamically=no", "analysis.settle_dynamically: expected true or false, found a string \"no\""},
+           {"description=\"open", "expected a string closed by its \" at the end"},
+           {"analysis.duration=2x", "quote a string that starts like a number"}}) {
+    EXPECT_EQ(runCli("run " + path + " --quiet --set '" + set + "' --out " + out.string(), &err), 2) << set << ": " << err;
+    EXPECT_NE(err.find(expected), std::string::npos) << set << ": " << err;
+  }
+  fs::remove_all(out);
+}
+
+// The verdict watches every free block (monitors only report), so a case without monitors is a
+// whole case for every command: check, run, fos and critical answer it, never an internal error
+// or an abort.
+TEST(Cli, CaseWithoutMonitorsIsJudgedByItsFreeBlocks) {
+  json doc = json::parse(std::ifstream(std::string(DDASLOPE_SOURCE_DIR) + "/cases/stable_block_40deg.json"));
+  doc.erase("monitors");
+  doc.erase("expected");
+  const std::string path = writeTemp("no_monitors.json", doc.dump());
+  const fs::path out = fs::temp_directory_path() / ("ddaslope_nomonitor_" + std::to_string(::getpid()));
+  std::string err;
+  EXPECT_NE(clitest::captureCli("check " + path, &err).find("0 monitors"), std::string::npos) << err;
+  EXPECT_EQ(runCli("run " + path + " --quiet --duration 0.05 --out " + out.string(), &err), 0) << err;
+  // φ = 40.1° on a 40° plane: F = tan 40.1° / tan 40° = 1.0031, stable without cohesion.
+  EXPECT_NE(clitest::captureCli("fos " + path + " --quiet", &err).find("factor of safety"), std::string::npos) << err;
+  EXPECT_NE(clitest::captureCli("critical " + path + " --quiet", &err).find("critical cohesion"), std::string::npos) << err;
+  EXPECT_EQ(err.find("internal error"), std::string::npos) << err;
+  fs::remove_all(out);
+}
+
+// A range of an option (critical --curve, fos --sweep) is two finite numbers and a whole count,
+// and nothing more: sscanf took "nan" and "inf" (a curve at NaN friction angles ran for minutes),
+// trailing text and counts past int. Each is bad input naming the option, at once.
+TEST(RobustInput, RangesOfCurvesAndSweepsAreFiniteAndWhole) {
+  const std::string path = std::string(DDASLOPE_SOURCE_DIR) + "/cases/stable_block_40deg.json";
+  const std::string anchor = std::string(DDASLOPE_SOURCE_DIR) + "/cases/planar_failure_anchor.json";
+  std::string err;
+  for (const char* curve : {"nan:80:3", "10:inf:3", "-inf:40:3", "NAN:40:3", "1e999:40:3", "10:40:3x", "10:40:1e3",
+                            "10:40:99999999999", "10:40:201", "10:40", "10:40:3:4", ":40:3", "10:40:1", "40:10:3"}) {
+    EXPECT_EQ(runCli(std::string("critical ") + path + " --quiet --curve " + curve + " --out /tmp/ddaslope_never", &err), 2)
+        << curve << ": " << err;
+    EXPECT_NE(err.find("--curve"), std::string::npos) << curve << ": " << err;
+  }
+  for (const char* curve : {"nan:1e6:3", "0:inf:3", "0:1e6:3junk"}) {
+    EXPECT_EQ(runCli(std::string("critical ") + anchor + " --quiet --solve support --support anchor --curve " + curve +
+                         " --out /tmp/ddaslope_never", &err), 2)
+        << curve << ": " << err;
+    EXPECT_NE(err.find("--curve"), std::string::npos) << curve << ": " << err;
+  }
+  for (const char* sweep : {"analysis.duration=nan:3:3", "analysis.duration=1:inf:3", "analysis.duration=1:2:3.5",
+                            "analysis.duration=1:2:3:4", "=1:2:3", "analysis.duration=1:2:1001"}) {
+    EXPECT_EQ(runCli(std::string("fos ") + path + " --quiet --sweep '" + sweep + "' --out /tmp/ddaslope_never", &err), 2)
+        << sweep << ": " << err;
+    EXPECT_NE(err.find("--sweep"), std::string::npos) << sweep << ": " << err;
+  }
+}

@@ -790,3 +790,25 @@ TEST(Probability, ImportanceSamplingWithoutADesignPointSaysWhy) {
   fs::remove(strong);
   fs::remove_all(dir);
 }
+
+// A resumed samples.csv whose numbers read "inf" or "nan" (never written: a missing number is an
+// empty field) is a damaged file, refused with its line, not an infinite displacement carried
+// into the summary.
+TEST(Probability, ResumeRefusesNonFiniteNumbersInTheSamples) {
+  const std::string dir = tempDir("nonfinite");
+  std::string err;
+  const std::string common = "probability " + kJob + " --samples 6 --quiet --out " + dir;
+  clitest::captureCli(common + " --stop-after 3", &err);
+  const std::string rows = slurp(dir + "/samples.csv");
+  for (const char* bad : {"inf", "nan", "-INF", "1e999"}) {
+    std::string damaged = rows;
+    // Line 3's max_displacement_m: the field before the run time.
+    const size_t line = damaged.find('\n', damaged.find('\n') + 1) + 1;
+    const size_t end = damaged.find('\n', line), time = damaged.rfind(',', end), field = damaged.rfind(',', time - 1) + 1;
+    damaged.replace(field, time - field, bad);
+    std::ofstream(dir + "/samples.csv", std::ios::binary) << damaged;
+    EXPECT_EQ(clitest::runCli(common + " --resume", &err), 2) << bad;
+    EXPECT_NE(err.find("samples.csv: line 3: expected numbers after the rule"), std::string::npos) << bad << ": " << err;
+  }
+  fs::remove_all(dir);
+}

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <map>
 
+#include "ddaslope/calibration/bisection.hpp"
 #include "ddaslope/core/byte_record.hpp"
 #include "ddaslope/core/errors.hpp"
 #include "ddaslope/core/task_farm.hpp"
@@ -60,6 +61,43 @@ TEST(TaskFarm, AFailingTaskStopsTheFarmAndItsErrorReachesTheCallerAsItsKind) {
   // thread is running (10 ms each, so it cannot get two ahead of an error raised at once).
   EXPECT_LE(started.load(), 5 + 1 + 1);
   EXPECT_GE(started.load(), 6);
+}
+
+// A search's trials run on threads of their own: an exception in one (bad input met while
+// building a trial's scene, a broken invariant) must reach the caller, never end the program
+// (std::terminate: "terminate called without an active exception", exit 134).
+TEST(Bisection, AnEvaluationThatThrowsOnAWorkerThreadReachesTheCaller) {
+  for (int threads : {2, 4}) {
+    std::atomic<int> evaluated{0};
+    const auto stableAt = [&](double v) -> bool {
+      ++evaluated;
+      if (v >= 1) throw InputError("case.json", "joints.a.cohesion", "expected a cohesion ≥ 0 Pa, found -1");
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));  // the caller's own trial is the slow one
+      return true;
+    };
+    EXPECT_THROW(calibration::evaluateAll(stableAt, {0, 1, 2, 3, 4, 5, 6, 7}, threads), InputError) << threads;
+    EXPECT_LT(evaluated.load(), 8) << "no trial starts after an error";
+    EXPECT_THROW(calibration::bisect(stableAt, 0.5, 2, 0.01, threads), InputError) << threads;
+  }
+}
+
+TEST(TaskFarm, RunOnThreadsRunsEachIndexOnceAndCarriesTheFirstError) {
+  for (int threads : {1, 2, 3, 64}) {
+    std::vector<std::atomic<int>> runs(50);
+    runOnThreads(50, threads, [&](int k) { ++runs[static_cast<size_t>(k)]; });
+    for (const auto& r : runs) EXPECT_EQ(r.load(), 1) << threads;
+    std::atomic<int> started{0};
+    const auto failing = [&] {
+      runOnThreads(50, threads, [&](int k) {
+        ++started;
+        if (k == 3) throw NonConvergenceError("trial 3 did not converge");
+        std::this_thread::sleep_for(std::chrono::milliseconds(2));
+      });
+    };
+    EXPECT_THROW(failing(), NonConvergenceError) << threads;
+    EXPECT_LE(started.load(), 4 + threads) << threads;
+  }
+  runOnThreads(0, 2, [](int) { FAIL() << "no index"; });
 }
 
 TEST(ByteRecord, PacksValuesAndTextInOrder) {

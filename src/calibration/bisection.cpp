@@ -1,24 +1,17 @@
 #include "ddaslope/calibration/bisection.hpp"
 
-#include <atomic>
 #include <cmath>
 #include <sstream>
-#include <thread>
+
+#include "ddaslope/core/task_farm.hpp"
 
 namespace ddaslope::calibration {
 
 std::vector<bool> evaluateAll(const std::function<bool(double)>& stableAt, const std::vector<double>& values,
                               int threads) {
   std::vector<char> out(values.size());
-  std::atomic<size_t> next{0};
-  const auto work = [&] {
-    for (size_t i = next++; i < values.size(); i = next++) out[i] = stableAt(values[i]);
-  };
-  std::vector<std::thread> pool;
-  const int n = std::min<int>(std::max(1, threads), static_cast<int>(values.size()));
-  for (int t = 1; t < n; ++t) pool.emplace_back(work);
-  work();
-  for (auto& t : pool) t.join();
+  runOnThreads(static_cast<int>(values.size()), threads,
+               [&](int i) { out[static_cast<size_t>(i)] = stableAt(values[static_cast<size_t>(i)]); });
   return {out.begin(), out.end()};
 }
 

@@ -1,11 +1,10 @@
 #include "ddaslope/calibration/contact_comparison.hpp"
 
-#include <atomic>
 #include <cmath>
-#include <thread>
 
 #include "ddaslope/calibration/bisection.hpp"
 #include "ddaslope/calibration/verdict.hpp"
+#include "ddaslope/core/task_farm.hpp"
 #include "ddaslope/model/incline_scene.hpp"
 
 namespace ddaslope::calibration {
@@ -60,17 +59,11 @@ std::vector<ComparisonRow> compareContactTreatments(const ComparisonSettings& se
       }
   // Rows are independent forward-model searches: share them among threads (results do not
   // depend on the schedule, each row is computed alone).
-  std::atomic<size_t> next{0};
-  const auto work = [&] {
-    for (size_t i = next++; i < rows.size(); i = next++) {
-      rows[i].edge = critical(rows[i], model::ContactTreatment::Edge, settings.stiffBlocks, rows[i]);
-      rows[i].vertex = critical(rows[i], model::ContactTreatment::Vertex, settings.stiffBlocks, rows[i]);
-    }
-  };
-  std::vector<std::thread> pool;
-  for (int t = 1; t < std::max(1, settings.threads); ++t) pool.emplace_back(work);
-  work();
-  for (auto& t : pool) t.join();
+  runOnThreads(static_cast<int>(rows.size()), settings.threads, [&](int k) {
+    ComparisonRow& r = rows[static_cast<size_t>(k)];
+    r.edge = critical(r, model::ContactTreatment::Edge, settings.stiffBlocks, r);
+    r.vertex = critical(r, model::ContactTreatment::Vertex, settings.stiffBlocks, r);
+  });
   return rows;
 }
 

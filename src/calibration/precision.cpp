@@ -1,29 +1,16 @@
 #include "ddaslope/calibration/precision.hpp"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <functional>
 #include <sstream>
-#include <thread>
 
 #include "ddaslope/calibration/backanalysis.hpp"
+#include "ddaslope/core/task_farm.hpp"
 
 namespace ddaslope::calibration {
 
 namespace {
-
-/// Runs `work(k)` for k in [0, n) on `threads` threads (each forward run is independent).
-void inParallel(int n, int threads, const std::function<void(int)>& work) {
-  std::atomic<int> next{0};
-  const auto loop = [&] {
-    for (int k = next++; k < n; k = next++) work(k);
-  };
-  std::vector<std::thread> pool;
-  for (int t = 1; t < std::min(std::max(1, threads), n); ++t) pool.emplace_back(loop);
-  loop();
-  for (auto& t : pool) t.join();
-}
 
 std::vector<double> simulatedValues(const std::vector<ObservationFit>& fit) {
   std::vector<double> out;
@@ -103,7 +90,7 @@ Precision measurePrecision(const io::BackanalysisJob& job, const std::vector<dou
       if (v >= p.min && v <= p.max && std::abs(v - estimate[i]) > 1e-9 * (p.max - p.min)) values.push_back(v);
     }
     range.scan.resize(values.size());
-    inParallel(static_cast<int>(values.size()), job.threads, [&](int k) {
+    runOnThreads(static_cast<int>(values.size()), job.threads, [&](int k) {
       std::vector<double> x = estimate;
       x[i] = values[k];
       int n = 0;
@@ -118,7 +105,7 @@ Precision measurePrecision(const io::BackanalysisJob& job, const std::vector<dou
   // The Δt ensemble at the estimate.
   out.ensemble.push_back({1.0, bestMisfit, fitAtEstimate});
   out.ensemble.resize(1 + spec.timeStepFactors.size());
-  inParallel(static_cast<int>(spec.timeStepFactors.size()), job.threads, [&](int k) {
+  runOnThreads(static_cast<int>(spec.timeStepFactors.size()), job.threads, [&](int k) {
     model::Scene scene = sceneAt(job, estimate);
     scene.settings.timeStep *= spec.timeStepFactors[k];
     int n = 0;

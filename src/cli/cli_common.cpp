@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -47,6 +48,25 @@ CLI::Validator finiteIn(double lo, double hi, const std::string& what) {
       what);
 }
 
+std::optional<ValueRange> parseValueRange(const std::string& text, int maxCount) {
+  const size_t a = text.find(':'), b = a == std::string::npos ? a : text.find(':', a + 1);
+  if (b == std::string::npos || text.find(':', b + 1) != std::string::npos) return std::nullopt;
+  // strtod alone would take "nan" and "inf" (a range that never ends), or "1e999" as inf.
+  const auto number = [](const std::string& field, double& x) {
+    char* end = nullptr;
+    errno = 0;
+    x = std::strtod(field.c_str(), &end);
+    return !field.empty() && end == field.c_str() + field.size() && errno != ERANGE && std::isfinite(x);
+  };
+  ValueRange r;
+  const std::string count = text.substr(b + 1);
+  const auto [end, ec] = std::from_chars(count.data(), count.data() + count.size(), r.n);
+  if (!number(text.substr(0, a), r.lo) || !number(text.substr(a + 1, b - a - 1), r.hi) || ec != std::errc() ||
+      end != count.data() + count.size() || r.n < 2 || r.n > maxCount)
+    return std::nullopt;
+  return r;
+}
+
 /// The options every command that runs forward models shares.
 void addModelOptions(CLI::App* cmd, Overrides& o) {
   cmd->add_option("--preset", o.model.preset, "fast, balanced or accurate: Δt, g2 and penalty (docs/accuracy.md)")
@@ -61,7 +81,7 @@ void addModelOptions(CLI::App* cmd, Overrides& o) {
       ->check(CLI::IsMember({"edge", "vertex"}));
   cmd->add_flag("--brittle-joints", o.model.brittleJoints,
                 "every joint's bond lost the moment it slides (original DDA): the first-failure answer");
-  cmd->add_option("--set", o.settings, "json.path=value: override a number of the case (repeatable)");
+  cmd->add_option("--set", o.settings, "json.path=value: override a value of the case: a number, true, false or a string (repeatable)");
   // Pseudo-static seismic coefficients: shorthands for --set seismic.k_h=… (docs/seismic.md).
   const auto coefficient = [&o](const char* key) {
     return [&o, key](double k) {
@@ -77,8 +97,10 @@ void addModelOptions(CLI::App* cmd, Overrides& o) {
       ->check(finiteIn(-2, 2, "a coefficient in [-2, 2]"));
 }
 
-/// "path=value" → an override: a number, true or false, or a name (the case reader then checks
-/// it as it checks the file); a malformed one is bad input.
+/// "path=value" → an override, the value a JSON literal as the case file would hold it: a number
+/// (parsed by std::stod, as always), true or false, or a string, quoted ("two words") or bare (a
+/// word that is neither a number nor a boolean). The case reader then checks it as it checks the
+/// file. A malformed one is bad input naming --set.
 ddaslope::io::CaseOverride parseSetting(const std::string& text) {
   const size_t eq = text.find('=');
   if (eq == std::string::npos || eq == 0 || eq + 1 == text.size())
@@ -89,6 +111,22 @@ ddaslope::io::CaseOverride parseSetting(const std::string& text) {
   const std::string value = text.substr(eq + 1);
   if (value == "true" || value == "false") {
     o.flag = value == "true";
+    return o;
+  }
+  if (value == "null")
+    throw ddaslope::InputError("--set", text, "expected a number, true, false or a string, found null: a key "
+                                              "cannot be unset from the command line (edit the case)");
+  if (value.front() == '"') {
+    // A JSON string: \" and \\ are the escapes a shell user needs; others are kept as written.
+    std::string s;
+    size_t k = 1;
+    for (; k < value.size() && value[k] != '"'; ++k) {
+      if (value[k] == '\\' && k + 1 < value.size() && (value[k + 1] == '"' || value[k + 1] == '\\')) ++k;
+      s += value[k];
+    }
+    if (k + 1 != value.size())
+      throw ddaslope::InputError("--set", text, "expected a string closed by its \" at the end, found " + value);
+    o.text = s;
     return o;
   }
   try {
@@ -103,9 +141,12 @@ ddaslope::io::CaseOverride parseSetting(const std::string& text) {
   } catch (const std::out_of_range&) {
     throw ddaslope::InputError("--set", text, "expected a finite number, found " + value);
   }
-  // Not a number: a name (a choice such as analysis.blocks=rigid), unless it starts like one.
+  // Not a number: a bare string (a choice such as analysis.blocks=rigid), unless it starts like a
+  // number (20x, 1..2: a mistyped number, not a name); quoted, any text is a string.
   if (value.find_first_of("0123456789+-.") == 0)
-    throw ddaslope::InputError("--set", text, "expected a number, true, false or a name, found " + value);
+    throw ddaslope::InputError("--set", text,
+                               "expected a number, true, false or a string (quote a string that starts like a "
+                               "number: =\"" + value + "\"), found " + value);
   o.text = value;
   return o;
 }

@@ -3,6 +3,7 @@
 // models takes (--preset, --time-step, --blocks, --set, …), reading a case with them, and the
 // settings line each result names.
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -29,6 +30,15 @@ struct Overrides {
 /// A command-line number checked like a case number: finite (no nan, inf or overflow) and in
 /// [lo, hi].
 CLI::Validator finiteIn(double lo, double hi, const std::string& what);
+
+/// "min:max:n" of an option (--curve, --sweep): min and max finite numbers (no nan, inf or
+/// overflow), n a whole number in [2, maxCount], and nothing else in the text; nullopt otherwise
+/// (the caller says what its option expects).
+struct ValueRange {
+  double lo = 0, hi = 0;
+  int n = 0;
+};
+std::optional<ValueRange> parseValueRange(const std::string& text, int maxCount);
 
 /// The options every command that runs forward models shares.
 void addModelOptions(CLI::App* cmd, Overrides& o);

@@ -23,10 +23,11 @@ namespace ddaslope::cli {
 namespace {
 
 int curveCommand(const std::string& casePath, const ddaslope::model::Scene& scene, int joint, const CriticalOptions& opt) {
-  double lo = 0, hi = 0;
-  int n = 0;
-  if (std::sscanf(opt.curve.c_str(), "%lf:%lf:%d", &lo, &hi, &n) != 3 || n < 2 || lo < 0 || hi >= 90 || lo >= hi)
-    throw ddaslope::InputError("--curve", "", "expected φmin:φmax:n with 0 ≤ φmin < φmax < 90 and n ≥ 2, found \"" + opt.curve + "\"");
+  const std::optional<ValueRange> range = parseValueRange(opt.curve, 200);
+  if (!range || range->lo < 0 || range->hi >= 90 || range->lo >= range->hi)
+    throw ddaslope::InputError("--curve", opt.curve, "expected φmin:φmax:n: finite angles 0 ≤ φmin < φmax < 90 (degrees) and a whole n, 2 ≤ n ≤ 200");
+  const double lo = range->lo, hi = range->hi;
+  const int n = range->n;
   const auto log = startProgress("critical --curve", opt.progress, opt.json);
   ddaslope::calibration::SearchSettings s;
   s.threads = opt.threads;

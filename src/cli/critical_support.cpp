@@ -42,12 +42,11 @@ SupportQuantity namedSupport(const std::string& casePath, const ddaslope::model:
 /// F against the support's size: a factor-of-safety search at each of n sizes over [lo, hi].
 int supportCurve(const std::string& casePath, const ddaslope::model::Scene& scene, const CriticalOptions& opt,
                  const SupportQuantity& q) {
-  double lo = 0, hi = 0;
-  int n = 0;
-  if (std::sscanf(opt.curve.c_str(), "%lf:%lf:%d", &lo, &hi, &n) != 3 || !std::isfinite(lo) || !std::isfinite(hi) ||
-      n < 2 || n > 200 || lo < 0 || lo >= hi)
-    throw ddaslope::InputError("--curve", "", "expected min:max:n in N/m with 0 ≤ min < max and 2 ≤ n ≤ 200, found \"" +
-                                                  opt.curve + "\"");
+  const std::optional<ValueRange> range = parseValueRange(opt.curve, 200);
+  if (!range || range->lo < 0 || range->lo >= range->hi)
+    throw ddaslope::InputError("--curve", opt.curve, "expected min:max:n: finite sizes 0 ≤ min < max (N/m) and a whole n, 2 ≤ n ≤ 200");
+  const double lo = range->lo, hi = range->hi;
+  const int n = range->n;
   const auto t0 = std::chrono::steady_clock::now();
   std::filesystem::create_directories(opt.outDir);
   const std::string csv = opt.outDir + "/support_curve.csv", png = opt.outDir + "/support_curve.png";

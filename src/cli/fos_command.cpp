@@ -40,11 +40,12 @@ ddaslope::calibration::FactorOfSafetyResult factorFor(const ddaslope::model::Sce
 /// F at n values of one case number (e.g. the reservoir level): CSV and PNG in opt.outDir.
 int fosSweep(const std::string& casePath, const Overrides& o, const FosOptions& opt) {
   const size_t eq = opt.sweep.find('=');
-  double lo = 0, hi = 0;
-  int n = 0;
-  if (eq == std::string::npos || std::sscanf(opt.sweep.c_str() + eq + 1, "%lf:%lf:%d", &lo, &hi, &n) != 3 || n < 2 ||
-      n > 1000 || !std::isfinite(lo) || !std::isfinite(hi))
-    throw ddaslope::InputError("--sweep", opt.sweep, "expected json.path=min:max:n with finite min, max and 2 ≤ n ≤ 1000");
+  const std::optional<ValueRange> range =
+      eq == std::string::npos || eq == 0 ? std::nullopt : parseValueRange(opt.sweep.substr(eq + 1), 1000);
+  if (!range)
+    throw ddaslope::InputError("--sweep", opt.sweep, "expected json.path=min:max:n: finite min and max and a whole n, 2 ≤ n ≤ 1000");
+  const double lo = range->lo, hi = range->hi;
+  const int n = range->n;
   const std::string path = opt.sweep.substr(0, eq);
   const std::string csv = opt.outDir + "/fos_sweep.csv", png = opt.outDir + "/fos_sweep.png";
   // The values are independent searches (one thread each, so a value's F is the same on any

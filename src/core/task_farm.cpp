@@ -15,32 +15,11 @@ class ThreadFarm final : public TaskFarm {
 
   void run(const std::vector<int>& indices, const Task& task, const Sink& sink) override {
     std::mutex mutex;
-    size_t next = 0;
-    std::exception_ptr error;
-    const auto work = [&] {
-      for (;;) {
-        int index;
-        {
-          const std::lock_guard<std::mutex> lock(mutex);
-          if (error || next >= indices.size()) return;
-          index = indices[next++];
-        }
-        try {
-          const TaskResult result = task(index);
-          const std::lock_guard<std::mutex> lock(mutex);
-          sink(index, result);
-        } catch (...) {
-          const std::lock_guard<std::mutex> lock(mutex);
-          if (!error) error = std::current_exception();
-        }
-      }
-    };
-    const int n = static_cast<int>(std::min<size_t>(threads_, indices.size()));
-    std::vector<std::thread> pool;
-    for (int t = 1; t < n; ++t) pool.emplace_back(work);
-    work();
-    for (std::thread& t : pool) t.join();
-    if (error) std::rethrow_exception(error);
+    runOnThreads(static_cast<int>(indices.size()), threads_, [&](int k) {
+      const TaskResult result = task(indices[static_cast<size_t>(k)]);
+      const std::lock_guard<std::mutex> lock(mutex);
+      sink(indices[static_cast<size_t>(k)], result);
+    });
   }
   bool isRoot() const override { return true; }
   int slots() const override { return threads_; }
@@ -53,5 +32,37 @@ class ThreadFarm final : public TaskFarm {
 }  // namespace
 
 std::unique_ptr<TaskFarm> makeThreadFarm(int threads) { return std::make_unique<ThreadFarm>(threads); }
+
+void runOnThreads(int n, int threads, const std::function<void(int)>& work) {
+  std::mutex mutex;
+  int next = 0;
+  std::exception_ptr error;
+  const auto loop = [&] {
+    for (;;) {
+      int k;
+      {
+        const std::lock_guard<std::mutex> lock(mutex);
+        if (error || next >= n) return;
+        k = next++;
+      }
+      try {
+        work(k);
+      } catch (...) {
+        const std::lock_guard<std::mutex> lock(mutex);
+        if (!error) error = std::current_exception();
+      }
+    }
+  };
+  std::vector<std::thread> pool;
+  const int count = std::min(std::max(1, threads), n);
+  try {
+    for (int t = 1; t < count; ++t) pool.emplace_back(loop);
+  } catch (...) {
+    // No thread to start (std::system_error): the ones started still share the work.
+  }
+  loop();
+  for (std::thread& t : pool) t.join();
+  if (error) std::rethrow_exception(error);
+}
 
 }  // namespace ddaslope

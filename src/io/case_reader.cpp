@@ -568,21 +568,33 @@ void checkWorkload(const model::Scene& s, const std::string& file) {
 
 namespace {
 
-/// The JSON value at a dotted path with [index] parts, or nullptr.
-json* locate(json& doc, const std::string& path) {
+/// The JSON value at a dotted path with [index] parts, or nullptr where a key is missing (it may
+/// be added). An index that names no element (blocks[x], blocks[-1], blocks[7] of two blocks, an
+/// index into an object) is bad input here, naming the part of the path it is in.
+json* locate(json& doc, const std::string& path, const std::string& file) {
   json* at = &doc;
   size_t i = 0;
   while (i < path.size()) {
     if (path[i] == '.') ++i;
-    if (path[i] == '[') {
+    if (i < path.size() && path[i] == '[') {
       const size_t close = path.find(']', i);
-      if (close == std::string::npos || !at->is_array()) return nullptr;
+      const std::string array = path.substr(0, i);
+      if (close == std::string::npos)
+        throw InputError(file, path, "in " + path.substr(0, i + 1) + "...: expected an index closed by ], found none");
       const std::string index = path.substr(i + 1, close - i - 1);
-      // An index is digits (blocks[x] names nothing), and few enough to be a size.
-      if (index.empty() || index.size() > 9 || index.find_first_not_of("0123456789") != std::string::npos) return nullptr;
-      const size_t k = std::stoul(index);
-      if (k >= at->size()) return nullptr;
-      at = &(*at)[k];
+      const std::string part = path.substr(0, close + 1);
+      if (index.empty() || index.find_first_not_of("0123456789") != std::string::npos)
+        throw InputError(file, path, "in " + part + ": expected an index (a whole number from 0), found \"" + index + "\"");
+      if (!at->is_array())
+        throw InputError(file, path, "in " + part + ": expected an array at " + (array.empty() ? "the top" : array) +
+                                         " to index, found " + typeName(*at));
+      // Compared as text first: an index of any length is refused, never converted out of range.
+      const std::string size = std::to_string(at->size());
+      const std::string digits = index.substr(std::min(index.find_first_not_of('0'), index.size() - 1));
+      if (digits.size() > size.size() || (digits.size() == size.size() && digits >= size))
+        throw InputError(file, path, "in " + part + ": expected an index below " + size + " (" + array + " has " + size +
+                                         (at->size() == 1 ? " entry" : " entries") + "), found " + index);
+      at = &(*at)[static_cast<size_t>(std::stoull(digits))];
       i = close + 1;
       continue;
     }
@@ -601,17 +613,17 @@ namespace {
 
 /// Puts one override into the case's JSON (a path without `*`).
 void applyOverride(json& doc, const std::string& path, const CaseOverride& o, const std::string& jsonPath) {
-  json* at = locate(doc, jsonPath);
+  json* at = locate(doc, jsonPath, path);
   const size_t dot = jsonPath.rfind('.');
   if (o.erase) {
-    json* parent = dot == std::string::npos ? &doc : locate(doc, jsonPath.substr(0, dot));
+    json* parent = dot == std::string::npos ? &doc : locate(doc, jsonPath.substr(0, dot), path);
     if (parent && parent->is_object()) parent->erase(jsonPath.substr(dot + 1));
     return;
   }
   if (!at) {
     // A key the case leaves at its default (analysis.open_close_max_iterations) may be set too:
     // it is added to its object, and the reader then checks it like any other key.
-    json* parent = dot == std::string::npos ? nullptr : locate(doc, jsonPath.substr(0, dot));
+    json* parent = dot == std::string::npos ? nullptr : locate(doc, jsonPath.substr(0, dot), path);
     // So may a top-level object the case leaves out altogether (seismic.k_h on a static case).
     const std::string parentPath = dot == std::string::npos ? "" : jsonPath.substr(0, dot);
     if (!parent && !parentPath.empty() && parentPath.find_first_of(".[") == std::string::npos && doc.is_object())
@@ -619,7 +631,7 @@ void applyOverride(json& doc, const std::string& path, const CaseOverride& o, co
     const std::string key = dot == std::string::npos ? "" : jsonPath.substr(dot + 1);
     if (parent && parent->is_object() && !key.empty() && key.find('[') == std::string::npos) at = &(*parent)[key];
   }
-  const std::string kind = o.flag ? "true or false" : o.text ? "a name" : "a number";
+  const std::string kind = o.flag ? "true or false" : o.text ? "a string \"" + *o.text + "\"" : "a number";
   if (!at) throw InputError(path, jsonPath, "expected a value of the case at this path (to set it to " + kind + "), found none");
   if (!(at->is_null() || (o.flag ? at->is_boolean() : o.text ? at->is_string() : at->is_number())))
     throw InputError(path, jsonPath, "expected " + typeName(*at) + " here, as the case has it, found " + kind);
@@ -645,7 +657,7 @@ model::Scene parseCase(const std::string& text, const std::string& path, const s
       applyOverride(doc, path, o, o.jsonPath);
     } else {
       // Every key of the object before the star (every joint).
-      const json* object = locate(doc, o.jsonPath.substr(0, star));
+      const json* object = locate(doc, o.jsonPath.substr(0, star), path);
       if (object && object->is_object())
         for (const auto& item : object->items())
           applyOverride(doc, path, o, o.jsonPath.substr(0, star) + "." + item.key() + o.jsonPath.substr(star + 2));

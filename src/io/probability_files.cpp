@@ -45,7 +45,9 @@ bool parseNumber(const std::string& text, double* v) {
     return true;
   }
   const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), *v);
-  return ec == std::errc() && end == text.data() + text.size();
+  // from_chars takes "nan" and "inf", which the writer never writes (NaN is an empty field): a
+  // damaged file, not a value to carry into the summary.
+  return ec == std::errc() && end == text.data() + text.size() && std::isfinite(*v);
 }
 
 /// The plane of the scatter plot: cohesion and friction angle of a joint when both are inputs,

@@ -17,7 +17,8 @@ struct BisectionResult {
   std::string message;
 };
 
-/// Evaluates `stableAt` for every value, `threads` at a time; results in input order.
+/// Evaluates `stableAt` for every value, `threads` at a time; results in input order. An exception
+/// of one evaluation is rethrown here, after the others running have finished.
 std::vector<bool> evaluateAll(const std::function<bool(double)>& stableAt, const std::vector<double>& values,
                               int threads);
 

@@ -40,6 +40,14 @@ class TaskFarm {
 
 /// `threads` workers in this process.
 std::unique_ptr<TaskFarm> makeThreadFarm(int threads);
+
+/// work(i) once for every i in [0, n), on min(threads, n) threads of this process (the caller's
+/// among them), each taking the next index as it frees up. An exception of a task never leaves
+/// its thread: no further task starts, the running ones finish, and the first error is rethrown
+/// on the caller. Every thread loop of the program that runs user-driven work goes through here
+/// (or through ThreadPool::runAll), so a bad input met in a worker is reported, not an abort.
+void runOnThreads(int n, int threads, const std::function<void(int)>& work);
+
 /// Under mpirun with more than one rank: the MPI farm, `threads` per rank; else makeThreadFarm.
 std::unique_ptr<TaskFarm> makeTaskFarm(int threads);
 
