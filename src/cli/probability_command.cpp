@@ -132,7 +132,8 @@ std::vector<SampleResult> prepareFolder(const ProbabilityOptions& opt, SampleTab
 
 /// FORM's design point of the study (docs/probability.md, *Importance sampling*), found with
 /// forward runs' verdicts, and what the summary reports of it.
-io::DesignPointReport designPoint(const calibration::SampleDesign& design, const SceneMaker& make, const calibration::SampleSettings& settings, int threads) {
+io::DesignPointReport designPoint(const calibration::SampleDesign& design, const SceneMaker& make,
+                                  const calibration::SampleSettings& settings, int threads) {
   calibration::LimitState limit;
   limit.dimensions = design.inputs();
   limit.accepts = [&](const std::vector<double>& u) {
@@ -288,7 +289,7 @@ int probabilityCommand(const std::string& path, const Overrides& o, const Probab
     // samples it deals need nothing but their index.
     if (processRank() == 0 && !opt.json)
       std::printf("probability of failure: searching the design point (FORM) of %s with forward runs, %d at once\n",
-                  job.casePath.c_str(), opt.threads);
+                  job.casePath.c_str(), std::min(opt.threads, 2));
     std::fflush(stdout);
     form = designPoint(design, make, settings, opt.threads);
     if (!form->point.found) {

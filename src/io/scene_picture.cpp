@@ -15,18 +15,67 @@ namespace ddaslope::io {
 
 PictureFrame frameScene(const model::Scene& scene) {
   PictureFrame f;
-  f.view = geometry::boundingBox(scene.blocks.front().vertices);
+  f.whole = geometry::boundingBox(scene.blocks.front().vertices);
+  bool anyFree = false;
+  geometry::Aabb free;
   for (const model::Block& b : scene.blocks) {
     const geometry::Aabb bb = geometry::boundingBox(b.vertices);
-    f.view.lo = f.view.lo.cwiseMin(bb.lo);
-    f.view.hi = f.view.hi.cwiseMax(bb.hi);
+    f.whole.lo = f.whole.lo.cwiseMin(bb.lo);
+    f.whole.hi = f.whole.hi.cwiseMax(bb.hi);
     f.initialCentroids.push_back(b.moments.centroid);
+    if (b.fixed) continue;
+    free = anyFree ? geometry::Aabb{free.lo.cwiseMin(bb.lo), free.hi.cwiseMax(bb.hi)} : bb;
+    anyFree = true;
   }
-  const Vec2 margin = 0.05 * (f.view.hi - f.view.lo);
-  f.view.lo -= margin;
-  f.view.hi += margin;
+  const Vec2 size = f.whole.hi - f.whole.lo;
+  f.view = {f.whole.lo - 0.05 * size, f.whole.hi + 0.05 * size};
+  if (anyFree) {
+    // The free blocks with a quarter of their extent around them (room for their motion and
+    // their neighbours), within the whole scene.
+    const double margin = 0.25 * (free.hi - free.lo).maxCoeff();
+    const geometry::Aabb zoom{(free.lo - Vec2(margin, margin)).cwiseMax(f.view.lo),
+                              (free.hi + Vec2(margin, margin)).cwiseMin(f.view.hi)};
+    const Vec2 z = zoom.hi - zoom.lo, v = f.view.hi - f.view.lo;
+    if (z.x() * z.y() < 0.25 * v.x() * v.y()) {
+      f.view = zoom;
+      f.zoomed = true;
+    }
+  }
   return f;
 }
+
+namespace {
+
+/// A tick spacing of 1, 2 or 5 × 10^k giving about `count` ticks over `range`.
+double niceStep(double range, int count) {
+  const double raw = range / count, power = std::pow(10.0, std::floor(std::log10(raw)));
+  for (double m : {1.0, 2.0, 5.0})
+    if (m * power >= raw) return m * power;
+  return 10 * power;
+}
+
+/// Blue (still) through yellow to red (moved most), for t in [0, 1].
+void ramp(double t, double* c) {
+  const double k[3][3] = {{0.35, 0.55, 0.85}, {0.98, 0.85, 0.30}, {0.85, 0.20, 0.15}};
+  t = std::clamp(t, 0.0, 1.0) * 2;
+  const int i = std::min(1, static_cast<int>(t));
+  for (int a = 0; a < 3; ++a) c[a] = k[i][a] + (k[i + 1][a] - k[i][a]) * (t - i);
+}
+
+void label(cairo_t* cr, double x, double y, const std::string& text, double alignX, double alignY) {
+  cairo_text_extents_t e;
+  cairo_text_extents(cr, text.c_str(), &e);
+  cairo_move_to(cr, x - alignX * e.x_advance, y + alignY * e.height);
+  cairo_show_text(cr, text.c_str());
+}
+
+std::string metres(double v) {
+  char t[32];
+  std::snprintf(t, sizeof t, "%g", std::abs(v) < 1e-9 ? 0.0 : v);
+  return t;
+}
+
+}  // namespace
 
 SceneState captureState(const solver::Simulation& sim) {
   SceneState s;
@@ -46,12 +95,35 @@ void writeScenePicture(const solver::Simulation& sim, const PictureFrame& frame,
 void writeScenePicture(const SceneState& state, const PictureFrame& frame, const std::string& path,
                        const std::string& title) {
   const model::Scene& scene = state.scene;
-  const double worldW = frame.view.hi.x() - frame.view.lo.x(), worldH = frame.view.hi.y() - frame.view.lo.y();
-  const int width = 1000, top = 40, bottom = 50;
-  const double scale = (width - 40) / worldW;
-  const int height = static_cast<int>(worldH * scale) + top + bottom;
+  // Equal scales in x and y, the plot at most 860 × 760 px; a flat view (a slab) is widened in
+  // height around its middle so that the plot keeps 260 px.
+  geometry::Aabb view = frame.view;
+  if (frame.zoomed) {
+    // Blocks that moved out of the zoomed view (a run-out) widen it: nothing free leaves the picture.
+    for (const model::Block& b : scene.blocks) {
+      if (b.fixed) continue;
+      const geometry::Aabb bb = geometry::boundingBox(b.vertices);
+      const Vec2 pad = 0.1 * (bb.hi - bb.lo);
+      view.lo = view.lo.cwiseMin(bb.lo - pad);
+      view.hi = view.hi.cwiseMax(bb.hi + pad);
+    }
+  }
+  const double worldW = view.hi.x() - view.lo.x();
+  double worldH = view.hi.y() - view.lo.y();
+  const double scale = std::min(860 / worldW, 760 / worldH);
+  if (worldH * scale < 260) {
+    const double mid = 0.5 * (view.lo.y() + view.hi.y());
+    worldH = 260 / scale;
+    view.lo.y() = mid - worldH / 2;
+    view.hi.y() = mid + worldH / 2;
+  }
+  const int left = 70, top = 40, plotW = static_cast<int>(std::ceil(worldW * scale)),
+            plotH = static_cast<int>(std::ceil(worldH * scale));
+  // Right of the plot: the colour bar, and the whole scene's inset below it when zoomed.
+  const int width = left + std::max(plotW, 400) + (frame.zoomed ? 240 : 110);
+  const int height = top + std::max(plotH, frame.zoomed ? 420 : 0) + 95;
   const auto px = [&](const Vec2& p) {
-    return std::pair{20 + (p.x() - frame.view.lo.x()) * scale, top + (frame.view.hi.y() - p.y()) * scale};
+    return std::pair{left + (p.x() - view.lo.x()) * scale, top + (view.hi.y() - p.y()) * scale};
   };
   std::vector<double> moved(scene.blocks.size(), 0);
   double maxMoved = 0;
@@ -59,28 +131,27 @@ void writeScenePicture(const SceneState& state, const PictureFrame& frame, const
     moved[b] = (scene.blocks[b].moments.centroid - frame.initialCentroids[b]).norm();
     if (!scene.blocks[b].fixed) maxMoved = std::max(maxMoved, moved[b]);
   }
-  const auto ramp = [](double t, double* c) {  // blue (still) → yellow → red (moved most)
-    const double k[3][3] = {{0.35, 0.55, 0.85}, {0.98, 0.85, 0.30}, {0.85, 0.20, 0.15}};
-    t = std::clamp(t, 0.0, 1.0) * 2;
-    const int i = std::min(1, static_cast<int>(t));
-    for (int a = 0; a < 3; ++a) c[a] = k[i][a] + (k[i + 1][a] - k[i][a]) * (t - i);
-  };
   cairo_surface_t* surface = cairo_image_surface_create(CAIRO_FORMAT_RGB24, width, height);
   cairo_t* cr = cairo_create(surface);
   cairo_set_source_rgb(cr, 1, 1, 1);
   cairo_paint(cr);
+  cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
+  // Everything of the scene stays inside the plot.
+  cairo_save(cr);
+  cairo_rectangle(cr, left, top, plotW, plotH);
+  cairo_clip(cr);
   // Water below the phreatic line (a pore-pressure ratio or a pressure grid has no free water to
   // draw: the legend names it).
   if (scene.water.active() && scene.water.ru <= 0 && !scene.water.grid) {
     cairo_set_source_rgba(cr, 0.55, 0.75, 0.95, 0.5);
     const int steps = 200;
     for (int i = 0; i <= steps; ++i) {
-      const double x = frame.view.lo.x() + worldW * i / steps;
-      const auto [sx, sy] = px({x, std::min(scene.water.headAt(x), frame.view.hi.y())});
+      const double x = view.lo.x() + worldW * i / steps;
+      const auto [sx, sy] = px({x, std::min(scene.water.headAt(x), view.hi.y())});
       i == 0 ? cairo_move_to(cr, sx, sy) : cairo_line_to(cr, sx, sy);
     }
-    const auto [rx, ry] = px({frame.view.hi.x(), frame.view.lo.y()});
-    const auto [lx, ly] = px(frame.view.lo);
+    const auto [rx, ry] = px({view.hi.x(), view.lo.y()});
+    const auto [lx, ly] = px(view.lo);
     cairo_line_to(cr, rx, ry);
     cairo_line_to(cr, lx, ly);
     cairo_close_path(cr);
@@ -240,18 +311,98 @@ void writeScenePicture(const SceneState& state, const PictureFrame& frame, const
     cairo_line_to(cr, x + 5, y - 5);
     cairo_stroke(cr);
   }
-  cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
+  cairo_restore(cr);  // the plot's clip
+  // The whole scene as an inset when the view is zoomed on the free blocks, the view marked.
+  if (frame.zoomed) {
+    const Vec2 size = frame.whole.hi - frame.whole.lo;
+    const double k = std::min(200 / size.x(), 150 / size.y());
+    const double ix = left + plotW + 22, iy = top + 260;
+    const auto ipx = [&](const Vec2& p) {
+      return std::pair{ix + (p.x() - frame.whole.lo.x()) * k, iy + (frame.whole.hi.y() - p.y()) * k};
+    };
+    cairo_set_source_rgb(cr, 1, 1, 1);
+    cairo_rectangle(cr, ix - 4, iy - 4, k * size.x() + 8, k * size.y() + 8);
+    cairo_fill_preserve(cr);
+    cairo_set_source_rgb(cr, 0.3, 0.3, 0.3);
+    cairo_set_line_width(cr, 1);
+    cairo_stroke(cr);
+    for (size_t b = 0; b < scene.blocks.size(); ++b) {
+      const model::Block& blk = scene.blocks[b];
+      for (size_t v = 0; v < blk.vertices.size(); ++v) {
+        const auto [x, y] = ipx(blk.vertices[v]);
+        v == 0 ? cairo_move_to(cr, x, y) : cairo_line_to(cr, x, y);
+      }
+      cairo_close_path(cr);
+      double c[3] = {0.78, 0.78, 0.78};
+      if (!blk.fixed) ramp(maxMoved > 0 ? moved[b] / maxMoved : 0, c);
+      cairo_set_source_rgb(cr, c[0], c[1], c[2]);
+      cairo_fill(cr);
+    }
+    const auto [vx0, vy0] = ipx({view.lo.x(), view.hi.y()});
+    const auto [vx1, vy1] = ipx({view.hi.x(), view.lo.y()});
+    cairo_set_source_rgb(cr, 0.85, 0.0, 0.0);
+    cairo_set_line_width(cr, 1.5);
+    cairo_rectangle(cr, vx0, vy0, vx1 - vx0, vy1 - vy0);
+    cairo_stroke(cr);
+  }
+  // Axes in metres on the plot's frame.
+  cairo_set_source_rgb(cr, 0.2, 0.2, 0.2);
+  cairo_set_line_width(cr, 1);
+  cairo_rectangle(cr, left, top, plotW, plotH);
+  cairo_stroke(cr);
+  cairo_set_font_size(cr, 11);
+  const double step = niceStep(std::max(worldW, worldH), 8);
+  for (double x = std::ceil(view.lo.x() / step) * step; x <= view.hi.x(); x += step) {
+    const double sx = px({x, 0}).first;
+    cairo_move_to(cr, sx, top + plotH);
+    cairo_line_to(cr, sx, top + plotH + 5);
+    cairo_stroke(cr);
+    label(cr, sx, top + plotH + 10, metres(x), 0.5, 1);
+  }
+  for (double y = std::ceil(view.lo.y() / step) * step; y <= view.hi.y(); y += step) {
+    const double sy = px({0, y}).second;
+    cairo_move_to(cr, left - 5, sy);
+    cairo_line_to(cr, left, sy);
+    cairo_stroke(cr);
+    label(cr, left - 8, sy, metres(y), 1, 0.5);
+  }
+  cairo_set_font_size(cr, 12);
+  label(cr, left + plotW / 2.0, top + plotH + 32, "x (m)", 0.5, 0);
+  cairo_save(cr);
+  cairo_translate(cr, 30, top + plotH / 2.0);
+  cairo_rotate(cr, -M_PI / 2);
+  label(cr, 0, 0, "y (m)", 0.5, 0);
+  cairo_restore(cr);
+  // Colour bar of the displacement, right of the plot.
+  const double barX = left + plotW + 22, barH = std::min(200.0, 0.8 * plotH);
+  for (int i = 0; i < 100; ++i) {
+    double c[3];
+    ramp(i / 99.0, c);
+    cairo_set_source_rgb(cr, c[0], c[1], c[2]);
+    cairo_rectangle(cr, barX, top + barH * (1 - (i + 1) / 100.0), 14, barH / 100 + 0.5);
+    cairo_fill(cr);
+  }
+  cairo_set_source_rgb(cr, 0.2, 0.2, 0.2);
+  cairo_rectangle(cr, barX, top, 14, barH);
+  cairo_stroke(cr);
+  cairo_set_font_size(cr, 11);
+  char top_[32];
+  std::snprintf(top_, sizeof top_, "%.3g m", maxMoved);
+  label(cr, barX + 18, top, top_, 0, 0.5);
+  label(cr, barX + 18, top + barH, "0", 0, 0.5);
+  label(cr, barX, top + barH + 16, "block", 0, 0.5);
+  label(cr, barX, top + barH + 30, "displacement", 0, 0.5);
   cairo_set_font_size(cr, 15);
   cairo_set_source_rgb(cr, 0, 0, 0);
   cairo_move_to(cr, 20, 26);
   cairo_show_text(cr, title.c_str());
   char legend[300];
   std::snprintf(legend, sizeof legend,
-                "t = %.4g s   colour and purple arrows: block displacement, blue 0 to red %.3g m (longest arrow)   "
-                "contacts: green locked, orange sliding   x: monitors",
-                state.time, maxMoved);
+                "t = %.4g s   purple arrows: block displacement (the longest %.3g m)   contacts: green locked, orange "
+                "sliding   x: monitors%s",
+                state.time, maxMoved, frame.zoomed ? "   inset: the whole scene, the view in red" : "");
   cairo_set_font_size(cr, 12);
-  cairo_move_to(cr, 20, height - 18);
+  cairo_move_to(cr, 20, height - 26);
   cairo_show_text(cr, legend);
   if (!scene.supports.empty() || !scene.pointLoads.empty() || maxPressure > 0) {
     char water[120] = "";
@@ -266,7 +417,7 @@ void writeScenePicture(const SceneState& state, const PictureFrame& frame, const
                       ? ""
                       : "supports: dark blue holding, magenta yielded, grey dashed slack or broken   arrows: loads   ",
                   water);
-    cairo_move_to(cr, 20, height - 4);
+    cairo_move_to(cr, 20, height - 8);
     cairo_show_text(cr, second);
   }
   cairo_destroy(cr);

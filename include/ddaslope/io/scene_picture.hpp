@@ -11,10 +11,13 @@ namespace ddaslope::io {
 
 struct PictureFrame {
   geometry::Aabb view;                  ///< world window, fixed for all pictures of a run
+  geometry::Aabb whole;                 ///< the whole scene, drawn as an inset when the view is zoomed
+  bool zoomed = false;                  ///< the view shows the free blocks, not the whole scene
   std::vector<Vec2> initialCentroids;   ///< per block, to colour by displacement
 };
 
-/// Frames the whole scene (its bounding box with a 5 % margin) as it is now.
+/// Frames the scene as it is now: its free blocks with a margin (what can move), when they take
+/// up less than a quarter of it (a slab on a large base), else the whole scene with a 5 % margin.
 PictureFrame frameScene(const model::Scene& scene);
 
 /// What a picture shows of a simulation at one moment, kept apart from it: a search keeps the
