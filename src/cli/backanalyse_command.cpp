@@ -70,6 +70,9 @@ int backanalyseCommand(const std::string& jobPath, const std::string& outDir, bo
   ddaslope::io::JsonRecord j;
   j.set("job", jobPath).set("case", job.casePath);
   for (size_t i = 0; i < r.names.size(); ++i) j.set(r.names[i], r.estimate[i]);
+  ddaslope::io::JsonRecord estimate;  // the same values together, for readers that do not know the names
+  for (size_t i = 0; i < r.names.size(); ++i) estimate.set(r.names[i], r.estimate[i]);
+  j.set("estimate", estimate);
   j.set("misfit", r.misfit).set("evaluations", r.evaluations).set("forward_runs", r.forwardRuns);
   j.set("global_search", r.globalStatus).set("local_search", r.localStatus).set("wall_time_s", r.wallTime);
   const std::string settings = settingsLine(ddaslope::calibration::sceneAt(job, r.estimate));

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <map>
 #include <mutex>
 #include <tuple>
@@ -257,10 +258,22 @@ std::vector<std::string> MechanismPictures::write(const std::string& dir, const 
     char title[256];
     std::snprintf(title, sizeof title, "%s: %s = %.6g, %s (%s; largest motion %.3g m)", casePath.c_str(), quantity.c_str(),
                   value, verdict, calibration::name(result.rule), result.maxDisplacement);
-    io::writeScenePicture(state, kept_->frame, dir + "/" + file, title);
+    io::writeScenePicture(state, kept_->frame, dir + "/" + file, title, result.failureDisplacement);
     written.push_back(dir + "/" + file);
   }
   return written;
+}
+
+void writeResultFile(const std::string& path, const std::string& text) {
+  const std::filesystem::path p(path);
+  if (p.has_parent_path()) std::filesystem::create_directories(p.parent_path());
+  const std::string temporary = path + "." + std::to_string(::getpid()) + ".tmp";
+  {
+    std::ofstream out(temporary, std::ios::binary);
+    out << text;
+    if (!out.flush()) throw InputError(path, "", "cannot write the file");
+  }
+  std::filesystem::rename(temporary, path);
 }
 
 int jointIndex(const ddaslope::model::Scene& scene, const std::string& name, const std::string& casePath) {

@@ -83,6 +83,10 @@ class MechanismPictures {
 
 int jointIndex(const ddaslope::model::Scene& scene, const std::string& name, const std::string& casePath);
 
+/// Writes a command's result file through a temporary and a rename (its folder made): never half
+/// a file that looks complete.
+void writeResultFile(const std::string& path, const std::string& text);
+
 /// Progress of a long command: a line on stderr unless --quiet, a --json result or
 /// stderr not a terminal; JSON lines with --log-json FILE.
 struct ProgressOptions {

@@ -241,7 +241,7 @@ int criticalCommand(const std::string& casePath, const Overrides& o, const Criti
   const std::vector<std::string> drawn =
       r.found ? pictures.write(opt.outDir, casePath, cohesion ? "c (Pa)" : "φ (°)", r.stableEnd, r.failingEnd)
               : std::vector<std::string>{};
-  if (opt.json) {
+  {
     ddaslope::io::JsonRecord j;
     j.set("case", casePath).set("joint", opt.joint).set("solve", opt.solve).set("found", r.found);
     if (cohesion) j.set("friction_angle_deg", phi); else j.set("cohesion_pa", c);
@@ -253,7 +253,11 @@ int criticalCommand(const std::string& casePath, const Overrides& o, const Criti
     if (!opt.vtkDir.empty()) j.set("vtk", opt.vtkDir);
     j.set("mechanism_pictures", drawn);
     if (scene.tensionCrack) appendCrackSearch(j, crack ? *crack : CrackSearch{}, scene);
-    std::printf("%s\n", j.dump().c_str());
+    writeResultFile(opt.outDir + "/critical.json", j.dump() + "\n");
+    if (opt.json) std::printf("%s\n", j.dump().c_str());
+  }
+  if (opt.json) {
+    // printed above
   } else if (r.found) {
     const std::string where =
         cohesion          ? "at φ = " + std::to_string(phi) + "°"

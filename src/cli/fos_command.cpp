@@ -146,7 +146,7 @@ int fosCommand(const std::string& casePath, const Overrides& o, const FosOptions
   log->finish(r.found, r.found ? "F " + std::to_string(r.factor) : r.message);
   const std::vector<std::string> drawn =
       r.found ? pictures->write(opt.outDir, casePath, "F", r.stableEnd, r.failingEnd) : std::vector<std::string>{};
-  if (opt.json) {
+  {
     ddaslope::io::JsonRecord j;
     // No answer, no number: the bracket and the message say what is known.
     j.set("case", casePath).set("found", r.found).set("factor_of_safety", r.found ? r.factor : NAN);
@@ -158,7 +158,12 @@ int fosCommand(const std::string& casePath, const Overrides& o, const FosOptions
     if (!opt.vtkDir.empty()) j.set("vtk", opt.vtkDir);
     j.set("mechanism_pictures", drawn);
     if (scene.tensionCrack) appendCrackSearch(j, crack ? *crack : CrackSearch{}, scene);
-    std::printf("%s\n", j.dump().c_str());
+    // The result beside the pictures, for `ddaslope report` and for the record.
+    writeResultFile(opt.outDir + "/fos.json", j.dump() + "\n");
+    if (opt.json) std::printf("%s\n", j.dump().c_str());
+  }
+  if (opt.json) {
+    // printed above
   } else if (r.found) {
     std::printf("factor of safety (strength reduction on %s): %.4f (stable at %.4f, failing at %.4f)\n",
                 opt.joints.empty() ? "all joints" : "the named joints", r.factor, r.stableEnd, r.failingEnd);

@@ -13,6 +13,7 @@
 #include "fos_command.hpp"
 #include "cli_common.hpp"
 #include "probability_command.hpp"
+#include "report_command.hpp"
 #include "run_command.hpp"
 
 namespace {
@@ -72,6 +73,12 @@ int runCommandLine(int argc, char** argv) {
   ddaslope::cli::addProbabilityOptions(probability, casePath, probOpt);
   addModelOptions(probability, overrides);
 
+  std::string reportDir, reportOut;
+  CLI::App* reportCmd = app.add_subcommand(
+      "report", "one self-contained HTML file of an analysis folder (run, fos, critical, backanalyse, probability)");
+  reportCmd->add_option("dir", reportDir, "the folder an analysis wrote (its --out)")->required();
+  reportCmd->add_option("--out", reportOut, "the HTML file to write (default: DIR/report.html)");
+
   // An error that every MPI rank met in the same study is reported once, by the root.
   const auto report = [](const char* kind, const char* what) {
     if (ddaslope::processRank() == 0 || !ddaslope::errorSharedByAllProcesses()) std::cerr << kind << what << "\n";
@@ -99,6 +106,7 @@ int runCommandLine(int argc, char** argv) {
     if (ba->parsed()) return backanalyseCommand(jobPath, baOut, baJson, overrides, baProgress);
     if (fos->parsed()) return fosCommand(casePath, overrides, fosOpt);
     if (probability->parsed()) return ddaslope::cli::probabilityCommand(casePath, overrides, probOpt);
+    if (reportCmd->parsed()) return ddaslope::cli::reportCommand(reportDir, reportOut);
   } catch (const ddaslope::InputError& e) {
     report("ddaslope: error: ", e.what());
     return kExitBadInput;

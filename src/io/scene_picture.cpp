@@ -93,7 +93,7 @@ void writeScenePicture(const solver::Simulation& sim, const PictureFrame& frame,
 }
 
 void writeScenePicture(const SceneState& state, const PictureFrame& frame, const std::string& path,
-                       const std::string& title) {
+                       const std::string& title, double displacementScale) {
   const model::Scene& scene = state.scene;
   // Equal scales in x and y, the plot at most 860 × 760 px; a flat view (a slab) is widened in
   // height around its middle so that the plot keeps 260 px.
@@ -131,6 +131,9 @@ void writeScenePicture(const SceneState& state, const PictureFrame& frame, const
     moved[b] = (scene.blocks[b].moments.centroid - frame.initialCentroids[b]).norm();
     if (!scene.blocks[b].fixed) maxMoved = std::max(maxMoved, moved[b]);
   }
+  // The colours' and arrows' full scale: at least `displacementScale`, so that a slope at rest
+  // (micrometres) is drawn blue, not red as if it were the most moved.
+  const double fullScale = std::max(maxMoved, displacementScale);
   cairo_surface_t* surface = cairo_image_surface_create(CAIRO_FORMAT_RGB24, width, height);
   cairo_t* cr = cairo_create(surface);
   cairo_set_source_rgb(cr, 1, 1, 1);
@@ -167,7 +170,7 @@ void writeScenePicture(const SceneState& state, const PictureFrame& frame, const
     }
     cairo_close_path(cr);
     double c[3] = {0.78, 0.78, 0.78};
-    if (!blk.fixed) ramp(maxMoved > 0 ? moved[b] / maxMoved : 0, c);
+    if (!blk.fixed) ramp(fullScale > 0 ? moved[b] / fullScale : 0, c);
     cairo_set_source_rgb(cr, c[0], c[1], c[2]);
     cairo_fill_preserve(cr);
     cairo_set_source_rgb(cr, 0.15, 0.15, 0.15);
@@ -235,12 +238,12 @@ void writeScenePicture(const SceneState& state, const PictureFrame& frame, const
   }
   // Displacement vectors: from each free block's first centroid towards where it went, the
   // longest 40 px (a mechanism of centimetres on a slope of tens of metres is seen in them).
-  if (maxMoved > 0) {
+  if (fullScale > 0) {
     cairo_set_source_rgb(cr, 0.35, 0.0, 0.25);
     cairo_set_line_width(cr, 1.5);
     for (size_t b = 0; b < scene.blocks.size(); ++b) {
-      if (scene.blocks[b].fixed || moved[b] < 0.05 * maxMoved) continue;
-      const Vec2 d = (scene.blocks[b].moments.centroid - frame.initialCentroids[b]) / maxMoved;
+      if (scene.blocks[b].fixed || moved[b] < 0.05 * fullScale) continue;
+      const Vec2 d = (scene.blocks[b].moments.centroid - frame.initialCentroids[b]) / fullScale;
       const auto [x, y] = px(scene.blocks[b].moments.centroid);
       const double ex = x + 40 * d.x(), ey = y - 40 * d.y(), len = 40 * d.norm();
       const double ux = (ex - x) / len, uy = (ey - y) / len;
@@ -334,7 +337,7 @@ void writeScenePicture(const SceneState& state, const PictureFrame& frame, const
       }
       cairo_close_path(cr);
       double c[3] = {0.78, 0.78, 0.78};
-      if (!blk.fixed) ramp(maxMoved > 0 ? moved[b] / maxMoved : 0, c);
+      if (!blk.fixed) ramp(fullScale > 0 ? moved[b] / fullScale : 0, c);
       cairo_set_source_rgb(cr, c[0], c[1], c[2]);
       cairo_fill(cr);
     }
@@ -387,7 +390,7 @@ void writeScenePicture(const SceneState& state, const PictureFrame& frame, const
   cairo_stroke(cr);
   cairo_set_font_size(cr, 11);
   char top_[32];
-  std::snprintf(top_, sizeof top_, "%.3g m", maxMoved);
+  std::snprintf(top_, sizeof top_, "%.3g m", fullScale);
   label(cr, barX + 18, top, top_, 0, 0.5);
   label(cr, barX + 18, top + barH, "0", 0, 0.5);
   label(cr, barX, top + barH + 16, "block", 0, 0.5);
@@ -398,9 +401,9 @@ void writeScenePicture(const SceneState& state, const PictureFrame& frame, const
   cairo_show_text(cr, title.c_str());
   char legend[300];
   std::snprintf(legend, sizeof legend,
-                "t = %.4g s   purple arrows: block displacement (the longest %.3g m)   contacts: green locked, orange "
-                "sliding   x: monitors%s",
-                state.time, maxMoved, frame.zoomed ? "   inset: the whole scene, the view in red" : "");
+                "t = %.4g s   purple arrows: block displacement (full length %.3g m; largest %.3g m)   contacts: "
+                "green locked, orange sliding   x: monitors%s",
+                state.time, fullScale, maxMoved, frame.zoomed ? "   inset: the whole scene, the view in red" : "");
   cairo_set_font_size(cr, 12);
   cairo_move_to(cr, 20, height - 26);
   cairo_show_text(cr, legend);

@@ -36,7 +36,9 @@ SceneState captureState(const solver::Simulation& sim);
 /// Draws the simulation's current state to `path` (PNG, 1000 px wide).
 void writeScenePicture(const solver::Simulation& sim, const PictureFrame& frame, const std::string& path,
                        const std::string& title);
+/// `displacementScale` (m): the colour bar's and arrows' full scale is at least this (a search's
+/// failure displacement), so that a block at rest is not drawn as the most moved.
 void writeScenePicture(const SceneState& state, const PictureFrame& frame, const std::string& path,
-                       const std::string& title);
+                       const std::string& title, double displacementScale = 0);
 
 }  // namespace ddaslope::io

@@ -1,0 +1,246 @@
+#include "report_command.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "cli_common.hpp"
+#include "ddaslope/core/errors.hpp"
+
+namespace ddaslope::cli {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), {}};
+}
+
+std::string escape(const std::string& s) {
+  std::string out;
+  for (char c : s) {
+    switch (c) {
+      case '&': out += "&amp;"; break;
+      case '<': out += "&lt;"; break;
+      case '>': out += "&gt;"; break;
+      case '"': out += "&quot;"; break;
+      default: out += c;
+    }
+  }
+  return out;
+}
+
+std::string base64(const std::string& bytes) {
+  static const char* table = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  size_t i = 0;
+  for (; i + 2 < bytes.size(); i += 3) {
+    const unsigned v = static_cast<unsigned char>(bytes[i]) << 16 | static_cast<unsigned char>(bytes[i + 1]) << 8 |
+                       static_cast<unsigned char>(bytes[i + 2]);
+    out += {table[v >> 18], table[v >> 12 & 63], table[v >> 6 & 63], table[v & 63]};
+  }
+  if (i + 1 == bytes.size()) {
+    const unsigned v = static_cast<unsigned char>(bytes[i]) << 16;
+    out += {table[v >> 18], table[v >> 12 & 63], '=', '='};
+  } else if (i + 2 == bytes.size()) {
+    const unsigned v = static_cast<unsigned char>(bytes[i]) << 16 | static_cast<unsigned char>(bytes[i + 1]) << 8;
+    out += {table[v >> 18], table[v >> 12 & 63], table[v >> 6 & 63], '='};
+  }
+  return out;
+}
+
+std::string scalar(const json& v) {
+  if (v.is_string()) return escape(v.get<std::string>());
+  if (v.is_null()) return "&ndash;";
+  if (v.is_number_float()) {
+    char t[32];
+    std::snprintf(t, sizeof t, "%.6g", v.get<double>());
+    return t;
+  }
+  return escape(v.dump());
+}
+
+/// A JSON value as HTML: an object as a two-column table, an array of objects as a table with a
+/// column per key, an array of scalars as a list.
+std::string render(const json& v, int depth = 0) {
+  if (v.is_object()) {
+    std::string h = "<table class=\"kv\">";
+    for (const auto& [k, x] : v.items()) h += "<tr><th>" + escape(k) + "</th><td>" + render(x, depth + 1) + "</td></tr>";
+    return h + "</table>";
+  }
+  if (v.is_array()) {
+    const bool rows = !v.empty() && std::all_of(v.begin(), v.end(), [](const json& e) { return e.is_object(); });
+    if (!rows) {
+      std::string h;
+      for (const auto& e : v) h += (h.empty() ? "" : ", ") + render(e, depth + 1);
+      return h.empty() ? "&ndash;" : h;
+    }
+    std::vector<std::string> keys;
+    for (const auto& e : v)
+      for (const auto& [k, x] : e.items())
+        if (std::find(keys.begin(), keys.end(), k) == keys.end()) keys.push_back(k);
+    std::string h = "<table class=\"rows\"><tr>";
+    for (const auto& k : keys) h += "<th>" + escape(k) + "</th>";
+    h += "</tr>";
+    for (const auto& e : v) {
+      h += "<tr>";
+      for (const auto& k : keys) h += "<td>" + (e.contains(k) ? render(e.at(k), depth + 1) : std::string()) + "</td>";
+      h += "</tr>";
+    }
+    return h + "</table>";
+  }
+  return scalar(v);
+}
+
+json readJson(const fs::path& p) {
+  try {
+    return json::parse(slurp(p));
+  } catch (const json::exception& e) {
+    throw InputError(p.string(), "", std::string("expected the JSON ddaslope wrote, found a damaged file (") + e.what() +
+                                         ")");
+  }
+}
+
+double number(const json& j, const char* key) {
+  return j.contains(key) && j.at(key).is_number() ? j.at(key).get<double>() : NAN;
+}
+
+/// The analysis in a folder: its kind, its result and the headline answer.
+struct Analysis {
+  std::string kind, file;
+  json result;
+  std::string answer;
+};
+
+Analysis identify(const fs::path& dir) {
+  Analysis a;
+  char text[512];
+  if (fs::exists(dir / "fos.json")) {
+    a = {"Factor of safety (fos)", "fos.json", readJson(dir / "fos.json"), ""};
+    const json& r = a.result;
+    if (r.value("found", false))
+      std::snprintf(text, sizeof text, "F = %.4f: stable at %.4f, failing at %.4f (%d forward runs)",
+                    number(r, "factor_of_safety"), r["bracket"][0].get<double>(), r["bracket"][1].get<double>(),
+                    r.value("forward_runs", 0));
+    else
+      std::snprintf(text, sizeof text, "no factor of safety found: %s", r.value("message", "").c_str());
+    a.answer = text;
+  } else if (fs::exists(dir / "critical.json")) {
+    a = {"Critical strength (critical)", "critical.json", readJson(dir / "critical.json"), ""};
+    const json& r = a.result;
+    if (r.value("found", false))
+      std::snprintf(text, sizeof text, "critical %s of joint %s = %.6g %s: failing at %.6g, stable at %.6g",
+                    r.value("solve", "").c_str(), r.value("joint", "").c_str(), number(r, "critical"),
+                    r.value("unit", "").c_str(), r["bracket"][0].get<double>(), r["bracket"][1].get<double>());
+    else
+      std::snprintf(text, sizeof text, "no critical value found: %s", r.value("message", "").c_str());
+    a.answer = text;
+  } else if (fs::exists(dir / "result.json")) {
+    a = {"Back-analysis (backanalyse)", "result.json", readJson(dir / "result.json"), ""};
+    std::string estimate;
+    if (a.result.contains("estimate"))
+      for (const auto& [k, v] : a.result["estimate"].items()) estimate += k + " = " + scalar(v) + ", ";
+    a.answer = estimate + "misfit " + scalar(a.result.value("misfit", json())) + " after " +
+               scalar(a.result.value("evaluations", json())) + " evaluations";
+  } else if (fs::exists(dir / "summary.json")) {
+    json r = readJson(dir / "summary.json");
+    if (r.contains("probability_of_failure")) {
+      a = {"Probability of failure (probability)", "summary.json", r, ""};
+      std::snprintf(text, sizeof text, "Pf = %.4g, 95 %% interval %.4g to %.4g (%s); reliability index %.4g",
+                    number(r, "probability_of_failure"), r["interval_95"][0].is_number() ? r["interval_95"][0].get<double>() : NAN,
+                    r["interval_95"][1].is_number() ? r["interval_95"][1].get<double>() : NAN,
+                    r.value("interval_method", "").c_str(), number(r, "reliability_index"));
+      a.answer = text;
+    } else if (r.contains("steps")) {
+      a = {"Forward run (run)", "summary.json", r, ""};
+      std::snprintf(text, sizeof text, "%s: %d steps to t = %.4g s", r.value("status", "").c_str(),
+                    r.value("steps", 0), number(r, "time"));
+      a.answer = text;
+    }
+  }
+  if (a.kind.empty())
+    throw InputError(dir.string(), "",
+                     "expected a folder written by run, fos, critical, backanalyse or probability (summary.json, "
+                     "fos.json, critical.json or result.json), found none");
+  return a;
+}
+
+/// The pictures of the folder, the answer's first: mechanism, then snapshots, then the rest.
+std::vector<fs::path> pictures(const fs::path& dir) {
+  std::vector<fs::path> png;
+  for (const auto& e : fs::directory_iterator(dir))
+    if (e.is_regular_file() && e.path().extension() == ".png") png.push_back(e.path());
+  const auto rank = [](const fs::path& p) {
+    const std::string n = p.filename().string();
+    return n.rfind("mechanism", 0) == 0 ? 0 : n.rfind("snapshot", 0) == 0 ? 1 : 2;
+  };
+  std::sort(png.begin(), png.end(), [&](const fs::path& a, const fs::path& b) {
+    return rank(a) != rank(b) ? rank(a) < rank(b) : a.filename() < b.filename();
+  });
+  return png;
+}
+
+}  // namespace
+
+int reportCommand(const std::string& dirText, const std::string& outFile) {
+  const fs::path dir(dirText);
+  if (!fs::is_directory(dir)) throw InputError(dirText, "", "expected an analysis folder, found no folder there");
+  const Analysis a = identify(dir);
+  const json& r = a.result;
+  std::ostringstream h;
+  const std::string title = a.kind + ": " + (r.contains("case") ? r["case"].get<std::string>() : dirText);
+  h << "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>" << escape(title) << "</title>\n"
+    << "<style>body{font-family:sans-serif;margin:2em;max-width:1200px;color:#222}"
+       "h1{font-size:1.4em}h2{font-size:1.15em;margin-top:1.6em;border-bottom:1px solid #ccc}"
+       ".answer{font-size:1.2em;background:#eef4fb;padding:.6em;border-left:4px solid #2a5db0}"
+       "table{border-collapse:collapse;margin:.3em 0;font-size:.85em}th,td{border:1px solid #ccc;padding:2px 6px;"
+       "text-align:left;vertical-align:top}th{background:#f3f3f3}img{max-width:100%;border:1px solid #ddd;margin:.5em 0}"
+       "figure{margin:0 0 1em 0;page-break-inside:avoid}figcaption{font-size:.85em;color:#555}"
+       "@media print{body{margin:0}h2{page-break-after:avoid}}</style>\n"
+    // Marks the page once loaded: every picture decoded (data-pictures="loaded"), script errors
+    // counted (data-script-errors); a headless browser reads them (tests/test_report.cpp).
+    << "<script>window.addEventListener('error',function(){var b=document.body;"
+       "b.dataset.scriptErrors=String(Number(b.dataset.scriptErrors||0)+1);});"
+       "window.addEventListener('load',function(){var ok=true;document.querySelectorAll('img').forEach(function(i){"
+       "if(!(i.complete&&i.naturalWidth>0))ok=false;});document.body.dataset.pictures=ok?'loaded':'missing';});"
+       "</script></head>\n<body data-script-errors=\"0\">\n";
+  h << "<h1>" << escape(title) << "</h1>\n";
+  if (r.contains("description")) h << "<p>" << escape(r["description"].get<std::string>()) << "</p>\n";
+  h << "<p class=\"answer\">" << escape(a.answer) << "</p>\n";
+  if (r.contains("message") && r["message"].is_string() && !r["message"].get<std::string>().empty())
+    h << "<p>" << escape(r["message"].get<std::string>()) << "</p>\n";
+  if (r.contains("settings"))
+    h << "<h2>Settings in force</h2><p>" << escape(r["settings"].is_string() ? r["settings"].get<std::string>() : r["settings"].dump())
+      << "</p>\n";
+  const std::vector<fs::path> png = pictures(dir);
+  if (!png.empty()) {
+    h << "<h2>Pictures</h2>\n";
+    for (const auto& p : png)
+      h << "<figure><img alt=\"" << escape(p.filename().string()) << "\" src=\"data:image/png;base64,"
+        << base64(slurp(p)) << "\"><figcaption>" << escape(p.filename().string()) << "</figcaption></figure>\n";
+  }
+  h << "<h2>Result (" << escape(a.file) << ")</h2>\n" << render(r) << "\n";
+  h << "<p style=\"font-size:.8em;color:#777\">Written by ddaslope report from " << escape(dir.string())
+    << ". Every number above is the one the analysis wrote.</p>\n</body></html>\n";
+  const std::string out = outFile.empty() ? (dir / "report.html").string() : outFile;
+  const std::string temporary = out + ".tmp";
+  {
+    std::ofstream f(temporary, std::ios::binary);
+    f << h.str();
+    if (!f.flush()) throw InputError(out, "", "cannot write the report");
+  }
+  fs::rename(temporary, out);
+  std::printf("%s: %s\n  %s\n  wrote %s (%zu pictures embedded)\n", dirText.c_str(), a.kind.c_str(), a.answer.c_str(),
+              out.c_str(), png.size());
+  return kExitOk;
+}
+
+}  // namespace ddaslope::cli

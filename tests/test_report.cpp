@@ -1,0 +1,73 @@
+// `ddaslope report DIR` (issue #43): one self-contained HTML file per analysis folder, opened in a
+// real browser (Debian's Chromium, headless): every picture decodes and no script error occurs.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "test_io.hpp"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), {}};
+}
+
+/// The DOM Chromium holds once the page has loaded (--dump-dom), or "" without Chromium.
+std::string loadedPage(const fs::path& html) {
+  const fs::path out = html.parent_path() / "dom.txt";
+  const std::string cmd = "chromium --headless --no-sandbox --disable-gpu --dump-dom 'file://" + html.string() + "' >" +
+                          out.string() + " 2>/dev/null";
+  if (std::system(cmd.c_str()) != 0) return "";
+  return slurp(out);
+}
+
+}  // namespace
+
+// A run, a fos, a critical, a back-analysis and a probability folder each give report.html: the
+// answer as the analysis wrote it, its pictures embedded (no file beside the HTML is needed), and,
+// loaded in headless Chromium, every picture decoded (the page's own check sets
+// data-pictures="loaded") with no script error. Chromium is installed by scripts/install-deps.
+TEST(Report, EveryAnalysisFolderOpensInABrowserWithItsPictures) {
+  ASSERT_EQ(std::system("command -v chromium >/dev/null 2>&1"), 0)
+      << "Chromium is needed for this test: scripts/install-deps installs it (Debian package chromium)";
+  const std::string src = DDASLOPE_SOURCE_DIR;
+  const fs::path root = fs::temp_directory_path() / ("ddaslope_report_" + std::to_string(::getpid()));
+  fs::remove_all(root);
+  std::string err;
+  const struct {
+    std::string name, command, answer;
+    size_t pictures;
+  } analyses[] = {
+      {"run", "run " + src + "/cases/toppling_slope.json --snapshots 0,1 --quiet", "completed", 4},
+      {"fos", "fos " + src + "/cases/planar_failure.json --quiet", "F = 1.1142", 2},
+      {"critical", "critical " + src + "/cases/planar_failure.json --quiet", "critical cohesion of joint sliding_plane", 2},
+      {"backanalyse", "backanalyse " + src + "/calibration/two_block_slide/job.json --quiet", "friction_angle = ", 0},
+      {"probability", "probability " + src + "/calibration/planar_failure/probability_small.json --quiet", "Pf = ", 3},
+  };
+  for (const auto& a : analyses) {
+    const fs::path dir = root / a.name;
+    clitest::captureCli(a.command + " --out " + dir.string(), &err);
+    const std::string printed = clitest::captureCli("report " + dir.string(), &err);
+    EXPECT_NE(printed.find(a.answer), std::string::npos) << a.name << ": " << printed;
+    EXPECT_NE(printed.find("(" + std::to_string(a.pictures) + " pictures embedded)"), std::string::npos)
+        << a.name << ": " << printed;
+    const fs::path html = dir / "report.html";
+    const std::string text = slurp(html);
+    EXPECT_NE(text.find("<p class=\"answer\">"), std::string::npos) << a.name;
+    EXPECT_EQ(text.find("src=\"" + dir.string()), std::string::npos) << a.name << ": a picture not embedded";
+    const std::string dom = loadedPage(html);
+    EXPECT_NE(dom.find("data-pictures=\"loaded\""), std::string::npos) << a.name << ": " << dom.substr(0, 400);
+    EXPECT_NE(dom.find("data-script-errors=\"0\""), std::string::npos) << a.name;
+  }
+  EXPECT_EQ(clitest::runCli("report " + root.string(), &err), 2);
+  EXPECT_NE(err.find("expected a folder written by run, fos, critical, backanalyse or probability"), std::string::npos)
+      << err;
+  EXPECT_EQ(clitest::runCli("report " + (root / "nothing").string(), &err), 2);
+  fs::remove_all(root);
+}
