@@ -100,6 +100,10 @@ void writePng(const LinePlot& plot, const std::string& path) {
     const double* c = colours[k % 8];
     cairo_set_source_rgb(cr, c[0], c[1], c[2]);
     cairo_set_line_width(cr, 2);
+    // Past eight series the colours come round again, dashed (then dotted): 24 series stay apart.
+    const double dashes[][2] = {{8, 4}, {2, 3}};
+    if (k >= 8) cairo_set_dash(cr, dashes[(k / 8 - 1) % 2], 2, 0);
+    else cairo_set_dash(cr, nullptr, 0, 0);
     bool pen = false;
     for (size_t i = 0; i < s.x.size() && s.lines; ++i) {
       if (!std::isfinite(s.y[i])) {
