@@ -3,7 +3,8 @@
 // refused as bad input (an InputError naming the file, with a message), or a run that completes or
 // stops with a reported non-convergence, every recorded number finite. Nothing else: no crash, no
 // other exception, no hang (each run is bounded by analysis.max_steps and a wall-clock budget).
-// The sanitizer build (scripts/sanitize) runs this test too.
+// The sanitizer build (scripts/sanitize) runs this test too; test_fuzz_surfaces.cpp fuzzes the
+// other input surfaces (records, drawings, jobs, the command line, a resumed samples.csv).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -18,64 +19,13 @@
 #include "ddaslope/core/errors.hpp"
 #include "ddaslope/io/case_reader.hpp"
 #include "ddaslope/io/run_case.hpp"
+#include "fuzz_mutations.hpp"
 
 using namespace ddaslope;
 using nlohmann::json;
 namespace fs = std::filesystem;
 
 namespace {
-
-/// Every node of the document (its JSON pointer), for the mutator to choose from.
-void collectPointers(const json& j, const json::json_pointer& at, std::vector<json::json_pointer>& out) {
-  out.push_back(at);
-  if (j.is_object())
-    for (const auto& [k, v] : j.items()) collectPointers(v, at / k, out);
-  if (j.is_array())
-    for (size_t i = 0; i < j.size(); ++i) collectPointers(j[i], at / i, out);
-}
-
-/// Values a careless or hostile user might put anywhere: extremes, wrong types, odd strings.
-json oddValue(std::mt19937& rng) {
-  static const std::vector<json> odd = {
-      0, -1, 1e-300, 1e300, -1e300, 1e-12, 1e12, 1e308, -1e308, 0.5, 3, 1e6, -1e6, 1e-9, 100000,
-      "x", "", "a,b", "\n", std::string(300, 'y'), nullptr, true, false, json::array(), json::object(),
-      json::array({1, 2}), json::array({json::array({0, 0}), json::array({1, 0}), json::array({0, 1})}),
-      json::array({1e308, -1e308}), json::object({{"unknown", 1}})};
-  return odd[std::uniform_int_distribution<size_t>(0, odd.size() - 1)(rng)];
-}
-
-/// One random change of the document: a value replaced, scaled, removed, duplicated or added.
-void mutate(json& doc, std::mt19937& rng) {
-  std::vector<json::json_pointer> nodes;
-  collectPointers(doc, json::json_pointer(), nodes);
-  const json::json_pointer at = nodes[std::uniform_int_distribution<size_t>(1, nodes.size() - 1)(rng)];
-  json& node = doc[at];
-  json& parent = doc[at.parent_pointer()];
-  switch (std::uniform_int_distribution<int>(0, 5)(rng)) {
-    case 0:
-      node = oddValue(rng);
-      break;
-    case 1:  // scale a number by a power of ten
-      if (node.is_number()) node = node.get<double>() * std::pow(10.0, std::uniform_int_distribution<int>(-12, 12)(rng));
-      else node = oddValue(rng);
-      break;
-    case 2:  // remove it
-      if (parent.is_object()) parent.erase(at.back());
-      else if (parent.is_array()) parent.erase(std::stoul(at.back()));
-      break;
-    case 3:  // duplicate an array element
-      if (parent.is_array()) parent.push_back(node);
-      else node = oddValue(rng);
-      break;
-    case 4:  // negate
-      if (node.is_number()) node = -node.get<double>();
-      else node = oddValue(rng);
-      break;
-    default:  // an extra key
-      if (node.is_object()) node["fuzz"] = oddValue(rng);
-      else node = oddValue(rng);
-  }
-}
 
 std::vector<json> shippedCases() {
   std::vector<json> out;
@@ -110,7 +60,7 @@ TEST(Fuzz, MutatedShippedCasesAreRefusedOrRunCleanly) {
   for (int n = 0; n < kCases; ++n) {
     json doc = corpus[static_cast<size_t>(n) % corpus.size()];
     const int changes = std::uniform_int_distribution<int>(1, 2)(rng);
-    for (int k = 0; k < changes; ++k) mutate(doc, rng);
+    for (int k = 0; k < changes; ++k) fuzz::mutateJson(doc, rng);
     const std::string text = doc.dump();
     SCOPED_TRACE("mutation " + std::to_string(n) + ": " + text.substr(0, 400));
     model::Scene scene;

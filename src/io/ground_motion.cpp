@@ -12,6 +12,7 @@
 #include "ddaslope/core/errors.hpp"
 #include "ddaslope/io/csv_series.hpp"
 #include "ddaslope/io/input_file.hpp"
+#include "ddaslope/model/input_limits.hpp"
 
 namespace ddaslope::io {
 namespace {
@@ -34,6 +35,11 @@ std::vector<std::string> lines(const std::string& text) {
   }
   return out;
 }
+
+/// A record's accelerations in m/s² stay within ±kMaxGroundAcceleration: what a run takes
+/// without overflowing (a value in g near the largest double is inf in m/s²).
+const std::string kAccelerationRange = "within ±100 g (1000 m/s²)";
+bool withinRange(double acceleration) { return std::abs(acceleration) <= model::limits::kMaxGroundAcceleration; }
 
 std::string upper(std::string s) {
   for (char& c : s) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
@@ -74,6 +80,7 @@ model::GroundMotion readAt2(const std::string& text, const RecordSpec& spec, con
     for (std::string token; in >> token;) {
       double v = 0;
       if (!finiteNumber(token, v)) err.fail(static_cast<int>(i + 1), "expected a finite acceleration, found \"" + token + "\"");
+      if (!withinRange(kStandardGravity * v)) err.fail(static_cast<int>(i + 1), "expected an acceleration " + kAccelerationRange + ", found \"" + token + "\" g");
       a.push_back(v);
     }
   }
@@ -123,12 +130,23 @@ model::GroundMotion readCsv(const std::string& text, const RecordSpec& spec, con
         err.fail(line, "expected a finite " + what + ", found \"" + (c < static_cast<int>(cells.size()) ? cells[c] : "") + "\"");
       return v;
     };
-    const double t = cell(ti, "time");
+    // An analysis never runs past kMaxDuration, and times beyond it overflow the interpolation.
+    const auto time = [&](int c) {
+      const double v = cell(c, "time");
+      if (!(std::abs(v) <= model::limits::kMaxDuration)) err.fail(line, "expected a time within ±1e6 s, found \"" + cells[c] + "\"");
+      return v;
+    };
+    const auto acceleration = [&](int c, const std::string& what) {
+      const double v = cell(c, what);
+      if (!withinRange(unit * v)) err.fail(line, "expected a " + what + " " + kAccelerationRange + ", found \"" + cells[c] + "\" " + spec.units);
+      return v;
+    };
+    const double t = time(ti);
     if (!g.times.empty() && !(spec.start + t > g.times.back()))
       err.fail(line, "expected times increasing, found " + cells[ti] + " after " + std::to_string(g.times.back() - spec.start));
     g.times.push_back(spec.start + t);
-    g.horizontal.push_back(spec.scale * unit * cell(hi, "horizontal acceleration"));
-    if (vi >= 0) g.vertical.push_back(spec.scale * unit * cell(vi, "vertical acceleration"));
+    g.horizontal.push_back(spec.scale * unit * acceleration(hi, "horizontal acceleration"));
+    if (vi >= 0) g.vertical.push_back(spec.scale * unit * acceleration(vi, "vertical acceleration"));
   }
   if (g.times.size() < 2) err.fail(static_cast<int>(ls.size()), "expected at least two samples");
   if (spec.dt) {

@@ -161,9 +161,12 @@ void readObservations(const JobReader& r, const json& doc, BackanalysisJob& job)
     } else if (type == "factor_of_safety") {
       o.kind = ObservationSpec::Kind::FactorOfSafety;
       o.target = r.number(r.required(j, p, "target"), p + ".target");
-      if (j.contains("joints"))
-        for (size_t k = 0; k < j.at("joints").size(); ++k)
-          o.joints.push_back(r.string(j.at("joints")[k], p + ".joints[" + std::to_string(k) + "]"));
+      if (j.contains("joints")) {
+        const json& js = j.at("joints");
+        if (!js.is_array()) r.fail(p + ".joints", "expected an array of joint names, found " + js.dump());
+        for (size_t k = 0; k < js.size(); ++k)
+          o.joints.push_back(r.string(js[k], p + ".joints[" + std::to_string(k) + "]"));
+      }
     } else if (type == "runout") {
       o.kind = ObservationSpec::Kind::Runout;
       o.monitor = r.string(r.required(j, p, "monitor"), p + ".monitor");

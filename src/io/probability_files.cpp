@@ -9,6 +9,7 @@
 #include <set>
 #include <sstream>
 
+#include "ddaslope/calibration/verdict.hpp"
 #include "ddaslope/core/errors.hpp"
 #include "ddaslope/io/json_record.hpp"
 #include "ddaslope/io/line_plot.hpp"
@@ -19,6 +20,18 @@ namespace {
 namespace fs = std::filesystem;
 using calibration::SampleOutcome;
 using calibration::SampleResult;
+
+/// The rules a sample row may name (docs/probability.md, samples.csv): the verdict's, and
+/// "no_bracket" for a factor-of-safety search that found no F. A resumed row's rule is carried
+/// into summary.json, so anything else is a damaged row.
+bool knownRule(const std::string& rule) {
+  using calibration::VerdictRule;
+  for (VerdictRule v : {VerdictRule::AtRest, VerdictRule::SlowingDown, VerdictRule::PassedDisplacement,
+                        VerdictRule::StillMoving, VerdictRule::MovedWhileSettling, VerdictRule::NotConverged,
+                        VerdictRule::Undecided})
+    if (rule == calibration::name(v)) return true;
+  return rule == "no_bracket";
+}
 
 bool factorMeasure(const model::ProbabilitySpec& spec) {
   return spec.measure == model::ProbabilityMeasure::FactorOfSafety;
@@ -152,6 +165,9 @@ std::vector<SampleResult> SampleTable::read(const calibration::SampleDesign& des
     else if (outcome == "not_converged") r.outcome = SampleOutcome::NotConverged;
     else throw InputError(path_, where, "expected stable, fails or not_converged, found \"" + outcome + "\"");
     r.rule = f[n + 2];
+    if (!knownRule(r.rule))
+      throw InputError(path_, where, "expected a verdict rule (at_rest, slowing_down, failure_displacement, still_moving, "
+                                     "moved_while_settling, not_converged, undecided, no_bracket), found \"" + r.rule + "\"");
     size_t k = n + 3;
     bool ok = true;
     if (factorMeasure(spec_)) ok &= parseNumber(f[k++], &r.factor);

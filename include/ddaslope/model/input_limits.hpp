@@ -7,6 +7,10 @@ namespace ddaslope::model::limits {
 
 /// Gravity up to 100 g: a centrifuge model. Beyond it nothing a slope does is meant.
 constexpr double kMaxGravity = 1000;          // m/s²
+/// A ground-motion record's accelerations (before its scale): 100 g, far beyond the largest
+/// recorded peaks (a few g). A record in g near the largest double would overflow to inf when
+/// converted to m/s².
+constexpr double kMaxGroundAcceleration = 1000;  // m/s²
 constexpr double kMinDensity = 1;             // kg/m³: lighter than air is not a rock
 constexpr double kMaxDensity = 1e5;           // kg/m³: ten times osmium
 constexpr double kMinYoungModulus = 1e3;      // Pa: a gel
