@@ -241,6 +241,10 @@ int criticalCommand(const std::string& casePath, const Overrides& o, const Criti
   const std::vector<std::string> drawn =
       r.found ? pictures.write(opt.outDir, casePath, cohesion ? "c (Pa)" : "φ (°)", r.stableEnd, r.failingEnd)
               : std::vector<std::string>{};
+  std::vector<std::string> warnings;
+  for (std::string w : {ddaslope::calibration::smallMotionWarning(r.trials, cohesion ? "c" : "φ"), slightBendNote(scene),
+                        notchWarning(scene)})
+    if (!w.empty()) warnings.push_back(std::move(w));
   {
     ddaslope::io::JsonRecord j;
     j.set("case", casePath).set("joint", opt.joint).set("solve", opt.solve).set("found", r.found);
@@ -251,7 +255,7 @@ int criticalCommand(const std::string& casePath, const Overrides& o, const Criti
     ddaslope::calibration::appendReview(j, r.review);
     ddaslope::calibration::appendTrials(j, r.trials, cohesion ? "cohesion_pa" : "friction_angle_deg");
     if (!opt.vtkDir.empty()) j.set("vtk", opt.vtkDir);
-    j.set("mechanism_pictures", drawn);
+    j.set("mechanism_pictures", drawn).set("warnings", warnings);
     if (scene.tensionCrack) appendCrackSearch(j, crack ? *crack : CrackSearch{}, scene);
     writeResultFile(opt.outDir + "/critical.json", j.dump() + "\n");
     if (opt.json) std::printf("%s\n", j.dump().c_str());
@@ -276,9 +280,7 @@ int criticalCommand(const std::string& casePath, const Overrides& o, const Criti
     std::fprintf(stderr, "ddaslope: %s: no critical %s found after %d forward runs: %s\n", casePath.c_str(),
                  opt.solve.c_str(), r.runs, r.message.c_str());
   }
-  warnAboutTrials(casePath, ddaslope::calibration::smallMotionWarning(r.trials, cohesion ? "c" : "φ"));
-  warnAboutTrials(casePath, slightBendNote(scene));
-  warnAboutTrials(casePath, notchWarning(scene));
+  for (const auto& w : warnings) warnAboutTrials(casePath, w);
   return r.found ? kExitOk : kExitNonConvergence;
 }
 

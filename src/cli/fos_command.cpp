@@ -146,6 +146,10 @@ int fosCommand(const std::string& casePath, const Overrides& o, const FosOptions
   log->finish(r.found, r.found ? "F " + std::to_string(r.factor) : r.message);
   const std::vector<std::string> drawn =
       r.found ? pictures->write(opt.outDir, casePath, "F", r.stableEnd, r.failingEnd) : std::vector<std::string>{};
+  // Said on stderr and kept in fos.json, so that a report carries them.
+  std::vector<std::string> warnings;
+  for (std::string w : {ddaslope::calibration::smallMotionWarning(r.trials, "F"), slightBendNote(scene), notchWarning(scene)})
+    if (!w.empty()) warnings.push_back(std::move(w));
   {
     ddaslope::io::JsonRecord j;
     // No answer, no number: the bracket and the message say what is known.
@@ -156,7 +160,7 @@ int fosCommand(const std::string& casePath, const Overrides& o, const FosOptions
     ddaslope::calibration::appendReview(j, r.review);
     ddaslope::calibration::appendTrials(j, r.trials, "factor");
     if (!opt.vtkDir.empty()) j.set("vtk", opt.vtkDir);
-    j.set("mechanism_pictures", drawn);
+    j.set("mechanism_pictures", drawn).set("warnings", warnings);
     if (scene.tensionCrack) appendCrackSearch(j, crack ? *crack : CrackSearch{}, scene);
     // The result beside the pictures, for `ddaslope report` and for the record.
     writeResultFile(opt.outDir + "/fos.json", j.dump() + "\n");
@@ -183,9 +187,7 @@ int fosCommand(const std::string& casePath, const Overrides& o, const FosOptions
     std::fprintf(stderr, "ddaslope: %s: no factor of safety found after %d forward runs: %s\n", casePath.c_str(),
                  r.runs, r.message.c_str());
   }
-  warnAboutTrials(casePath, ddaslope::calibration::smallMotionWarning(r.trials, "F"));
-  warnAboutTrials(casePath, slightBendNote(scene));
-  warnAboutTrials(casePath, notchWarning(scene));
+  for (const auto& w : warnings) warnAboutTrials(casePath, w);
   return r.found ? kExitOk : kExitNonConvergence;
 }
 

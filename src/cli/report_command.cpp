@@ -200,7 +200,7 @@ int reportCommand(const std::string& dirText, const std::string& outFile) {
   h << "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>" << escape(title) << "</title>\n"
     << "<style>body{font-family:sans-serif;margin:2em;max-width:1200px;color:#222}"
        "h1{font-size:1.4em}h2{font-size:1.15em;margin-top:1.6em;border-bottom:1px solid #ccc}"
-       ".answer{font-size:1.2em;background:#eef4fb;padding:.6em;border-left:4px solid #2a5db0}"
+       ".warnings li{color:#8a4b00}.answer{font-size:1.2em;background:#eef4fb;padding:.6em;border-left:4px solid #2a5db0}"
        "table{border-collapse:collapse;margin:.3em 0;font-size:.85em}th,td{border:1px solid #ccc;padding:2px 6px;"
        "text-align:left;vertical-align:top}th{background:#f3f3f3}img{max-width:100%;border:1px solid #ddd;margin:.5em 0}"
        "figure{margin:0 0 1em 0;page-break-inside:avoid}figcaption{font-size:.85em;color:#555}"
@@ -217,6 +217,11 @@ int reportCommand(const std::string& dirText, const std::string& outFile) {
   h << "<p class=\"answer\">" << escape(a.answer) << "</p>\n";
   if (r.contains("message") && r["message"].is_string() && !r["message"].get<std::string>().empty())
     h << "<p>" << escape(r["message"].get<std::string>()) << "</p>\n";
+  if (r.contains("warnings") && r["warnings"].is_array() && !r["warnings"].empty()) {
+    h << "<h2>Warnings</h2><ul class=\"warnings\">";
+    for (const auto& w : r["warnings"]) h << "<li>" << scalar(w) << "</li>";
+    h << "</ul>\n";
+  }
   if (r.contains("settings"))
     h << "<h2>Settings in force</h2><p>" << escape(r["settings"].is_string() ? r["settings"].get<std::string>() : r["settings"].dump())
       << "</p>\n";

@@ -306,6 +306,7 @@ void writeScenePicture(const SceneState& state, const PictureFrame& frame, const
   // Monitors: red crosses.
   cairo_set_source_rgb(cr, 0.85, 0.0, 0.0);
   cairo_set_line_width(cr, 2);
+  cairo_set_font_size(cr, 11);
   for (const model::Monitor& m : scene.monitors) {
     const auto [x, y] = px(m.point.current);
     cairo_move_to(cr, x - 5, y - 5);
@@ -313,6 +314,9 @@ void writeScenePicture(const SceneState& state, const PictureFrame& frame, const
     cairo_move_to(cr, x - 5, y + 5);
     cairo_line_to(cr, x + 5, y - 5);
     cairo_stroke(cr);
+    // Named, as history.csv's columns and history.png's legend name it.
+    cairo_move_to(cr, x + 7, y - 7);
+    cairo_show_text(cr, m.id.c_str());
   }
   cairo_restore(cr);  // the plot's clip
   // The whole scene as an inset when the view is zoomed on the free blocks, the view marked.
