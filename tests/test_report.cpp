@@ -71,3 +71,23 @@ TEST(Report, EveryAnalysisFolderOpensInABrowserWithItsPictures) {
   EXPECT_EQ(clitest::runCli("report " + (root / "nothing").string(), &err), 2);
   fs::remove_all(root);
 }
+
+// The warnings a search gave (fos.json's "warnings", also said on stderr) head the report, and a
+// damaged result file is refused with its name, not rendered as if complete.
+TEST(Report, WarningsAreShownAndADamagedResultIsRefused) {
+  const fs::path dir = fs::temp_directory_path() / ("ddaslope_report_w_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  std::ofstream(dir / "fos.json") << R"({"case": "c.json", "found": true, "factor_of_safety": 1.25,
+      "bracket": [1.24, 1.26], "forward_runs": 9, "warnings": ["3 of 9 trials were called failed after moving <1 %"]})";
+  std::string err;
+  clitest::captureCli("report " + dir.string(), &err);
+  const std::string html = slurp(dir / "report.html");
+  EXPECT_NE(html.find("<h2>Warnings</h2>"), std::string::npos);
+  EXPECT_NE(html.find("moving &lt;1 %"), std::string::npos) << "escaped, not markup";
+  EXPECT_NE(html.find("F = 1.2500: stable at 1.2400, failing at 1.2600"), std::string::npos);
+  std::ofstream(dir / "fos.json") << R"({"case": "c.json", "found": tr)";
+  EXPECT_EQ(clitest::runCli("report " + dir.string(), &err), 2);
+  EXPECT_NE(err.find("fos.json"), std::string::npos) << err;
+  fs::remove_all(dir);
+}
