@@ -8,7 +8,10 @@
 #include "ddaslope/calibration/strength_search.hpp"
 #include "ddaslope/io/case_reader.hpp"
 #include "ddaslope/solver/simulation.hpp"
+#include <filesystem>
+
 #include "scene_builders.hpp"
+#include "test_io.hpp"
 
 using namespace ddaslope;
 using scenes::InclineSpec;
@@ -282,4 +285,23 @@ TEST(Supports, LargestSurchargeForATargetFactorOfSafety) {
   ASSERT_TRUE(r.found) << r.message;
   EXPECT_TRUE(r.largestThatHolds);
   EXPECT_NEAR(r.critical, expected, 0.01 * expected);
+}
+
+// history.png shows motions; a case with supports also gets supports.png, each support's axial
+// force against time, drawn from the same rows as history.csv's <id>_force columns: the
+// prestressed anchor of cases/planar_failure_anchor.json holds its force. A case without supports
+// gets none (issue #43).
+TEST(Supports, RunDrawsTheSupportForcesBesideTheHistory) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / ("ddaslope_supports_png_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  std::string err;
+  const std::string src = DDASLOPE_SOURCE_DIR;
+  const std::string out =
+      clitest::captureCli("run " + src + "/cases/planar_failure_anchor.json --duration 0.1 --quiet --out " + dir.string(), &err);
+  EXPECT_NE(out.find("supports.png"), std::string::npos) << out;
+  EXPECT_GT(fs::file_size(dir / "supports.png"), 1000u);
+  clitest::captureCli("run " + src + "/cases/planar_failure.json --duration 0.1 --quiet --out " + dir.string(), &err);
+  EXPECT_FALSE(fs::exists(dir / "supports.png")) << "a case without supports keeps no stale picture";
+  fs::remove_all(dir);
 }

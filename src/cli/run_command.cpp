@@ -124,8 +124,8 @@ int runCommand(const std::string& casePath, const Overrides& o, const RunCommand
                 "docs/accuracy.md (\"The energy budget\") for its known sources, and compare a run at half and at "
                 "twice the time step to see whether your result depends on it\n",
                 std::max(gain, stepGain) / std::max(scale, 1e-300), stepGain / std::max(scale, 1e-300), stepTime);
-  std::printf("  wrote %s/history.csv, summary.json, history.png%s and energy.png\n", outDir.c_str(),
-              scene.seismic.ground.active() ? ", ground_motion.png" : "");
+  std::printf("  wrote %s/history.csv, summary.json, history.png%s%s and energy.png\n", outDir.c_str(),
+              scene.supports.empty() ? "" : ", supports.png", scene.seismic.ground.active() ? ", ground_motion.png" : "");
   if (c.vtk)
     std::printf("  wrote %s/vtk: blocks.pvd, contacts.pvd%s (%d frames; open them in ParaView)\n", outDir.c_str(),
                 scene.water.active() ? ", water.pvd" : "", r.vtkFrames);

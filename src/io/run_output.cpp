@@ -81,6 +81,7 @@ class HistoryWriter {
     fs::remove(dir / "history.partial.csv");
     fs::remove(dir / "summary.json");
     fs::remove(dir / "history.png");
+    fs::remove(dir / "supports.png");
     fs::remove(dir / "energy.png");
     fs::remove(dir / "ground_motion.png");
     out_.open(dir / "history.partial.csv");
@@ -281,6 +282,19 @@ void writeHistoryPlots(const fs::path& dir, const std::string& casePath, const T
     motion.series.push_back(std::move(v));
   }
   writePng(motion, (dir / "history.png").string());
+  if (!trace.supportForces.empty()) {
+    // Forces apart from the motions: another unit, and the supports' story (loading, yield, slack).
+    LinePlot forces{"Supports: " + casePath, "time (s)", "axial force (kN/m, tension positive)", {}};
+    for (size_t b = 0; b < trace.supportIds.size(); ++b) {
+      PlotSeries f{trace.supportIds[b], {}, {}, false};
+      for (size_t k = 0; k < trace.steps.size(); k += stride) {
+        f.x.push_back(trace.steps[k].time);
+        f.y.push_back(trace.supportForces[k][b] / 1e3);
+      }
+      forces.series.push_back(std::move(f));
+    }
+    writePng(forces, (dir / "supports.png").string());
+  }
   const solver::EnergyBudget& e0 = trace.energy.front();
   LinePlot energy{"Energy (J/m): " + casePath, "time (s)", "energy since t = 0 (J/m)", {}};
   PlotSeries released{"potential released + load work", {}, {}, false}, kinetic{"kinetic", {}, {}, false},
@@ -348,6 +362,7 @@ RunOutcome runScene(const model::Scene& scene, const RunOptions& opt) {
   const auto start = std::chrono::steady_clock::now();
   RunOutcome o;
   for (const auto& m : scene.monitors) o.trace.monitorIds.push_back(m.id);
+  for (const auto& b : scene.supports) o.trace.supportIds.push_back(b.id);
   const bool recordEnergy = opt.energy || opt.outputDir.has_value();
   std::optional<HistoryWriter> history;
   if (opt.outputDir) history.emplace(*opt.outputDir, o.trace.monitorIds, scene.seismic.ground, scene.supports);
@@ -377,6 +392,11 @@ RunOutcome runScene(const model::Scene& scene, const RunOptions& opt) {
     if (vtk) vtk->observe(s, r.time);
     o.trace.steps.push_back(r);
     o.trace.samples.push_back(std::move(row));
+    if (!s.scene().supports.empty()) {
+      std::vector<double> forces;
+      for (const auto& b : s.scene().supports) forces.push_back(b.force);
+      o.trace.supportForces.push_back(std::move(forces));
+    }
     if (opt.progress && (r.time - lastShown >= duration / 100 || r.time >= duration)) {
       lastShown = r.time;
       std::fprintf(stderr, "\r  t = %.4g / %.4g s  steps %d  cuts %d", r.time, duration, s.statistics().steps,

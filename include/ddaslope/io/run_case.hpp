@@ -19,6 +19,8 @@ struct Trace {
   std::vector<solver::StepRecord> steps;
   std::vector<std::vector<MonitorSample>> samples;  ///< [row][monitor]
   std::vector<solver::EnergyBudget> energy;         ///< [row]
+  std::vector<std::string> supportIds;
+  std::vector<std::vector<double>> supportForces;   ///< [row][support]: axial force, N/m, tension positive
   /// Largest rise of the mechanical energy above its value at t = 0 (J/m): a spurious gain,
   /// since a correct run only dissipates; and the energy scale it is judged against (the
   /// largest of the kinetic energy and the potential energy released).
