@@ -707,6 +707,9 @@ TEST(Probability, SmallPfByImportanceSampling) {
               pf, exact, s["interval_95"][0].get<double>(), s["interval_95"][1].get<double>(),
               s["coefficient_of_variation"].get<double>(), s["forward_runs"].get<int>(),
               s["design_point"]["reliability_index_form"].get<double>(), formBeta);
+  // A folder holding a study is refused before the design point's runs, not after.
+  EXPECT_EQ(clitest::runCli("probability " + job + " --out " + whole, &err), 2);
+  EXPECT_NE(err.find("holds the samples of a study already"), std::string::npos) << err;
   clitest::captureCli("probability " + job + " --threads 1 --stop-after 400 --out " + cut, &err);
   const std::string resumed = clitest::captureCli("probability " + job + " --threads 1 --resume --out " + cut, &err);
   EXPECT_NE(resumed.find("resumed: 400 samples"), std::string::npos) << resumed;
@@ -746,13 +749,14 @@ TEST(Probability, SmallPfOfCorrelatedInputsByImportanceSampling) {
 }
 
 // Importance sampling judges each sample by one run's verdict: the fos measure with it is refused
-// (exit 2, naming the key), whether the study or the command line asks for it.
+// (exit 2, naming the option or the key), whether the command line or the study asks for it.
 TEST(Probability, ImportanceSamplingRefusesTheFosMeasure) {
   const std::string job = kSource + "/calibration/planar_failure/probability_small.json";
   const std::string dir = tempDir("is_fos");
   std::string err;
   EXPECT_EQ(clitest::runCli("probability " + job + " --measure fos --out " + dir, &err), 2);
-  EXPECT_NE(err.find("probability.measure: importance sampling judges each sample"), std::string::npos) << err;
+  // The command line asked for fos, not the study: the message names the option.
+  EXPECT_NE(err.find("--measure: fos: importance sampling judges each sample"), std::string::npos) << err;
   EXPECT_EQ(clitest::runCli("probability " + kJob + " --method importance --out " + dir, &err), 2);
   EXPECT_FALSE(fs::exists(dir + "/samples.csv"));
   expectStudyError(

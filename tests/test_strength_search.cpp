@@ -228,6 +228,11 @@ TEST(StrengthReduction, RunAtFosShowsTheSearchsVerdicts) {
   EXPECT_LT(held, 0.01);
   EXPECT_GT(slid, 0.01);
   std::printf("F %.5f: %.3g m; F %.5f: %.3g m\n", stable, held, failing, slid);
+  // A snapshot asked past the run's end is said, not silently dropped.
+  clitest::captureCli("run " + c + " --at-fos 1.1 --duration 0.2 --snapshots 0,100 --out " + dir.string(), &err);
+  EXPECT_NE(err.find("1 of the --snapshots times lie past the run's end"), std::string::npos) << err;
+  EXPECT_TRUE(fs::exists(dir / "snapshot_00.png"));
+  EXPECT_FALSE(fs::exists(dir / "snapshot_01.png"));
   EXPECT_EQ(clitest::runCli("run " + c + " --at-fos 1.1 --joints nope --out " + dir.string(), &err), 2);
   EXPECT_NE(err.find("no joint named \"nope\""), std::string::npos) << err;
   EXPECT_EQ(clitest::runCli("run " + c + " --joints sliding_plane --out " + dir.string(), &err), 2);

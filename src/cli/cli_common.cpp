@@ -256,7 +256,7 @@ std::vector<std::string> MechanismPictures::write(const std::string& dir, const 
     if (found == kept_->states.end()) continue;
     const auto& [state, result] = found->second;
     char title[256];
-    std::snprintf(title, sizeof title, "%s: %s = %.6g, %s (%s; largest motion %.3g m)", casePath.c_str(), quantity.c_str(),
+    std::snprintf(title, sizeof title, "%s: %s = %.6g, %s (%s; a point moved %.3g m after t = 0)", casePath.c_str(), quantity.c_str(),
                   value, verdict, calibration::name(result.rule), result.maxDisplacement);
     io::writeScenePicture(state, kept_->frame, dir + "/" + file, title, result.failureDisplacement);
     written.push_back(dir + "/" + file);

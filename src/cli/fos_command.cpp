@@ -179,7 +179,7 @@ int fosCommand(const std::string& casePath, const Overrides& o, const FosOptions
     for (const auto& n : opt.joints) joints += (joints.empty() ? " --joints " : ",") + n;
     std::string files;
     for (const auto& f : drawn) files += (files.empty() ? "" : ", ") + f;
-    std::printf("  the mechanism: %s (the trials at the bracket's ends); to run the failing one again: ddaslope run "
+    std::printf("  the mechanism: %s (the trials at the bracket's ends); to run its failing end again: ddaslope run "
                 "%s --at-fos %.6g%s --out DIR --vtk (with this command's model options%s)\n",
                 files.c_str(), casePath.c_str(), r.failingEnd, joints.c_str(),
                 crack ? " and --set section.tension_crack.x at the least safe position" : "");

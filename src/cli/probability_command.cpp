@@ -45,7 +45,7 @@ io::ProbabilityJob readStudy(const std::string& path, const ProbabilityOptions& 
     s.method = opt.method == "importance_sampling" ? model::ProbabilityMethod::ImportanceSampling
                                                    : model::ProbabilityMethod::Sampling;
   if (s.method == model::ProbabilityMethod::ImportanceSampling && s.measure == model::ProbabilityMeasure::FactorOfSafety)
-    throw InputError(job.file, "probability.measure",
+    throw InputError(opt.measure.empty() ? job.file : "--measure", opt.measure.empty() ? "probability.measure" : "fos",
                      "importance sampling judges each sample by one forward run's verdict: expected the measure "
                      "verdict, found fos (F's statistics over weighted samples are not computed)");
   return job;
@@ -283,6 +283,10 @@ int probabilityCommand(const std::string& path, const Overrides& o, const Probab
   settings.fosWidth = spec.fosWidth;
   for (const auto& name : spec.fosJoints) settings.fosJoints.push_back(jointIndex(reference, name, job.casePath));
   calibration::SampleDesign design(spec);
+  // A folder holding a study is refused before anything runs (the design point's runs included).
+  if (fs::exists(opt.outDir + "/samples.csv") && !opt.resume && !opt.overwrite)
+    throw InputError(opt.outDir + "/samples.csv", "", "holds the samples of a study already: --resume continues it, "
+                                                      "--overwrite starts again");
   std::optional<io::DesignPointReport> form;
   if (spec.method == model::ProbabilityMethod::ImportanceSampling) {
     // Every process finds the same design point (its runs depend on the study only), so the
@@ -293,8 +297,8 @@ int probabilityCommand(const std::string& path, const Overrides& o, const Probab
     std::fflush(stdout);
     form = designPoint(design, make, settings, opt.threads);
     if (!form->point.found) {
-      std::fprintf(stderr, "ddaslope: %s: no design point: %s (%d forward runs)\n", job.file.c_str(),
-                   form->point.message.c_str(), form->point.runs);
+      std::fprintf(stderr, "ddaslope: %s: no design point: %s (%d forward run%s)\n", job.file.c_str(),
+                   form->point.message.c_str(), form->point.runs, form->point.runs == 1 ? "" : "s");
       return kExitNonConvergence;
     }
     design.centreOn(form->point.u);

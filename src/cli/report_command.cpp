@@ -164,6 +164,12 @@ Analysis identify(const fs::path& dir) {
       std::snprintf(text, sizeof text, "%s: %d steps to t = %.4g s", r.value("status", "").c_str(),
                     r.value("steps", 0), number(r, "time"));
       a.answer = text;
+      // run --at-fos: not the case's own strengths, which its description states.
+      if (r.contains("strength_reduction")) {
+        std::snprintf(text, sizeof text, "at F = %.6g (joint strengths reduced as fos does, not the case's own): ",
+                      number(r["strength_reduction"], "factor"));
+        a.answer = text + a.answer;
+      }
     }
   }
   if (a.kind.empty())

@@ -126,6 +126,12 @@ int runCommand(const std::string& casePath, const Overrides& o, const RunCommand
                 std::max(gain, stepGain) / std::max(scale, 1e-300), stepGain / std::max(scale, 1e-300), stepTime);
   std::printf("  wrote %s/history.csv, summary.json, history.png%s%s and energy.png\n", outDir.c_str(),
               scene.supports.empty() ? "" : ", supports.png", scene.seismic.ground.active() ? ", ground_motion.png" : "");
+  if (r.snapshotsWritten > 0) std::printf("  wrote %d snapshots: snapshot_00.png ...\n", r.snapshotsWritten);
+  if (r.snapshotsWritten < static_cast<int>(c.snapshots.size()))
+    std::fprintf(stderr, "ddaslope: warning: %s: %zu of the --snapshots times lie past the run's end (t = %.4g s): not "
+                         "drawn\n",
+                 casePath.c_str(), c.snapshots.size() - r.snapshotsWritten,
+                 r.trace.steps.empty() ? 0.0 : r.trace.steps.back().time);
   if (c.vtk)
     std::printf("  wrote %s/vtk: blocks.pvd, contacts.pvd%s (%d frames; open them in ParaView)\n", outDir.c_str(),
                 scene.water.active() ? ", water.pvd" : "", r.vtkFrames);

@@ -3,8 +3,7 @@
 namespace ddaslope {
 
 InputError::InputError(std::string file, std::string jsonPath, const std::string& message)
-    : std::runtime_error(file + ": " + (jsonPath.empty() ? std::string("(document)") : jsonPath) +
-                         ": " + message),
+    : std::runtime_error(file + ": " + (jsonPath.empty() ? std::string() : jsonPath + ": ") + message),
       file_(std::move(file)),
       jsonPath_(std::move(jsonPath)),
       message_(message) {}

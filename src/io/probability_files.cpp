@@ -355,7 +355,9 @@ std::vector<std::string> writePictures(const io::ProbabilityJob& job, const cali
       const std::vector<double> m = centred.valuesAt(median);
       series.push_back({"medians", {m[ax]}, {m[ay]}, true, false, 7});
     }
-    io::writePng({"Samples: " + title, job.spec.inputs[ax].path, job.spec.inputs[ay].path, series},
+    // Importance samples are centred on the design point: half of them fail whatever Pf is.
+    io::writePng({(design ? "Importance samples (around the design point, weighted): " : "Samples: ") + title,
+                  job.spec.inputs[ax].path, job.spec.inputs[ay].path, series},
                  dir + "/samples_plane.png");
     written.push_back("samples_plane.png");
   }

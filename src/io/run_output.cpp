@@ -378,6 +378,16 @@ RunOutcome runScene(const model::Scene& scene, const RunOptions& opt) {
   if (opt.verbose) sim.setLog([](const std::string& line) { std::fprintf(stderr, "  %s\n", line.c_str()); });
   const double duration = scene.settings.duration;
   double lastShown = -1;
+  // Pictures say when the strengths are not the case's own (run --at-fos), and colour motions
+  // against the verdict's failure displacement at least: settling of micrometres stays blue.
+  std::string title = opt.casePath;
+  if (opt.strengthReduction > 0) {
+    char at[96];
+    std::snprintf(at, sizeof at, " at F = %.6g (joint strengths reduced as fos does)", opt.strengthReduction);
+    title += at;
+  }
+  const double colourFloor =
+      scene.settings.failureDisplacement > 0 ? scene.settings.failureDisplacement : 1e-3 * sim.modelHalfSize();
   const auto observe = [&](const solver::Simulation& s, const solver::StepRecord& r) {
     std::vector<MonitorSample> row;
     for (size_t m = 0; m < s.scene().monitors.size(); ++m) row.push_back(sampleOf(s, static_cast<int>(m)));
@@ -386,7 +396,7 @@ RunOutcome runScene(const model::Scene& scene, const RunOptions& opt) {
     while (opt.outputDir && nextSnapshot < snapshots.size() && r.time >= snapshots[nextSnapshot] - 1e-12) {
       char name[64];
       std::snprintf(name, sizeof name, "/snapshot_%02zu.png", nextSnapshot);
-      writeScenePicture(s, frame, *opt.outputDir + name, opt.casePath);
+      writeScenePicture(captureState(s), frame, *opt.outputDir + name, title, colourFloor);
       ++nextSnapshot;
     }
     if (vtk) vtk->observe(s, r.time);
@@ -417,6 +427,7 @@ RunOutcome runScene(const model::Scene& scene, const RunOptions& opt) {
     if (vtk) vtk->observeStop(sim);
   }
   if (vtk) o.vtkFrames = vtk->written();
+  o.snapshotsWritten = static_cast<int>(nextSnapshot);
   o.statistics = sim.statistics();
   o.finalSupports = sim.scene().supports;
   o.stepLimit = sim.stepLimit();
@@ -425,7 +436,7 @@ RunOutcome runScene(const model::Scene& scene, const RunOptions& opt) {
   if (o.completed) o.expectations = evaluateExpectations(o.trace, scene.expectations);
   if (history) {
     history->finish(o.completed);
-    if (o.completed) writeHistoryPlots(*opt.outputDir, opt.casePath, o.trace, scene.seismic.ground);
+    if (o.completed) writeHistoryPlots(*opt.outputDir, title, o.trace, scene.seismic.ground);
     writeSummary(*opt.outputDir, scene, opt, o);
   }
   return o;

@@ -405,8 +405,8 @@ void writeScenePicture(const SceneState& state, const PictureFrame& frame, const
   cairo_show_text(cr, title.c_str());
   char legend[300];
   std::snprintf(legend, sizeof legend,
-                "t = %.4g s   purple arrows: block displacement (full length %.3g m; largest %.3g m)   contacts: "
-                "green locked, orange sliding   x: monitors%s",
+                "t = %.4g s   colour, arrows: block centre's displacement since drawn (full scale %.3g m; largest "
+                "%.3g m)   contacts: green locked, orange sliding   x: monitors%s",
                 state.time, fullScale, maxMoved, frame.zoomed ? "   inset: the whole scene, the view in red" : "");
   cairo_set_font_size(cr, 12);
   cairo_move_to(cr, 20, height - 26);

@@ -53,6 +53,7 @@ struct RunOutcome {
   double stepLimit = 0, searchDistance = 0;  ///< the run's effective values (m)
   std::vector<ExpectationResult> expectations;
   int vtkFrames = 0;  ///< frames of the VTK series written (RunOptions::vtk)
+  int snapshotsWritten = 0;  ///< snapshot_NN.png written (times past the run's end are not)
 };
 
 struct RunOptions {
