@@ -284,7 +284,8 @@ int probabilityCommand(const std::string& path, const Overrides& o, const Probab
   for (const auto& name : spec.fosJoints) settings.fosJoints.push_back(jointIndex(reference, name, job.casePath));
   calibration::SampleDesign design(spec);
   // A folder holding a study is refused before anything runs (the design point's runs included).
-  if (fs::exists(opt.outDir + "/samples.csv") && !opt.resume && !opt.overwrite)
+  // The root alone keeps the folder: under mpirun the others would see the file it has just begun.
+  if (processRank() == 0 && fs::exists(opt.outDir + "/samples.csv") && !opt.resume && !opt.overwrite)
     throw InputError(opt.outDir + "/samples.csv", "", "holds the samples of a study already: --resume continues it, "
                                                       "--overwrite starts again");
   std::optional<io::DesignPointReport> form;
