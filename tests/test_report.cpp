@@ -46,7 +46,7 @@ TEST(Report, EveryAnalysisFolderOpensInABrowserWithItsPictures) {
   } analyses[] = {
       {"run", "run " + src + "/cases/toppling_slope.json --snapshots 0,1 --quiet", "completed", 4},
       {"fos", "fos " + src + "/cases/planar_failure.json --quiet", "F = 1.1142", 2},
-      {"critical", "critical " + src + "/cases/planar_failure.json --quiet", "critical cohesion of joint sliding_plane", 2},
+      {"critical", "critical " + src + "/cases/planar_failure.json --quiet", "critical cohesion of joint sliding_plane at φ = 30°", 2},
       {"backanalyse", "backanalyse " + src + "/calibration/two_block_slide/job.json --quiet", "friction_angle = ", 0},
       {"probability", "probability " + src + "/calibration/planar_failure/probability_small.json --quiet", "Pf = ", 3},
   };

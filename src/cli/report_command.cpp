@@ -136,9 +136,13 @@ Analysis identify(const fs::path& dir) {
   } else if (fs::exists(dir / "critical.json")) {
     a = {"Critical strength (critical)", "critical.json", readJson(dir / "critical.json"), ""};
     const json& r = a.result;
+    // The other strength, held while this one was solved for.
+    char held[64] = "";
+    if (r.contains("friction_angle_deg")) std::snprintf(held, sizeof held, " at φ = %.4g°", number(r, "friction_angle_deg"));
+    if (r.contains("cohesion_pa")) std::snprintf(held, sizeof held, " at c = %.6g Pa", number(r, "cohesion_pa"));
     if (r.value("found", false))
-      std::snprintf(text, sizeof text, "critical %s of joint %s = %.6g %s: failing at %.6g, stable at %.6g",
-                    r.value("solve", "").c_str(), r.value("joint", "").c_str(), number(r, "critical"),
+      std::snprintf(text, sizeof text, "critical %s of joint %s%s = %.6g %s: failing at %.6g, stable at %.6g",
+                    r.value("solve", "").c_str(), r.value("joint", "").c_str(), held, number(r, "critical"),
                     r.value("unit", "").c_str(), r["bracket"][0].get<double>(), r["bracket"][1].get<double>());
     else
       std::snprintf(text, sizeof text, "no critical value found: %s", r.value("message", "").c_str());
@@ -229,8 +233,9 @@ int reportCommand(const std::string& dirText, const std::string& outFile) {
     h << "</ul>\n";
   }
   if (r.contains("settings"))
-    h << "<h2>Settings in force</h2><p>" << escape(r["settings"].is_string() ? r["settings"].get<std::string>() : r["settings"].dump())
-      << "</p>\n";
+    h << "<h2>Settings in force</h2>"
+      << (r["settings"].is_string() ? "<p>" + escape(r["settings"].get<std::string>()) + "</p>" : render(r["settings"]))
+      << "\n";
   const std::vector<fs::path> png = pictures(dir);
   if (!png.empty()) {
     h << "<h2>Pictures</h2>\n";
