@@ -160,18 +160,23 @@ void writeScenePicture(const SceneState& state, const PictureFrame& frame, const
     cairo_close_path(cr);
     cairo_fill(cr);
   }
-  // Blocks.
-  cairo_set_line_width(cr, 1.2);
-  for (size_t b = 0; b < scene.blocks.size(); ++b) {
+  // A block's outline as a path, in its colour (grey fixed, else by displacement): the picture's
+  // and the inset's.
+  const auto blockPath = [&](size_t b, const auto& to) {
     const model::Block& blk = scene.blocks[b];
     for (size_t k = 0; k < blk.vertices.size(); ++k) {
-      const auto [x, y] = px(blk.vertices[k]);
+      const auto [x, y] = to(blk.vertices[k]);
       k == 0 ? cairo_move_to(cr, x, y) : cairo_line_to(cr, x, y);
     }
     cairo_close_path(cr);
     double c[3] = {0.78, 0.78, 0.78};
     if (!blk.fixed) ramp(fullScale > 0 ? moved[b] / fullScale : 0, c);
     cairo_set_source_rgb(cr, c[0], c[1], c[2]);
+  };
+  // Blocks.
+  cairo_set_line_width(cr, 1.2);
+  for (size_t b = 0; b < scene.blocks.size(); ++b) {
+    blockPath(b, px);
     cairo_fill_preserve(cr);
     cairo_set_source_rgb(cr, 0.15, 0.15, 0.15);
     cairo_stroke(cr);
@@ -334,15 +339,7 @@ void writeScenePicture(const SceneState& state, const PictureFrame& frame, const
     cairo_set_line_width(cr, 1);
     cairo_stroke(cr);
     for (size_t b = 0; b < scene.blocks.size(); ++b) {
-      const model::Block& blk = scene.blocks[b];
-      for (size_t v = 0; v < blk.vertices.size(); ++v) {
-        const auto [x, y] = ipx(blk.vertices[v]);
-        v == 0 ? cairo_move_to(cr, x, y) : cairo_line_to(cr, x, y);
-      }
-      cairo_close_path(cr);
-      double c[3] = {0.78, 0.78, 0.78};
-      if (!blk.fixed) ramp(fullScale > 0 ? moved[b] / fullScale : 0, c);
-      cairo_set_source_rgb(cr, c[0], c[1], c[2]);
+      blockPath(b, ipx);
       cairo_fill(cr);
     }
     const auto [vx0, vy0] = ipx({view.lo.x(), view.hi.y()});

@@ -20,19 +20,6 @@ std::string number(double v) {
   return std::string(buf, r.ptr);
 }
 
-std::string escaped(const std::string& text) {
-  std::string out;
-  for (char c : text) {
-    switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
-    }
-  }
-  return out;
-}
 
 /// The appended block: each array is a UInt64 byte count followed by its bytes in the
 /// machine's byte order (the file's byte_order attribute says which).
@@ -81,10 +68,10 @@ std::string arrayElement(const VtkArray& a, AppendedData& appended, bool field, 
   }
   const bool strings = a.values.index() == 2;
   std::string e = indent + (strings ? "<Array" : "<DataArray") + " type=\"" + vtkTypeName(a) + "\" Name=\"" +
-                  escaped(a.name) + "\"";
+                  xmlEscaped(a.name) + "\"";
   if (a.components != 1) e += " NumberOfComponents=\"" + std::to_string(a.components) + "\"";
   for (size_t k = 0; k < a.componentNames.size(); ++k)
-    e += " ComponentName" + std::to_string(k) + "=\"" + escaped(a.componentNames[k]) + "\"";
+    e += " ComponentName" + std::to_string(k) + "=\"" + xmlEscaped(a.componentNames[k]) + "\"";
   if (field) e += " NumberOfTuples=\"" + std::to_string(a.tuples()) + "\"";
   e += " format=\"appended\" offset=\"" + std::to_string(offset) + "\"/>\n";
   return e;
@@ -93,7 +80,7 @@ std::string arrayElement(const VtkArray& a, AppendedData& appended, bool field, 
 constexpr const char* kPvdEnd = "  </Collection>\n</VTKFile>\n";
 
 std::string pvdLine(const PvdEntry& e) {
-  return "    <DataSet timestep=\"" + number(e.timestep) + "\" part=\"0\" file=\"" + escaped(e.file) + "\"/>\n";
+  return "    <DataSet timestep=\"" + number(e.timestep) + "\" part=\"0\" file=\"" + xmlEscaped(e.file) + "\"/>\n";
 }
 
 void renameInto(const std::string& tmp, const std::string& path) {
@@ -204,6 +191,20 @@ void PvdCollection::add(double timestep, const std::string& file) {
     if (!out) throw InputError(path_, "", "cannot write the file");
   }
   renameInto(tmp, path_);
+}
+
+std::string xmlEscaped(const std::string& text) {
+  std::string out;
+  for (char c : text) {
+    switch (c) {
+      case '&': out += "&amp;"; break;
+      case '<': out += "&lt;"; break;
+      case '>': out += "&gt;"; break;
+      case '"': out += "&quot;"; break;
+      default: out += c;
+    }
+  }
+  return out;
 }
 
 }  // namespace ddaslope::io

@@ -66,4 +66,7 @@ class PvdCollection {
   std::mutex mutex_;
 };
 
+/// `text` with & < > " as XML (and HTML) entities.
+std::string xmlEscaped(const std::string& text);
+
 }  // namespace ddaslope::io
