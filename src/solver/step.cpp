@@ -100,7 +100,10 @@ void Simulation::configureSolver(StepState& s) {
   // Nested dissection orders a large wall's factor with less fill than AMD and a shallower tree,
   // whose paths each update/downdate of a spring walks. Small systems keep AMD, and their round-off.
   linearSolver_.setOrdering(s.followFactor ? FillOrdering::NestedDissection : FillOrdering::MinimumDegree);
-  linearSolver_.setSimplicialSolves(s.followFactor);
+  // Every system substitutes with a simplicial copy of its factor: a small system's supernodes
+  // are a few columns wide, and the reference BLAS calls a supernodal solve makes for each cost
+  // more than the arithmetic (a quarter of a small slope's search; docs/performance.md).
+  linearSolver_.setSimplicialSolves(true);
   linearSolver_.setPanelSolves(s.followFactor && panelSolves_);
   // The right-hand side is a sum of forces that nearly cancel in a scene at rest (weights against
   // contact preloads and stresses: in a large wall the terms are some eight orders of magnitude
