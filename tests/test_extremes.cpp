@@ -8,12 +8,15 @@
 #include <cmath>
 
 #include <cctype>
+#include <filesystem>
+#include <fstream>
 #include <ostream>
 
 #include "ddaslope/io/case_reader.hpp"
 #include "ddaslope/io/extremes.hpp"
 #include "ddaslope/model/wall_scene.hpp"
 #include "ddaslope/solver/simulation.hpp"
+#include "test_io.hpp"
 
 using namespace ddaslope;
 
@@ -211,4 +214,57 @@ TEST(Extremes, SettlingGivesUpOnAStalledCycleButNotOnASlowRest) {
   EXPECT_FALSE(beyond.statistics().startedAtRest);
   EXPECT_GT(beyond.statistics().settlingSteps, 0);
   EXPECT_LT(beyond.statistics().settlingSteps, 15 * chair.settings.equilibriumMaxSteps);
+}
+
+// Beyond t* = √(2 d/|g|), the time in which a block falling freely from rest moves the step limit
+// d, every step of a moving block is cut and a search's F stops following the strengths (Vajont's
+// F 1.12 at Δt ≤ 0.36 t*, 1.50 at 1.07 t*, 3.92 at 36 t*: docs/accuracy.md, "Δt beyond the step
+// limit"). Vajont's step limit is 0.384 m, so t* = √(2 · 0.384 / 9.81) = 0.280 s.
+TEST(TimeStepWarning, SaidBeyondTheStepLimitsFallTimeAndNotBelowIt) {
+  const std::string vajont = std::string(DDASLOPE_SOURCE_DIR) + "/cases/vajont.json";
+  std::string err;
+  const std::string beyond = clitest::captureCli("check " + vajont + " --set analysis.time_step=0.3", &err);
+  EXPECT_NE(beyond.find("warning: analysis.time_step 0.3 s is longer than the 0.28 s"), std::string::npos) << beyond;
+  EXPECT_NE(beyond.find("step limit (0.384 m)"), std::string::npos) << beyond;
+  const std::string below = clitest::captureCli("check " + vajont + " --set analysis.time_step=0.27", &err);
+  EXPECT_EQ(below.find("moves the step limit"), std::string::npos) << below;
+  // run says it on stderr before it starts.
+  const std::filesystem::path out = std::filesystem::temp_directory_path() / "ddaslope_dt_warning_run";
+  std::filesystem::remove_all(out);
+  EXPECT_EQ(clitest::runCli("run " + vajont + " --set analysis.time_step=0.3 --duration 0.3 --quiet --out " + out.string(), &err), 0) << err;
+  EXPECT_NE(err.find("is longer than the 0.28 s"), std::string::npos) << err;
+  std::filesystem::remove_all(out);
+}
+
+// The presets scale Δt with √(w0/g) and stay below t* for every free block thicker than about
+// 1e-5 of w0: none of the shipped cases is warned, at its own Δt or at the coarsest preset.
+TEST(TimeStepWarning, NotSaidOnTheShippedCasesAtTheirOwnOrTheFastPreset) {
+  const std::filesystem::path cases = std::filesystem::path(DDASLOPE_SOURCE_DIR) / "cases";
+  int checked = 0;
+  for (const auto& f : std::filesystem::directory_iterator(cases)) {
+    if (f.path().extension() != ".json") continue;
+    for (const std::string preset : {"", " --preset fast"}) {
+      std::string err;
+      const std::string out = clitest::captureCli("check " + f.path().string() + preset, &err);
+      EXPECT_EQ(out.find("moves the step limit"), std::string::npos) << f.path() << preset << "\n" << out;
+      ++checked;
+    }
+  }
+  EXPECT_GE(checked, 40);
+}
+
+// fos keeps the warning in fos.json, where the report finds it. Planar failure: the block's step
+// limit is 0.125 m, t* = 0.16 s.
+TEST(TimeStepWarning, KeptInTheSearchResult) {
+  const std::string planar = std::string(DDASLOPE_SOURCE_DIR) + "/cases/planar_failure.json";
+  const std::filesystem::path out = std::filesystem::temp_directory_path() / "ddaslope_dt_warning_fos";
+  std::filesystem::remove_all(out);
+  std::string err;
+  clitest::runCli("fos " + planar + " --set analysis.time_step=0.5 --out " + out.string(), &err);
+  EXPECT_NE(err.find("is longer than the"), std::string::npos) << err;
+  std::ifstream in(out / "fos.json");
+  ASSERT_TRUE(in) << err;
+  const std::string text((std::istreambuf_iterator<char>(in)), {});
+  EXPECT_NE(text.find("is longer than the"), std::string::npos) << text;
+  std::filesystem::remove_all(out);
 }

@@ -37,6 +37,7 @@ int checkCommand(const std::string& casePath, const Overrides& o) {
     std::printf("  coordinates: far from (0, 0) for the scene's size; computed relative to (%.17g, %.17g), written back "
                 "in the case's coordinates\n",
                 scene.origin.x(), scene.origin.y());
+  if (const std::string w = timeStepWarning(scene); !w.empty()) std::printf("  warning: %s\n", w.c_str());
   printOutlineNotes(scene);
   printSeismicNote(scene);
   printKinkNotes(scene);

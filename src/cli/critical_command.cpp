@@ -235,6 +235,9 @@ int criticalCommand(const std::string& casePath, const Overrides& o, const Criti
     recordTrialStates(s, opt.vtkDir, scene);
   }
   const MechanismPictures pictures(s, scene);
+  // Said before the search, whose trials at such a Δt take long, and kept in critical.json.
+  const std::string dtWarning = timeStepWarning(scene);
+  warnAboutTrials(casePath, dtWarning);
   const auto r = solve(scene, s);
   log->finish(r.found, r.found ? "critical " + opt.solve + " " + std::to_string(r.critical) : r.message);
   const char* unit = cohesion ? "Pa" : "degrees";
@@ -243,7 +246,7 @@ int criticalCommand(const std::string& casePath, const Overrides& o, const Criti
               : std::vector<std::string>{};
   std::vector<std::string> warnings;
   for (std::string w : {ddaslope::calibration::smallMotionWarning(r.trials, cohesion ? "c" : "φ"), slightBendNote(scene),
-                        notchWarning(scene)})
+                        notchWarning(scene), dtWarning})
     if (!w.empty()) warnings.push_back(std::move(w));
   {
     ddaslope::io::JsonRecord j;
@@ -280,7 +283,8 @@ int criticalCommand(const std::string& casePath, const Overrides& o, const Criti
     std::fprintf(stderr, "ddaslope: %s: no critical %s found after %d forward runs: %s\n", casePath.c_str(),
                  opt.solve.c_str(), r.runs, r.message.c_str());
   }
-  for (const auto& w : warnings) warnAboutTrials(casePath, w);
+  for (const auto& w : warnings)
+    if (w != dtWarning) warnAboutTrials(casePath, w);
   return r.found ? kExitOk : kExitNonConvergence;
 }
 

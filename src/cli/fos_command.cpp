@@ -140,6 +140,9 @@ int fosCommand(const std::string& casePath, const Overrides& o, const FosOptions
     scene = loadCase(casePath, o, crackAt(crack->result.best));
     if (!opt.json) printCrackSearch(*crack, scene, "F");
   }
+  // Said before the search, whose trials at such a Δt take long, and kept in fos.json.
+  const std::string dtWarning = timeStepWarning(scene);
+  warnAboutTrials(casePath, dtWarning);
   const auto log = startProgress("fos", opt.progress, opt.json);
   std::unique_ptr<MechanismPictures> pictures;
   const auto r = factorFor(scene, casePath, opt, ddaslope::io::sinkOf(log.get()), &pictures);
@@ -148,7 +151,7 @@ int fosCommand(const std::string& casePath, const Overrides& o, const FosOptions
       r.found ? pictures->write(opt.outDir, casePath, "F", r.stableEnd, r.failingEnd) : std::vector<std::string>{};
   // Said on stderr and kept in fos.json, so that a report carries them.
   std::vector<std::string> warnings;
-  for (std::string w : {ddaslope::calibration::smallMotionWarning(r.trials, "F"), slightBendNote(scene), notchWarning(scene)})
+  for (std::string w : {ddaslope::calibration::smallMotionWarning(r.trials, "F"), slightBendNote(scene), notchWarning(scene), dtWarning})
     if (!w.empty()) warnings.push_back(std::move(w));
   {
     ddaslope::io::JsonRecord j;
@@ -187,7 +190,8 @@ int fosCommand(const std::string& casePath, const Overrides& o, const FosOptions
     std::fprintf(stderr, "ddaslope: %s: no factor of safety found after %d forward runs: %s\n", casePath.c_str(),
                  r.runs, r.message.c_str());
   }
-  for (const auto& w : warnings) warnAboutTrials(casePath, w);
+  for (const auto& w : warnings)
+    if (w != dtWarning) warnAboutTrials(casePath, w);
   return r.found ? kExitOk : kExitNonConvergence;
 }
 

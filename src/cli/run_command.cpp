@@ -9,6 +9,7 @@
 
 #include "ddaslope/io/run_case.hpp"
 #include "ddaslope/model/input_limits.hpp"
+#include "scene_notes.hpp"
 
 namespace ddaslope::cli {
 
@@ -74,6 +75,7 @@ std::vector<std::string> reduceStrengths(model::Scene& scene, const std::string&
 
 int runCommand(const std::string& casePath, const Overrides& o, const RunCommandOptions& c) {
   model::Scene scene = loadCase(casePath, o);
+  warnAboutTrials(casePath, timeStepWarning(scene));
   std::vector<std::string> reduced;
   if (c.atFactor > 0) {
     reduced = reduceStrengths(scene, casePath, c);

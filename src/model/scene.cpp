@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "ddaslope/geometry/polygon.hpp"
 #include "ddaslope/model/input_limits.hpp"
 
 namespace ddaslope::model {
@@ -26,6 +27,18 @@ double Scene::modelHalfSize() const {
     box.hi = box.hi.cwiseMax(bb.hi);
   }
   return 0.5 * (box.hi - box.lo).maxCoeff();
+}
+
+double Scene::stepLimit() const {
+  // Shi's step limit g2·w0 scales with the model. In a kilometre slope with a 15 m wedge it
+  // exceeds the wedge, and the contact search (2.5 times the limit) then pairs corners farther
+  // apart than the blocks are wide: contacts metres deep appear from nowhere (the Vajont
+  // run-out ejected its toe wedge so). The limit is therefore also held to a tenth of the
+  // thinnest free block's thickness 2S/perimeter (half the side of a square).
+  double limit = settings.maxDisplacementRatio * modelHalfSize();
+  for (const Block& b : blocks)
+    if (!b.fixed) limit = std::min(limit, 0.1 * 2 * b.moments.area / geometry::perimeter(b.vertices));
+  return limit;
 }
 
 double Scene::normalPenalty() const {

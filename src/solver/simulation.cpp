@@ -32,14 +32,7 @@ Simulation::Simulation(model::Scene scene)
     jointStrength_.push_back(contact::jointStrength(j));
   }
   for (const model::Block& b : scene_.blocks) mass_.push_back(scene_.materials[b.material].density * b.moments.area);
-  // Shi's step limit g2·w0 scales with the model. In a kilometre slope with a 15 m wedge it
-  // exceeds the wedge, and the contact search (2.5 times the limit) then pairs corners farther
-  // apart than the blocks are wide: contacts metres deep appear from nowhere (the Vajont
-  // run-out ejected its toe wedge so). The limit is therefore also held to a tenth of the
-  // thinnest free block's thickness 2S/perimeter (half the side of a square).
-  stepLimit_ = scene_.settings.maxDisplacementRatio * w0_;
-  for (const model::Block& b : scene_.blocks)
-    if (!b.fixed) stepLimit_ = std::min(stepLimit_, 0.1 * 2 * b.moments.area / geometry::perimeter(b.vertices));
+  stepLimit_ = scene_.stepLimit();
   searchDistance_ = 2.5 * stepLimit_;
   penalty_ = scene_.normalPenalty();
   shearPenalty_ = penalty_ * scene_.settings.shearPenaltyRatio;

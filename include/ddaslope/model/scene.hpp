@@ -118,6 +118,9 @@ struct Scene {
   int jointBetween(int a, int b) const;
   /// Half the larger side of the model's bounding box: Shi's w0.
   double modelHalfSize() const;
+  /// Shi's step limit g2·w0, held to a tenth of the thinnest free block's thickness 2S/perimeter:
+  /// the largest vertex displacement a step may make (m).
+  double stepLimit() const;
   /// Unknowns of the free blocks: 6 each, 3 if rigid (what the solver path goes by).
   int freeUnknowns() const;
   /// Normal penalty in use (explicit, or factor × max E).
