@@ -171,6 +171,55 @@ TEST(CaseReader, MonitorOutsideItsBlock) {
   expectError(d, "monitors[0].point", "outside block \"slider\"");
 }
 
+// Overlapping blocks were accepted, and a search called the explosion of their contacts failure
+// at every strength ("fails at every reduction factor tried"). The slider pushed 0.25 m into the
+// base shares 2 × 0.25 m² with it, 2·0.5/4.5 = 0.222 m deep.
+TEST(CaseReader, OverlappingBlocksAreRefused) {
+  json d = minimal();
+  d["blocks"][1]["vertices"] = json::parse("[[2,0.75],[4,0.75],[4,1.75],[2,1.75]]");
+  d["monitors"][0]["point"] = json::parse("[3, 1.25]");
+  expectError(d, "blocks[1].vertices", "overlaps block \"base\" (blocks[0]): 0.5 m² in common, about 0.222222 m deep");
+  // Touching, with an extra vertex on the shared edge and a neighbour in a T-junction: accepted.
+  d = minimal();
+  d["blocks"][1]["vertices"] = json::parse("[[2,1],[3,1],[4,1],[4,2],[2,2]]");
+  d["blocks"].push_back(json::parse(R"({"id": "t", "material": "rock", "vertices": [[4,1],[6,1],[6,2],[4,2]]})"));
+  EXPECT_EQ(io::parseCase(d.dump(), "case.json").blocks.size(), 3u);
+  // Two fixed blocks never meet in contact: their overlap is no one's business.
+  d = minimal();
+  d["blocks"].push_back(json::parse(R"({"id": "f", "material": "rock", "fixed": true, "vertices": [[10,0.5],[12,0.5],[12,3],[10,3]]})"));
+  EXPECT_EQ(io::parseCase(d.dump(), "case.json").blocks.size(), 3u);
+}
+
+// The shipped planar failure with its wedge lowered 0.5 m into the rock mass, as written and moved
+// to (1e15, 1e15): refused with exit 2 both times.
+TEST(Cli, OverlappingBlocksExitWithTwoNearAndFarFromTheOrigin) {
+  for (const double shift : {0.0, 1e15}) {
+    json d = json::parse(std::ifstream(std::string(DDASLOPE_SOURCE_DIR) + "/cases/planar_failure.json"));
+    for (json& b : d["blocks"])
+      for (json& v : b["vertices"]) v = json::array({v[0].get<double>() + shift, v[1].get<double>() + shift});
+    for (json& v : d["blocks"][1]["vertices"]) v[1] = v[1].get<double>() - 0.5;
+    for (json& m : d["monitors"]) m["point"] = json::array({m["point"][0].get<double>() + shift, m["point"][1].get<double>() + shift});
+    const std::string path = writeTemp("overlap.json", d.dump());
+    std::string err;
+    EXPECT_EQ(runCli("fos " + path + " --out /tmp/ddaslope_never", &err), 2) << shift;
+    EXPECT_NE(err.find("blocks[1].vertices"), std::string::npos) << err;
+    EXPECT_NE(err.find("block \"wedge\" overlaps block \"rock_mass\""), std::string::npos) << err;
+    fs::remove(path);
+  }
+}
+
+// A silent long run: the JSON parser's depth callback rescanned an object's members at each
+// member's end, and `check` of a case with 50 000 materials ran for minutes (over 60 s measured)
+// without a word. Read in linear time, it takes about a second; 60 s is a hang, not a speed target.
+TEST(Cli, FiftyThousandMaterialsAreReadWithoutAHang) {
+  json d = minimal();
+  for (int k = 0; k < 50000; ++k) d["materials"]["m" + std::to_string(k)] = d["materials"]["rock"];
+  const std::string path = writeTemp("many_materials.json", d.dump());
+  const int status = std::system(("timeout 60 " + std::string(DDASLOPE_CLI) + " check " + path + " >/dev/null").c_str());
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << "exit " << WEXITSTATUS(status) << " (124: timed out)";
+  fs::remove(path);
+}
+
 TEST(Cli, BadInputExitsWithTwoAndNamesFileAndPath) {
   json d = minimal();
   d["materials"]["rock"]["density"] = -1;

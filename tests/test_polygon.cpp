@@ -111,3 +111,49 @@ TEST(Outline, GentleCurveIsNotFlattenedPieceByPiece) {
     EXPECT_LE(nearest, 1e-6 * 0.8) << "m from the simplified outline";
   }
 }
+
+// The region two blocks share, against its area and perimeter drawn by hand.
+namespace {
+std::vector<Vec2> rect(double x0, double y0, double x1, double y1) { return {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}}; }
+}  // namespace
+
+TEST(Overlap, AreaAndPerimeterOfTheSharedRegion) {
+  const auto unit = rect(0, 0, 1, 1);
+  // Shifted by half a side: a 0.5 × 0.5 square.
+  geometry::Overlap o = geometry::overlapOf(unit, rect(0.5, 0.5, 1.5, 1.5), 1e-12);
+  EXPECT_NEAR(o.area, 0.25, 1e-12);
+  EXPECT_NEAR(o.perimeter, 2.0, 1e-12);
+  // Crossed bars, neither with a corner inside the other: the 1 × 1 middle.
+  o = geometry::overlapOf(rect(0, 1, 3, 2), rect(1, 0, 2, 3), 1e-12);
+  EXPECT_NEAR(o.area, 1.0, 1e-12);
+  EXPECT_NEAR(o.perimeter, 4.0, 1e-12);
+  // One inside the other, and one drawn twice (coinciding boundaries counted once).
+  EXPECT_NEAR(geometry::overlapOf(unit, rect(0.25, 0.25, 0.75, 0.75), 1e-12).area, 0.25, 1e-12);
+  EXPECT_NEAR(geometry::overlapOf(rect(0.25, 0.25, 0.75, 0.75), unit, 1e-12).area, 0.25, 1e-12);
+  o = geometry::overlapOf(unit, unit, 1e-12);
+  EXPECT_NEAR(o.area, 1.0, 1e-12);
+  EXPECT_NEAR(o.perimeter, 4.0, 1e-12);
+  // A triangle on three of the square's corners, its hypotenuse through the square.
+  EXPECT_NEAR(geometry::overlapOf(unit, {{0, 0}, {1, 0}, {1, 1}}, 1e-12).area, 0.5, 1e-12);
+}
+
+TEST(Overlap, NeighboursShareNothing) {
+  // Along a whole edge, along part of one (a T-junction: two blocks on one), at a corner.
+  EXPECT_EQ(geometry::overlapOf(rect(0, 0, 1, 1), rect(1, 0, 2, 1), 1e-12).area, 0);
+  EXPECT_EQ(geometry::overlapOf(rect(0, 0, 2, 1), rect(0, 1, 1, 2), 1e-12).area, 0);
+  EXPECT_EQ(geometry::overlapOf(rect(0, 0, 2, 1), rect(1, 1, 2, 2), 1e-12).area, 0);
+  EXPECT_EQ(geometry::overlapOf(rect(0, 0, 1, 1), rect(1, 1, 2, 2), 1e-12).area, 0);
+  // A square in the notch of an L, and a neighbour with an extra vertex on the shared edge.
+  const std::vector<Vec2> ell{{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 2}};
+  EXPECT_EQ(geometry::overlapOf(ell, rect(1, 1, 2, 2), 1e-12).area, 0);
+  EXPECT_EQ(geometry::overlapOf(rect(0, 0, 1, 1), {{1, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 0.5}}, 1e-12).area, 0);
+  // Within the tolerance of touching: nothing.
+  EXPECT_EQ(geometry::overlapOf(rect(0, 0, 1, 1), rect(1 - 1e-13, 0, 2, 1), 1e-12).area, 0);
+}
+
+TEST(Overlap, FarFromTheOriginAsNearIt) {
+  const double x = 1e12;
+  const geometry::Overlap o = geometry::overlapOf(rect(x, x, x + 1, x + 1), rect(x + 0.5, x + 0.5, x + 1.5, x + 1.5), 1e-9);
+  EXPECT_NEAR(o.area, 0.25, 1e-3);  // coordinates resolve 1.2e-4 m at 1e12
+  EXPECT_NEAR(o.perimeter, 2.0, 1e-3);
+}

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace ddaslope::geometry {
 
@@ -233,6 +234,71 @@ double perimeter(const std::vector<Vec2>& pts) {
   double sum = 0;
   for (size_t i = 0; i < pts.size(); ++i) sum += (pts[(i + 1) % pts.size()] - pts[i]).norm();
   return sum;
+}
+
+namespace {
+
+/// Adds to `o` (and to twice its area) the pieces of a's boundary that lie inside b: each edge is
+/// split where b's boundary crosses or touches it, and a piece is kept when its midpoint is inside
+/// b. A piece on b's boundary is kept only when `keepShared` and b's edge there runs the same way
+/// (the two boundaries coincide around one region, counted once, from a); running the opposite
+/// way, the polygons are neighbours along it.
+void addBoundaryInside(const std::vector<Vec2>& a, const std::vector<Vec2>& b, double tol, bool keepShared,
+                       Overlap& o, double& twiceArea) {
+  const size_t na = a.size(), nb = b.size();
+  std::vector<double> ts;
+  for (size_t i = 0; i < na; ++i) {
+    const Vec2 p = a[i], q = a[(i + 1) % na], d = q - p;
+    const double len = d.norm();
+    if (!(len > tol)) continue;
+    ts.assign({0.0, 1.0});
+    for (size_t j = 0; j < nb; ++j) {
+      const Vec2 c = b[j], e = b[(j + 1) % nb], f = e - c;
+      const double denom = cross(d, f);
+      if (std::abs(denom) > 1e-12 * len * f.norm()) {
+        const double t = cross(c - p, f) / denom, u = cross(c - p, d) / denom;
+        if (t > 0 && t < 1 && u >= -tol / f.norm() && u <= 1 + tol / f.norm()) ts.push_back(t);
+      }
+      // b's corners on the edge split it too (collinear stretches, T-junctions).
+      double t;
+      if (distanceToSegment(c, p, q, &t) <= tol) ts.push_back(t);
+    }
+    std::sort(ts.begin(), ts.end());
+    for (size_t k = 0; k + 1 < ts.size(); ++k) {
+      if ((ts[k + 1] - ts[k]) * len <= tol) continue;
+      const Vec2 s = p + ts[k] * d, e = p + ts[k + 1] * d, m = 0.5 * (s + e);
+      double nearest = std::numeric_limits<double>::infinity();
+      size_t edge = 0;
+      for (size_t j = 0; j < nb; ++j) {
+        double t2;
+        const double dist = distanceToSegment(m, b[j], b[(j + 1) % nb], &t2);
+        if (dist < nearest) nearest = dist, edge = j;
+      }
+      const bool keep = nearest <= tol ? keepShared && (b[(edge + 1) % nb] - b[edge]).dot(d) > 0
+                                       : containsPoint(b, m, 0);
+      if (!keep) continue;
+      twiceArea += cross(s, e);
+      o.perimeter += (e - s).norm();
+      o.point = m;
+    }
+  }
+}
+
+}  // namespace
+
+Overlap overlapOf(const std::vector<Vec2>& a, const std::vector<Vec2>& b, double tol) {
+  // About a's first corner: far from the origin the cross products would lose the overlap.
+  const Vec2 origin = a.front();
+  std::vector<Vec2> la(a), lb(b);
+  for (Vec2& v : la) v -= origin;
+  for (Vec2& v : lb) v -= origin;
+  Overlap o;
+  double twiceArea = 0;
+  addBoundaryInside(la, lb, tol, true, o, twiceArea);
+  addBoundaryInside(lb, la, tol, false, o, twiceArea);
+  o.area = std::max(0.0, 0.5 * twiceArea);
+  o.point += origin;
+  return o;
 }
 
 }  // namespace ddaslope::geometry

@@ -1,5 +1,6 @@
 #include "ddaslope/io/case_reader.hpp"
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <filesystem>
@@ -156,6 +157,36 @@ void readJoints(const Reader& r, const json& doc, model::Scene& s, std::map<std:
   }
 }
 
+/// Blocks may touch but not overlap: at the first step the contacts would thrust an overlap
+/// apart with the penalty times its depth, and a search would read the explosion as failure at
+/// every strength. Overlaps thinner than 1e-4 of the scene (rounded coordinates) are the initial
+/// contacts' business. Two fixed blocks never meet in contact and may overlap.
+void checkOverlaps(const Reader& r, const model::Scene& s, double size) {
+  const size_t n = s.blocks.size();
+  std::vector<geometry::Aabb> boxes(n);
+  std::vector<size_t> order(n);
+  for (size_t b = 0; b < n; ++b) boxes[b] = geometry::boundingBox(s.blocks[b].vertices), order[b] = b;
+  std::sort(order.begin(), order.end(), [&](size_t x, size_t y) { return boxes[x].lo.x() < boxes[y].lo.x(); });
+  const double tol = 1e-9 * size;
+  for (size_t i = 0; i < n; ++i) {
+    const size_t a = order[i];
+    for (size_t k = i + 1; k < n && boxes[order[k]].lo.x() < boxes[a].hi.x(); ++k) {
+      const size_t b = order[k];
+      if (s.blocks[a].fixed && s.blocks[b].fixed) continue;
+      if (boxes[b].lo.y() >= boxes[a].hi.y() || boxes[a].lo.y() >= boxes[b].hi.y()) continue;
+      const geometry::Overlap o = geometry::overlapOf(s.blocks[a].vertices, s.blocks[b].vertices, tol);
+      const double depth = o.perimeter > 0 ? 2 * o.area / o.perimeter : 0;
+      if (depth <= 1e-4 * size) continue;
+      const size_t first = std::min(a, b), second = std::max(a, b);
+      std::ostringstream m;
+      m << "block \"" << s.blocks[second].id << "\" overlaps block \"" << s.blocks[first].id << "\" (blocks["
+        << first << "]): " << o.area << " m² in common, about " << depth << " m deep (2·area/perimeter), near ("
+        << o.point.x() << ", " << o.point.y() << "). Blocks may touch along edges but not overlap";
+      r.fail(Reader::index("blocks", second) + ".vertices", m.str());
+    }
+  }
+}
+
 /// Sizes the numbers can resolve: the scene from a laboratory sample to a mountain range, each
 /// block at least 1e-6 of it thick, and a bounded number of blocks.
 void checkGeometry(const Reader& r, const model::Scene& s) {
@@ -186,6 +217,7 @@ void checkGeometry(const Reader& r, const model::Scene& s) {
       r.fail(Reader::index("blocks", b) + ".vertices", m.str());
     }
   }
+  checkOverlaps(r, s, size);
 }
 
 void readBlocks(const Reader& r, const json& doc, model::Scene& s,

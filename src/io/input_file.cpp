@@ -46,15 +46,27 @@ std::string readInputFile(const std::string& path, std::uintmax_t maxBytes, cons
 
 nlohmann::json parseJsonText(const std::string& text, const std::string& file) {
   using nlohmann::json;
-  // The callback sees each value as it starts; refusing depth here keeps the parser's own stack
-  // and the document's destruction bounded.
-  const json::parser_callback_t depthLimit = [&](int depth, json::parse_event_t, json&) {
-    if (depth > kMaxJsonDepth)
-      throw InputError(file, "", "JSON nested more than " + std::to_string(kMaxJsonDepth) + " levels deep");
-    return true;
-  };
+  // Depth is measured on the text before parsing, which keeps the parser's own stack and the
+  // document's destruction bounded. (nlohmann's callback parser would do it in passing, but it
+  // rescans an object's members at each member's end: a case with 50 000 materials took minutes.)
+  int depth = 0;
+  bool inString = false;
+  for (size_t i = 0; i < text.size(); ++i) {
+    const char ch = text[i];
+    if (inString) {
+      if (ch == '\\') ++i;
+      else if (ch == '"') inString = false;
+    } else if (ch == '"') {
+      inString = true;
+    } else if (ch == '{' || ch == '[') {
+      if (++depth > kMaxJsonDepth)
+        throw InputError(file, "", "JSON nested more than " + std::to_string(kMaxJsonDepth) + " levels deep");
+    } else if (ch == '}' || ch == ']') {
+      --depth;
+    }
+  }
   try {
-    return json::parse(text, depthLimit);
+    return json::parse(text);
   } catch (const json::parse_error& e) {
     throw InputError(file, "", std::string("invalid JSON: ") + e.what());
   } catch (const json::out_of_range& e) {

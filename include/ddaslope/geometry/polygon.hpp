@@ -51,6 +51,16 @@ Aabb boundingBox(const std::vector<Vec2>& pts);
 double perimeter(const std::vector<Vec2>& pts);
 /// Distance from p to segment ab and the parameter t ∈ [0,1] of the closest point.
 double distanceToSegment(const Vec2& p, const Vec2& a, const Vec2& b, double* t);
+/// The region two polygons share.
+struct Overlap {
+  double area = 0;       ///< m²; 0 when they meet only along their boundaries
+  double perimeter = 0;  ///< m, of the shared region
+  Vec2 point{0, 0};      ///< a point on the shared region's boundary (where to look)
+};
+/// The region two counter-clockwise simple polygons share, by Green's theorem over the parts of
+/// each boundary inside the other. A boundary point within `tol` (m) of the other's boundary lies
+/// on it: neighbours along a common edge share nothing.
+Overlap overlapOf(const std::vector<Vec2>& a, const std::vector<Vec2>& b, double tol);
 /// True when segments ab and cd share a point.
 bool segmentsIntersect(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& d);
 
