@@ -8,11 +8,13 @@
 #include <filesystem>
 #include <fstream>
 #include <numbers>
+#include <random>
 
 #include "ddaslope/geometry/line_arrangement.hpp"
 #include "ddaslope/geometry/polygon.hpp"
 #include "ddaslope/io/case_reader.hpp"
 #include "ddaslope/io/ntdda_model.hpp"
+#include "fuzz_mutations.hpp"
 #include "test_io.hpp"
 
 namespace {
@@ -373,6 +375,60 @@ TEST(NtddaModel, BadInputExitsTwoWithWhereAndWhat) {
   EXPECT_EQ(runCli("convert " + kData + "benches.geo -o /tmp/ddaslope_never.geo", &err), 2);
   EXPECT_NE(err.find("expected the case to write to be named .json"), std::string::npos) << err;
   EXPECT_FALSE(std::filesystem::exists("/tmp/ddaslope_never_" + std::to_string(::getpid()) + ".json"));
+}
+
+// Mutated models (issue #44's fuzzing, on this input surface): refused as bad input naming the
+// geometry or the analysis, or converted into a case that is read (or refused by the case
+// reader); never another exception, and never a number that is not finite.
+TEST(NtddaModel, MutatedModelsAreRefusedOrConverted) {
+  struct Seed {
+    std::string geo, ana;
+  };
+  const std::vector<Seed> seeds{{"benches.geo", "benches.ana"}, {"benches_text.geo", "benches_text.ana"}, {"wall3_mixed.geo", "wall3_mixed.ana"}};
+  const auto slurp = [](const std::string& p) {
+    std::ifstream in(p, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  };
+  std::mt19937 rng(43);
+  constexpr int kModels = 400;
+  int refused = 0, converted = 0, read = 0;
+  for (int n = 0; n < kModels; ++n) {
+    const Seed& s = seeds[static_cast<size_t>(n) % seeds.size()];
+    std::string geoText = slurp(kData + s.geo), anaText = slurp(kData + s.ana);
+    std::string& target = n % 2 == 0 ? geoText : anaText;
+    const int changes = static_cast<int>(fuzz::uniform(rng, 1, 2));
+    for (int k = 0; k < changes; ++k) target = fuzz::mutateText(target, rng);
+    const std::string geo = writeTemp("fuzz_" + s.geo, geoText), ana = writeTemp("fuzz_" + s.ana, anaText);
+    SCOPED_TRACE("mutation " + std::to_string(n) + " of " + (n % 2 == 0 ? s.geo : s.ana));
+    ddaslope::io::ConvertedModel m;
+    try {
+      const auto g = ddaslope::io::readNtddaGeometry(geo);
+      const auto a = ddaslope::io::readNtddaAnalysis(ana, g);
+      m = ddaslope::io::convertNtddaModel(g, &a);
+      ++converted;
+    } catch (const ddaslope::InputError& e) {
+      ++refused;
+      EXPECT_TRUE(e.file() == geo || e.file() == ana) << e.what();
+      continue;
+    } catch (const std::exception& e) {
+      ADD_FAILURE() << "not an InputError: " << e.what();
+      continue;
+    }
+    EXPECT_EQ(m.caseJson.find("null"), std::string::npos) << m.caseJson;
+    try {
+      const Scene scene = ddaslope::io::parseCase(m.caseJson, "converted.json");
+      ++read;
+      for (const auto& b : scene.blocks)
+        for (const Vec2& p : b.vertices) ASSERT_TRUE(std::isfinite(p.x()) && std::isfinite(p.y())) << b.id;
+    } catch (const ddaslope::InputError& e) {
+      EXPECT_EQ(e.file(), "converted.json");
+    } catch (const std::exception& e) {
+      ADD_FAILURE() << "reading the converted case: not an InputError: " << e.what();
+    }
+  }
+  EXPECT_GT(refused, kModels / 10);
+  EXPECT_GT(read, kModels / 10);
+  std::printf("fuzz ntdda models: %d refused, %d converted (%d read as cases)\n", refused, converted, read);
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <map>
 #include <set>
 
@@ -361,6 +362,15 @@ ConvertedModel convertNtddaModel(const NtddaGeometry& g, const NtddaAnalysis* a)
     analysis["duration"] = 1.0;
   }
   c["analysis"] = analysis;
+  // A product of the model's numbers may overflow (pfactor × E, a force history's rate); the case
+  // must hold finite numbers only (JSON has no others).
+  const std::function<void(const Json&, const std::string&)> finite = [&](const Json& j, const std::string& path) {
+    if (j.is_number_float() && !std::isfinite(j.get<double>()))
+      throw InputError(a ? a->file : gf, "", "the model's values overflow in the case's " + path + "; check the values it is made of");
+    if (j.is_structured())
+      for (const auto& [k, v] : j.items()) finite(v, path.empty() ? k : path + "." + k);
+  };
+  finite(c, "");
   out.caseJson = caseText(c);
   return out;
 }

@@ -22,6 +22,9 @@ namespace {
 /// ntdda's largest models have tens of thousands of joint lines: a few MB.
 constexpr std::uintmax_t kMaxNtddaFileBytes = 64u << 20;
 constexpr int kMaxXmlDepth = 64;
+/// The case's limit is 50 000 blocks; a few lines per block.
+constexpr size_t kMaxJointLines = 200'000;
+constexpr double kMaxCoordinate = 1e9;
 
 struct XmlNode {
   std::string name;  ///< without its namespace prefix ("Berkeley:Geometry" → "Geometry")
@@ -519,6 +522,19 @@ NtddaGeometry readNtddaGeometry(const std::string& path) {
   if (looksLikeXml(text)) readGeometryXml(g);
   else readGeometryText(g, text);
   if (g.joints.empty()) throw InputError(path, "", "expected joint lines, found none");
+  if (g.joints.size() > kMaxJointLines)
+    throw InputError(path, "", "expected at most " + std::to_string(kMaxJointLines) + " joint lines, found " + std::to_string(g.joints.size()));
+  // Beyond any national grid; products of such coordinates stay far from overflow.
+  const auto farOff = [](const Vec2& p) { return std::abs(p.x()) > kMaxCoordinate || std::abs(p.y()) > kMaxCoordinate; };
+  const auto refuse = [&](const NtddaSource& s, const Vec2& p) {
+    throw InputError(path, s.where(), "expected coordinates within ±1e9 m, found (" + std::to_string(p.x()) + ", " + std::to_string(p.y()) + ")");
+  };
+  for (const auto* lines : {&g.joints, &g.materialLines, &g.fixedLines, &g.bolts, &g.boundaryLines})
+    for (const NtddaLine& l : *lines)
+      if (farOff(l.a) || farOff(l.b)) refuse(l.source, farOff(l.a) ? l.a : l.b);
+  for (const auto* points : {&g.fixedPoints, &g.measuredPoints, &g.loadPoints, &g.holePoints, &g.seismicPoints})
+    for (const NtddaPoint& p : *points)
+      if (farOff(p.p)) refuse(p.source, p.p);
   for (const NtddaLine& l : g.joints)
     if (l.a == l.b) throw InputError(path, l.source.where(), "expected a joint line of non-zero length, found both ends at the same point");
   return g;

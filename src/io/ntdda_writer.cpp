@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <map>
 #include <set>
 #include <sstream>
@@ -14,9 +15,20 @@
 namespace ddaslope::io {
 namespace {
 
+/// The shortest text that reads back as the same double.
 std::string num(double v) {
   char b[32];
-  std::snprintf(b, sizeof b, "%.17g", v);
+  for (int digits = 15; digits <= 17; ++digits) {
+    std::snprintf(b, sizeof b, "%.*g", digits, v);
+    if (std::strtod(b, nullptr) == v) break;
+  }
+  return b;
+}
+
+/// An angle converted from radians, without the conversion's last-bit noise (29.999999999999996).
+std::string degrees(double radians) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.12g", radians * 180 / M_PI);
   return b;
 }
 
@@ -264,10 +276,9 @@ NtddaFiles writeNtddaModel(const model::Scene& scene, const std::string& caseNam
         << "    <Youngsmod> " << num(m.youngModulus) << " </Youngsmod>\n    <Poissonratio> " << num(m.poissonRatio) << " </Poissonratio>\n"
         << "    <Damping> 0.0 </Damping>\n    <Istress> 0 0 0 </Istress>\n    <Ivelocity> 0 0 0 </Ivelocity>\n"
         << "    <Istrain> 0 0 0 </Istrain>\n  </Blockmaterial>\n";
-  const double rad = 180 / M_PI;
   for (const auto& j : scene.joints) {
     ana << "  <Jointproperties type=\"" << (&j - scene.joints.data()) + 1 << "\">\n"
-        << "    <Friction> " << num(j.frictionAngle * rad) << " </Friction>\n    <Cohesion> " << num(j.cohesion) << " </Cohesion>\n"
+        << "    <Friction> " << degrees(j.frictionAngle) << " </Friction>\n    <Cohesion> " << num(j.cohesion) << " </Cohesion>\n"
         << "    <Tensile> " << num(j.tensileStrength) << " </Tensile>\n  </Jointproperties>\n";
     if (j.bartonBandis) notes.push_back("joint " + j.name + ": Barton–Bandis law written as its residual friction angle only");
     if (j.residualFrictionAngle || j.residualCohesion > 0 || (j.weakeningDistance && *j.weakeningDistance > 0))
