@@ -93,6 +93,17 @@ TEST(LineArrangement, DanglingLinesAreDropped) {
   EXPECT_EQ(a.danglingEdges, 3);
 }
 
+TEST(LineArrangement, ALineJoiningTwoBlocksBoundsNeither) {
+  // Two unit squares joined by a line between their facing sides: a bridge, not a block's edge.
+  const auto a = arrangeLines({seg(0, 0, 1, 0), seg(1, 0, 1, 1), seg(1, 1, 0, 1), seg(0, 1, 0, 0), seg(2, 0, 3, 0), seg(3, 0, 3, 1),
+                               seg(3, 1, 2, 1), seg(2, 1, 2, 0), seg(1, 0.5, 2, 0.5)},
+                              1e-9);
+  ASSERT_EQ(a.faces.size(), 2u);
+  EXPECT_EQ(sortedAreas(a), (std::vector<double>{1, 1}));
+  EXPECT_EQ(a.bridgeEdges, 1);
+  for (const auto& f : a.faces) EXPECT_EQ(f.size(), 4u);
+}
+
 TEST(LineArrangement, OvershootsAndGapsWithinTheEdgeNodeDistanceClose) {
   // Corners drawn 1 mm short or long, as drawn by hand in ntdda; merged within 5 mm.
   const auto a = arrangeLines({seg(-0.001, 0, 1.001, 0), seg(1, 0.001, 1, 0.999), seg(1.001, 1, 0, 1), seg(0, 1.001, 0, 0.001)}, 5e-3);
@@ -130,7 +141,7 @@ TEST(LineArrangement, ABlockWithAnotherInsideItIsNotABlock) {
 
 Scene convertToScene(const std::string& geo, const std::string& ana, std::vector<std::string>* notes = nullptr) {
   const auto g = ddaslope::io::readNtddaGeometry(geo);
-  const auto a = ddaslope::io::readNtddaAnalysis(ana, g);
+  const auto a = ddaslope::io::readNtddaAnalysis(ana);
   const auto m = ddaslope::io::convertNtddaModel(g, &a);
   if (notes) *notes = m.notes;
   return ddaslope::io::parseCase(m.caseJson, geo + " (converted)");
@@ -254,6 +265,24 @@ TEST(NtddaModel, CaseThroughNtddaFilesAndBackKeepsItsBlocks) {
   expectCaseRoundTrip(kData + "wall3_mixed.json");
   expectCaseRoundTrip(std::string(DDASLOPE_SOURCE_DIR) + "/cases/stepped_toppling_tjunctions.json");
   expectCaseRoundTrip(std::string(DDASLOPE_SOURCE_DIR) + "/cases/planar_multiblock_slide.json");
+}
+
+// The same on the command line: a case to ntdda's two files, and back to a case `check` accepts.
+TEST(NtddaModel, CaseToNtddaFilesOnTheCommandLine) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("ddaslope_ntdda_" + std::to_string(::getpid()));
+  std::filesystem::remove_all(dir);
+  std::string err;
+  ASSERT_EQ(runCli("convert " + kData + "wall3_mixed.json -o " + (dir / "wall.geo").string(), &err), 0) << err;
+  EXPECT_TRUE(std::filesystem::exists(dir / "wall.ana"));  // the default analysis name
+  EXPECT_NE(err.find("initial_equilibrium"), std::string::npos) << err;
+  ASSERT_EQ(runCli("convert " + (dir / "wall.geo").string() + " --analysis " + (dir / "wall.ana").string() + " -o " +
+                       (dir / "wall.json").string(),
+                   &err),
+            0)
+      << err;
+  EXPECT_EQ(runCli("check " + (dir / "wall.json").string(), &err), 0) << err;
+  expectSameModel(ddaslope::io::readCase(kData + "wall3_mixed.json"), ddaslope::io::readCase((dir / "wall.json").string()));
+  std::filesystem::remove_all(dir);
 }
 
 TEST(NtddaModel, SupportsAndLoadsGoThroughNtddaFiles) {
@@ -403,7 +432,7 @@ TEST(NtddaModel, MutatedModelsAreRefusedOrConverted) {
     ddaslope::io::ConvertedModel m;
     try {
       const auto g = ddaslope::io::readNtddaGeometry(geo);
-      const auto a = ddaslope::io::readNtddaAnalysis(ana, g);
+      const auto a = ddaslope::io::readNtddaAnalysis(ana);
       m = ddaslope::io::convertNtddaModel(g, &a);
       ++converted;
     } catch (const ddaslope::InputError& e) {

@@ -66,7 +66,7 @@ int convertCommand(const ConvertOptions& o) {
   if (!isCase(o.output)) throw InputError(o.output, "", "expected the case to write to be named .json, found \"" + o.output + "\"");
   const io::NtddaGeometry geometry = io::readNtddaGeometry(o.input);
   std::optional<io::NtddaAnalysis> analysis;
-  if (!o.analysis.empty()) analysis = io::readNtddaAnalysis(o.analysis, geometry);
+  if (!o.analysis.empty()) analysis = io::readNtddaAnalysis(o.analysis);
   const io::ConvertedModel model = io::convertNtddaModel(geometry, analysis ? &*analysis : nullptr);
   writeFile(o.output, model.caseJson);
   printNotes(model.notes);

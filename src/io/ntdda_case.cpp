@@ -51,10 +51,12 @@ std::string caseText(const Json& c) {
   return out + "}\n";
 }
 
-/// The first block holding p (its boundary included, within tol); −1 for none.
+/// The first block holding p (inside or on its boundary), or else the first within tol of it
+/// (a point drawn on a line that the node merge moved); −1 for none.
 int blockHolding(const std::vector<std::vector<Vec2>>& blocks, const Vec2& p, double tol) {
-  for (size_t b = 0; b < blocks.size(); ++b)
-    if (geometry::containsPoint(blocks[b], p, tol)) return static_cast<int>(b);
+  for (double t : {0.0, tol})
+    for (size_t b = 0; b < blocks.size(); ++b)
+      if (geometry::containsPoint(blocks[b], p, t)) return static_cast<int>(b);
   return -1;
 }
 
@@ -335,6 +337,7 @@ ConvertedModel convertNtddaModel(const NtddaGeometry& g, const NtddaAnalysis* a)
   for (const NtddaPoint& p : g.seismicPoints) notes.push_back(at(gf, p.source) + ": seismic point not mapped (use the case's seismic section)");
   for (const NtddaLine& l : g.boundaryLines) notes.push_back(at(gf, l.source) + ": boundary line not mapped (the blocks' outline is their boundary)");
   for (const NtddaSource& s : g.unmapped) notes.push_back(at(gf, s) + ": not mapped");
+  for (const std::string& n : g.notes) notes.push_back(gf + ": " + n);
 
   Json analysis;
   if (a) {

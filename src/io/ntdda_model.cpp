@@ -352,11 +352,14 @@ void readGeometryText(NtddaGeometry& g, const std::string& text) {
   in.count("the number of boundary lines", kMaxCount);  // ntdda reads it and uses none of it
   const int nMat = in.count("the number of material lines", kMaxCount);
   const int nBolts = in.count("the number of bolts", kMaxCount);
+  const int boltsLine = in.line();
   const int nFixed = in.count("the number of fixed points", kMaxCount);
   const int nLoad = in.count("the number of load points", kMaxCount);
   const int nMeasured = in.count("the number of measured points", kMaxCount);
   const int nHole = in.count("the number of hole points", kMaxCount);
-  if (nBolts > 0) g.unmapped.push_back({in.line(), "bolts (" + std::to_string(nBolts) + "; the text form holds no bolt lines)"});
+  if (nBolts > 0)
+    g.notes.push_back("line " + std::to_string(boltsLine) + ": " + std::to_string(nBolts) +
+                      " bolts counted, but the text form holds no bolt lines (ntdda reads none): not mapped");
   const auto line = [&](const char* what, bool typed) {
     NtddaLine l;
     const std::string w = std::string(what) + " x1 y1 x2 y2" + (typed ? " type" : "");
@@ -540,7 +543,7 @@ NtddaGeometry readNtddaGeometry(const std::string& path) {
   return g;
 }
 
-NtddaAnalysis readNtddaAnalysis(const std::string& path, const NtddaGeometry&) {
+NtddaAnalysis readNtddaAnalysis(const std::string& path) {
   NtddaAnalysis a;
   a.file = path;
   const std::string text = readInputFile(path, kMaxNtddaFileBytes);

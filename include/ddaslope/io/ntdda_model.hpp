@@ -40,6 +40,7 @@ struct NtddaGeometry {
   std::vector<NtddaPoint> fixedPoints, measuredPoints, loadPoints, holePoints, seismicPoints;
   /// Elements read and not mapped (named in the notes).
   std::vector<NtddaSource> unmapped;
+  std::vector<std::string> notes;  ///< what the reader could not take
 };
 
 struct NtddaMaterial {
@@ -87,8 +88,9 @@ struct NtddaAnalysis {
 /// Reads a geometry file, DDAML or text (told apart by a leading '<'). Throws InputError naming
 /// the file, the line and element, and what was expected and found.
 NtddaGeometry readNtddaGeometry(const std::string& path);
-/// Reads an analysis file; the text form needs the geometry's point counts.
-NtddaAnalysis readNtddaAnalysis(const std::string& path, const NtddaGeometry& geometry);
+/// Reads an analysis file, DDAML or text. (ntdda's text form has records of time-dependent
+/// loads after the counts, but ntdda reads none of them, and neither does this.)
+NtddaAnalysis readNtddaAnalysis(const std::string& path);
 
 /// ntdda's geometric scale (dc02): from the joint lines' bounding box.
 double ntddaScale(const std::vector<NtddaLine>& joints);
