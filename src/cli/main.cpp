@@ -9,6 +9,7 @@
 #include "ddaslope/core/task_farm.hpp"
 #include "backanalyse_command.hpp"
 #include "check_command.hpp"
+#include "convert_command.hpp"
 #include "critical_command.hpp"
 #include "fos_command.hpp"
 #include "cli_common.hpp"
@@ -47,6 +48,11 @@ int runCommandLine(int argc, char** argv) {
   CLI::App* cut = app.add_subcommand("cut", "cut the blocks of a case's slope section; write them as a plain case file and a picture");
   cut->add_option("case", casePath, "case file (JSON) with a section")->required();
   cut->add_option("--out", cutOut, "output directory")->capture_default_str();
+
+  ConvertOptions convertOpt;
+  CLI::App* convert = app.add_subcommand(
+      "convert", "a model of Shi's DDA (ntdda .geo and .ana) to a case, or a case to ntdda's files");
+  addConvertOptions(convert, convertOpt);
 
   CriticalOptions crit;
   CLI::App* critical = app.add_subcommand("critical", "critical cohesion (at a friction angle) or friction angle (at a cohesion) of one joint, by bisection");
@@ -103,6 +109,7 @@ int runCommandLine(int argc, char** argv) {
     if (compare->parsed()) return compareContactsCommand(deformable, csvPath);
     if (critical->parsed()) return criticalCommand(casePath, overrides, crit);
     if (cut->parsed()) return cutCommand(casePath, cutOut);
+    if (convert->parsed()) return convertCommand(convertOpt);
     if (ba->parsed()) return backanalyseCommand(jobPath, baOut, baJson, overrides, baProgress);
     if (fos->parsed()) return fosCommand(casePath, overrides, fosOpt);
     if (probability->parsed()) return ddaslope::cli::probabilityCommand(casePath, overrides, probOpt);

@@ -1,0 +1,28 @@
+<?xml version="1.0" standalone="no"?>
+<!DOCTYPE DDA SYSTEM "geometry.dtd">
+<Berkeley:DDA xmlns:Berkeley="http://www.tsoft.com/~bdoolin/dda">
+<!-- from wall3.json by json2ntdda.py: 11 blocks, 16 joint segments -->
+<Berkeley:Geometry>
+<Berkeley:Edgenodedist distance="0.00254902"/>
+<Jointlist>
+<Joint type="1"> -1.0 -1.0 4.0 -1.0 </Joint>
+<Joint type="1"> -1.0 0.0 4.0 0.0 </Joint>
+<Joint type="1"> 0.0 0.5 3.0 0.5 </Joint>
+<Joint type="1"> 0.0 1.0 3.0 1.0 </Joint>
+<Joint type="1"> 0.0 1.5 3.0 1.5 </Joint>
+<Joint type="1"> 4.0 -1.0 4.0 0.0 </Joint>
+<Joint type="1"> 3.0 0.0 3.0 1.5 </Joint>
+<Joint type="1"> 2.5 0.5 2.5 1.0 </Joint>
+<Joint type="1"> 2.0 0.0 2.0 0.5 </Joint>
+<Joint type="1"> 2.0 1.0 2.0 1.5 </Joint>
+<Joint type="1"> 1.5 0.5 1.5 1.0 </Joint>
+<Joint type="1"> 1.0 0.0 1.0 0.5 </Joint>
+<Joint type="1"> 1.0 1.0 1.0 1.5 </Joint>
+<Joint type="1"> 0.5 0.5 0.5 1.0 </Joint>
+<Joint type="1"> 0.0 0.0 0.0 1.5 </Joint>
+<Joint type="1"> -1.0 -1.0 -1.0 0.0 </Joint>
+</Jointlist>
+<Fixedpointlist><Point> -0.625 -0.075 </Point><Point> 3.625 -0.075 </Point><Point> 3.625 -0.925 </Point><Point> -0.625 -0.925 </Point></Fixedpointlist>
+<Measuredpointlist><Point> 2.5 1.25 </Point></Measuredpointlist>
+</Berkeley:Geometry>
+</Berkeley:DDA>
