@@ -220,6 +220,25 @@ TEST(Cli, FiftyThousandMaterialsAreReadWithoutAHang) {
   fs::remove(path);
 }
 
+// A silent long run: `run` of a long scene said nothing before its end off a terminal. It states
+// its size first (blocks, unknowns, contacts, steps), then a progress line a minute. The minimal
+// case over 1e4 s at Δt = 1 ms is 1e7 steps of 2 blocks; it is stopped after its first words.
+TEST(Cli, ALongRunStatesItsSizeBeforeItStarts) {
+  json d = minimal();
+  d["analysis"]["duration"] = 1e4;
+  const std::string path = writeTemp("long_run.json", d.dump());
+  const fs::path out = fs::temp_directory_path() / ("ddaslope_long_" + std::to_string(::getpid()));
+  const fs::path err = fs::temp_directory_path() / ("ddaslope_long_err_" + std::to_string(::getpid()));
+  std::system(("timeout 3 " + std::string(DDASLOPE_CLI) + " run " + path + " --out " + out.string() + " >/dev/null 2>" + err.string()).c_str());
+  std::ifstream in(err);
+  const std::string text((std::istreambuf_iterator<char>(in)), {});
+  EXPECT_NE(text.find("a long run: 2 blocks (6 unknowns), 2 contacts at t = 0"), std::string::npos) << text;
+  EXPECT_NE(text.find("then 10000000 steps of 0.001 s"), std::string::npos) << text;
+  fs::remove_all(out);
+  fs::remove(err);
+  fs::remove(path);
+}
+
 TEST(Cli, BadInputExitsWithTwoAndNamesFileAndPath) {
   json d = minimal();
   d["materials"]["rock"]["density"] = -1;

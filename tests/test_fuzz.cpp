@@ -18,6 +18,7 @@
 
 #include "ddaslope/core/errors.hpp"
 #include "ddaslope/io/case_reader.hpp"
+#include "test_io.hpp"
 #include "ddaslope/io/run_case.hpp"
 #include "fuzz_mutations.hpp"
 
@@ -54,8 +55,8 @@ bool traceFinite(const io::Trace& t) {
 TEST(Fuzz, MutatedShippedCasesAreRefusedOrRunCleanly) {
   const std::vector<json> corpus = shippedCases();
   ASSERT_GE(corpus.size(), 10u);
-  std::mt19937 rng(15);  // issue #15: fixed, so a failure reproduces
-  constexpr int kCases = 300;
+  std::mt19937 rng(clitest::fuzzSeed(15));  // issue #15: fixed, so a failure reproduces
+  const int kCases = clitest::fuzzCount(300);
   int refused = 0, completed = 0, stopped = 0;
   for (int n = 0; n < kCases; ++n) {
     json doc = corpus[static_cast<size_t>(n) % corpus.size()];

@@ -185,8 +185,8 @@ std::vector<RecordSeed> recordSeeds() {
 // named (docs/seismic.md, "Rejected records"), or read into a finite, increasing history.
 TEST(Fuzz, MutatedGroundMotionRecordsAreRefusedOrFinite) {
   const std::vector<RecordSeed> seeds = recordSeeds();
-  std::mt19937 rng(44);  // issue #44: fixed, so a failure reproduces
-  constexpr int kRecords = 1200;
+  std::mt19937 rng(clitest::fuzzSeed(44));  // issue #44: fixed, so a failure reproduces
+  const int kRecords = clitest::fuzzCount(1200);
   int refused = 0, accepted = 0;
   for (int n = 0; n < kRecords; ++n) {
     RecordSeed r = seeds[static_cast<size_t>(n) % seeds.size()];
@@ -286,8 +286,8 @@ void expectValidSection(const io::DxfSection& s) {
 // into a valid section, which the case reader then cuts into finite blocks or refuses.
 TEST(Fuzz, MutatedDxfSectionsAreRefusedOrValid) {
   const std::vector<DrawingSeed> seeds = drawingSeeds();
-  std::mt19937 rng(44);
-  constexpr int kDrawings = 300;
+  std::mt19937 rng(clitest::fuzzSeed(44));
+  const int kDrawings = clitest::fuzzCount(300);
   int refused = 0, read = 0, cut = 0;
   for (int n = 0; n < kDrawings; ++n) {
     DrawingSeed d = seeds[static_cast<size_t>(n) % seeds.size()];
@@ -364,8 +364,8 @@ std::vector<JobSeed> jobSeeds() {
 TEST(Fuzz, MutatedJobsAreRefusedOrFinite) {
   const std::vector<JobSeed> seeds = jobSeeds();
   ASSERT_GE(seeds.size(), 8u);
-  std::mt19937 rng(44);
-  constexpr int kJobs = 300;
+  std::mt19937 rng(clitest::fuzzSeed(44));
+  const int kJobs = clitest::fuzzCount(300);
   int refused = 0, accepted = 0;
   for (int n = 0; n < kJobs; ++n) {
     const JobSeed& seed = seeds[static_cast<size_t>(n) % seeds.size()];
@@ -566,8 +566,8 @@ TEST(Fuzz, MutatedCommandLinesExitAsDocumented) {
              "--overwrite", "--stop-after", "--json", "--quiet", "--log-json"}),
        {"--stop-after", "2", "--set", "analysis.max_steps=300", "--set", "analysis.wall_clock_limit=1"}},
   };
-  std::mt19937 rng(44);
-  constexpr int kLaunches = 60;
+  std::mt19937 rng(clitest::fuzzSeed(44));
+  const int kLaunches = clitest::fuzzCount(60);
   int codes[4] = {0, 0, 0, 0};
   for (int n = 0; n < kLaunches; ++n) {
     const Command& c = commands[static_cast<size_t>(n) % commands.size()];
@@ -635,8 +635,8 @@ TEST(Fuzz, DamagedSamplesAreResumedOrRefusedWithTheirLine) {
   const CliResult first = runIn(root.path, args);
   ASSERT_EQ(first.code, 0) << first.err;
   const std::string rows = slurp(whole / "samples.csv");
-  std::mt19937 rng(44);
-  constexpr int kResumes = 40;
+  std::mt19937 rng(clitest::fuzzSeed(44));
+  const int kResumes = clitest::fuzzCount(40);
   int resumed = 0, refused = 0;
   for (int n = 0; n < kResumes; ++n) {
     const fs::path dir = root.path / ("damaged_" + std::to_string(n));

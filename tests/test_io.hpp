@@ -19,6 +19,20 @@
 
 namespace clitest {
 
+/// A fuzzer's seed: fixed in the suite, so that a failure reproduces; DDASLOPE_FUZZ_SEED gives a
+/// campaign another one (docs/validation.md).
+inline unsigned fuzzSeed(unsigned fixed) {
+  const char* v = std::getenv("DDASLOPE_FUZZ_SEED");
+  return v && *v ? static_cast<unsigned>(std::strtoul(v, nullptr, 10)) : fixed;
+}
+/// A fuzzer's number of inputs, times DDASLOPE_FUZZ_SCALE (a whole number, 1 if unset) for a
+/// longer campaign.
+inline int fuzzCount(int fixed) {
+  const char* v = std::getenv("DDASLOPE_FUZZ_SCALE");
+  const long scale = v && *v ? std::strtol(v, nullptr, 10) : 1;
+  return fixed * static_cast<int>(scale >= 1 ? scale : 1);
+}
+
 /// Runs the CLI with `args` and returns its exit code (stderr into *stderrText).
 inline int runCli(const std::string& args, std::string* stderrText) {
   const std::filesystem::path err = std::filesystem::temp_directory_path() / ("ddaslope_err_" + std::to_string(::getpid()));

@@ -418,8 +418,8 @@ TEST(NtddaModel, MutatedModelsAreRefusedOrConverted) {
     std::ifstream in(p, std::ios::binary);
     return std::string(std::istreambuf_iterator<char>(in), {});
   };
-  std::mt19937 rng(43);
-  constexpr int kModels = 400;
+  std::mt19937 rng(clitest::fuzzSeed(43));
+  const int kModels = clitest::fuzzCount(400);
   int refused = 0, converted = 0, read = 0;
   for (int n = 0; n < kModels; ++n) {
     const Seed& s = seeds[static_cast<size_t>(n) % seeds.size()];

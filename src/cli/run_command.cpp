@@ -90,6 +90,7 @@ int runCommand(const std::string& casePath, const Overrides& o, const RunCommand
   opt.casePath = casePath;
   opt.progress = !c.quiet && !c.verbose && isatty(STDERR_FILENO);
   opt.verbose = c.verbose;
+  opt.announce = !c.quiet;
   opt.snapshotTimes = c.snapshots;
   opt.threads = c.threads;
   opt.vtk = c.vtk;

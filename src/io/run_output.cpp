@@ -10,6 +10,7 @@
 
 #include "ddaslope/core/errors.hpp"
 #include "ddaslope/io/line_plot.hpp"
+#include "ddaslope/io/progress.hpp"
 #include "ddaslope/io/run_case.hpp"
 #include "ddaslope/io/scene_picture.hpp"
 #include "ddaslope/io/scene_vtk.hpp"
@@ -378,6 +379,34 @@ RunOutcome runScene(const model::Scene& scene, const RunOptions& opt) {
   if (opt.verbose) sim.setLog([](const std::string& line) { std::fprintf(stderr, "  %s\n", line.c_str()); });
   const double duration = scene.settings.duration;
   double lastShown = -1;
+  // A long run says what it is about to do before it starts, and off a terminal how far it has
+  // got once a minute. Long: a minute's work at ~10 µs per block and step on one core
+  // (docs/performance.md), counting the initial equilibrium's first stages; a run that takes a
+  // minute all the same (a settling of thousands of blocks) says it at its first progress line.
+  const double nominalSteps = duration / scene.settings.timeStep;
+  const double blockSteps = (nominalSteps + scene.settings.equilibriumMaxSteps) * static_cast<double>(scene.blocks.size());
+  bool sizeSaid = false;
+  const auto saySize = [&] {
+    if (sizeSaid || !opt.announce) return;
+    sizeSaid = true;
+    std::fprintf(stderr,
+                 "%s  a long run: %zu blocks (%d unknowns), %zu contacts at t = 0; the initial equilibrium (up to %d "
+                 "steps, and %d more if it settles dynamically), then %.0f steps of %g s\n",
+                 opt.progress ? "\n" : "", scene.blocks.size(), scene.freeUnknowns(), sim.contacts().contacts().size(),
+                 scene.settings.equilibriumMaxSteps, solver::kSettlingStepsPerEquilibriumStep * scene.settings.equilibriumMaxSteps,
+                 nominalSteps, scene.settings.timeStep);
+  };
+  if (blockSteps > 6e6) saySize();
+  const bool progressLines = opt.announce && !opt.progress;
+  auto lastDue = std::chrono::steady_clock::now();
+  const auto sinceStart = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
+  const auto due = [&] {
+    const auto now = std::chrono::steady_clock::now();
+    if (std::chrono::duration<double>(now - lastDue).count() < (opt.progress ? 0.2 : 60)) return false;
+    lastDue = now;
+    if (sinceStart() >= 60) saySize();
+    return true;
+  };
   // Pictures say when the strengths are not the case's own (run --at-fos), and colour motions
   // against the verdict's failure displacement at least: settling of micrometres stays blue.
   std::string title = opt.casePath;
@@ -409,11 +438,21 @@ RunOutcome runScene(const model::Scene& scene, const RunOptions& opt) {
     }
     if (opt.progress && (r.time - lastShown >= duration / 100 || r.time >= duration)) {
       lastShown = r.time;
-      std::fprintf(stderr, "\r  t = %.4g / %.4g s  steps %d  cuts %d", r.time, duration, s.statistics().steps,
-                   s.statistics().cuts);
+      std::fprintf(stderr, "\r  t = %-.4g / %.4g s  steps %d  cuts %d, %s%20s", r.time, duration, s.statistics().steps,
+                   s.statistics().cuts, formatDuration(sinceStart()).c_str(), "");
       if (r.time >= duration) std::fprintf(stderr, "\n");
+    } else if (progressLines && due()) {
+      std::fprintf(stderr, "  t = %.4g / %.4g s, steps %d, cuts %d, %s\n", r.time, duration, s.statistics().steps,
+                   s.statistics().cuts, formatDuration(sinceStart()).c_str());
     }
   };
+  if (opt.progress || progressLines)
+    sim.setEquilibriumProgress([&](const char* stage, int step, int budget) {
+      if (!due()) return;
+      std::fprintf(stderr, "%s  bringing %zu blocks to rest: %s step %d (at most %d), %s%s", opt.progress ? "\r" : "",
+                   scene.blocks.size(), stage, step, budget, formatDuration(sinceStart()).c_str(),
+                   opt.progress ? "          " : "\n");
+    });
   try {
     // The equilibrium of a large scene can take minutes before the first step: say so.
     if (opt.progress)

@@ -18,13 +18,6 @@ namespace ddaslope::solver {
 
 using contact::Contact;
 
-namespace {
-
-/// Stage 3's budget, in steps per analysis.equilibrium_max_steps (200 by default: 4000 steps).
-constexpr int kSettlingStepsPerEquilibriumStep = 20;
-
-}  // namespace
-
 double Simulation::restAcceleration() const {
   // At rest when the acceleration a static step implies, 2|D|/Δt², is below 1e-6 g: a measure
   // of the out-of-balance force that does not depend on the Δt the step control ended up with.
@@ -75,6 +68,7 @@ Simulation::Rest Simulation::settle(Regime regime, double& dt, double largestDt)
     // bond that slides is still lost (original DDA).
     commit(a, dt, false);
     ++stats_.equilibriumSteps;
+    if (equilibriumProgress_) equilibriumProgress_("equilibrium", s + 1, scene_.settings.equilibriumMaxSteps);
     const double worst = largestVertexDisplacement(a);
     stats_.equilibriumResidual = 2 * worst / (dt * dt) / std::max(scene_.gravity.norm(), 1e-3);
     travel += worst;
@@ -168,6 +162,7 @@ bool Simulation::settleDynamically() {
     if (!a.converged) return false;
     commit(a, dt, false);
     ++stats_.settlingSteps;
+    if (equilibriumProgress_) equilibriumProgress_("settling", s + 1, budget);
     const double worst = largestVertexDisplacement(a);
     travel += worst;
     const double implied = 2 * worst / (dt * dt);

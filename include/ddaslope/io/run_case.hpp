@@ -59,7 +59,10 @@ struct RunOutcome {
 struct RunOptions {
   std::optional<std::string> outputDir;  ///< write history.csv and summary.json here
   std::string casePath;                  ///< named in summary.json
-  bool progress = false;                 ///< progress line on stderr
+  bool progress = false;                 ///< progress line on stderr (a terminal's, redrawn)
+  /// A long run states its size on stderr before it starts and, without `progress`, writes a
+  /// progress line a minute (a log file, a batch job).
+  bool announce = false;
   bool verbose = false;                  ///< equilibrium steps and Δt cuts on stderr
   /// Record the energy budget every step (always when writing to outputDir). A search that
   /// only reads monitors turns it off: it costs ~1 % of a step at 1000 blocks.

@@ -144,6 +144,11 @@ class Simulation {
   Vec2 monitorVelocity(int m) const;
   /// Receives one line per equilibrium step and per Δt cut (diagnostics; off by default).
   void setLog(std::function<void(const std::string&)> log) { log_ = std::move(log); }
+  /// Receives each step of the initial equilibrium: its stage ("equilibrium", "settling"), the
+  /// stage's step count and its steps at most, for a progress line (off by default).
+  void setEquilibriumProgress(std::function<void(const char* stage, int step, int budget)> progress) {
+    equilibriumProgress_ = std::move(progress);
+  }
   /// On (the default): a large system's factor follows its contact state changes by
   /// update/downdate. Off: a large system's steps solve as a small system's do (tryStep), every
   /// such change refactorising, for comparisons in the bench (--refactorise-only) and the tests.
@@ -369,9 +374,13 @@ class Simulation {
   /// Throws BudgetExceededError once the deadline has passed.
   void checkDeadline() const;
   std::function<void(const std::string&)> log_;
+  std::function<void(const char*, int, int)> equilibriumProgress_;
 };
 
 /// Runs a scene from equilibrium to its duration; `observe` sees t = 0 and every step.
+/// Stage 3's budget, in steps per analysis.equilibrium_max_steps (200 by default: 4000 steps).
+constexpr int kSettlingStepsPerEquilibriumStep = 20;
+
 using StepObserver = std::function<void(const Simulation&, const StepRecord&)>;
 void runAnalysis(Simulation& sim, const StepObserver& observe, const HeldEquilibrium* shared = nullptr);
 
