@@ -131,6 +131,12 @@ def main():
     gap = msp.add_line((40.5, 20.0), (100.0, 20.0), dxfattribs={"layer": "GROUND"})
     save(doc, out, "ground_gap", gap)
 
+    # Found by the fuzzer: a ground whose points all coincide (a line drawn as one click).
+    doc, msp = new()
+    basin(msp, ground=False)
+    dot = msp.add_line((0.0, 20.0), (0.0, 20.0), dxfattribs={"layer": "GROUND"})
+    save(doc, out, "ground_one_point", dot)
+
     doc, msp = new()
     basin(msp)
     arc = msp.add_arc((30, 12), 4, 0, 90, dxfattribs={"layer": "JOINTS"})

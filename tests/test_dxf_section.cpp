@@ -191,6 +191,7 @@ TEST(DxfSection, MalformedDrawingsNameTheFileTheLayerAndTheEntity) {
       {"closed_ground", "ground", "GROUND", "LWPOLYLINE", 1, "a closed polyline, where the ground is an open line"},
       {"sliding_surface_loop", "sliding_surface", "SLIP", "LINE", 1, "close into a loop"},
       {"ground_gap", "ground", "GROUND", "LINE", 2, "does not meet the other entities on the layer end to end"},
+      {"ground_one_point", "ground", "GROUND", "LINE", 1, "its points all coincide"},
       {"arc_on_joints", "joints", "JOINTS", "ARC", 2, "an entity of type ARC"},
       {"arc_segment", "sliding_surface", "SLIP", "LWPOLYLINE", 1, "vertex 2 starts an arc segment (bulge)"},
       {"three_d", "ground", "GROUND", "LINE", 1, "point 2 is at z = 5"},

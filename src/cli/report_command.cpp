@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <map>
 #include <fstream>
 #include <sstream>
 #include <vector>
@@ -11,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli_common.hpp"
+#include "ddaslope/calibration/verdict.hpp"
 #include "ddaslope/core/errors.hpp"
 #include "ddaslope/io/vtk_writer.hpp"
 
@@ -187,6 +189,85 @@ std::vector<fs::path> pictures(const fs::path& dir) {
   return png;
 }
 
+
+/// What a picture shows, for its caption (the file's name follows it).
+std::string caption(const std::string& file) {
+  static const std::vector<std::pair<std::string, std::string>> known = {
+      {"mechanism_stable", "The search's last stable trial: blocks coloured by displacement, arrows, joint states"},
+      {"mechanism_failed", "The search's first failing trial: the mechanism at the bracket's failing end"},
+      {"snapshot_", "The scene at one of the requested times"},
+      {"history", "Monitors' displacements against time"},
+      {"energy", "The energy budget against time (kinetic, potential, elastic, work of loads, dissipated)"},
+      {"supports", "Each support's axial force against time"},
+      {"ground_motion", "The ground-motion record applied"},
+      {"critical_curve", "Critical strength along the curve"},
+      {"support_curve", "Factor of safety against the support force"},
+      {"misfit_map", "Misfit over the strength plane, the estimate marked"},
+      {"pf_convergence", "Probability of failure as the samples accumulate, with its interval"},
+      {"samples_plane", "The samples in the plane of the first two inputs, by verdict"},
+      {"fos_histogram", "The samples' factors of safety"},
+      {"sensitivities", "The importance of each input at the design point"},
+  };
+  for (const auto& [prefix, text] : known)
+    if (file.rfind(prefix, 0) == 0) return text;
+  return "";
+}
+
+/// A trial's value column: its key is the one that is not part of the verdict.
+std::string trialValueKey(const json& trial) {
+  static const std::vector<std::string> verdictKeys = {
+      "stable", "undecided", "rule", "max_displacement_m", "failure_displacement_m", "settling_displacement_m",
+      "last_window_motion_m", "previous_window_motion_m", "noise_floor_m", "final_speed_m_s", "moved_most",
+      "decided_by", "time_s", "steps", "extended", "extensions", "marginal", "rerun", "early_rest"};
+  for (const auto& [k, v] : trial.items())
+    if (v.is_number() && std::find(verdictKeys.begin(), verdictKeys.end(), k) == verdictKeys.end()) return k;
+  return "";
+}
+
+std::string valueHeader(const std::string& key) {
+  if (key == "factor") return "F";
+  if (key == "cohesion_pa") return "c (Pa)";
+  if (key == "friction_angle_deg") return "φ (°)";
+  std::string h = key;
+  std::replace(h.begin(), h.end(), '_', ' ');
+  return h;
+}
+
+/// A search's trials as a reader wants them: the value tried, the verdict, the rule that decided
+/// it in words, and the motions it went by, each header with its unit.
+std::string trialsTable(const json& trials) {
+  if (!trials.is_array() || trials.empty() || !trials[0].is_object()) return "";
+  const std::string key = trialValueKey(trials[0]);
+  std::map<std::string, std::string> rules;
+  for (int r = 0; r <= static_cast<int>(calibration::VerdictRule::Undecided); ++r)
+    rules[calibration::name(static_cast<calibration::VerdictRule>(r))] =
+        calibration::describe(static_cast<calibration::VerdictRule>(r));
+  const auto num = [](const json& t, const char* k) { return t.contains(k) ? scalar(t.at(k)) : std::string("&ndash;"); };
+  std::string h = "<table class=\"rows\"><tr><th>#</th><th>" + escape(valueHeader(key)) +
+                  "</th><th>verdict</th><th>decided by the rule</th><th>largest displacement (m)</th>"
+                  "<th>failure displacement (m)</th><th>moved most</th><th>judged at</th><th>simulated (s)</th>"
+                  "<th>steps</th><th>notes</th></tr>";
+  int n = 0;
+  for (const json& t : trials) {
+    if (!t.is_object()) continue;
+    const std::string verdict = t.value("undecided", false) ? "undecided" : t.value("stable", false) ? "stable" : "failing";
+    const std::string rule = t.value("rule", "");
+    std::string notes;
+    const auto note = [&](bool on, const std::string& text) {
+      if (on) notes += (notes.empty() ? "" : "; ") + text;
+    };
+    note(t.value("extended", false), "run extended " + std::to_string(t.value("extensions", 0)) + " times");
+    note(t.value("marginal", false), "marginal (the 90 % rule)");
+    note(t.value("rerun", false), "run again");
+    note(t.value("early_rest", false), "stopped early: at rest for certain");
+    h += "<tr><td>" + std::to_string(++n) + "</td><td>" + (key.empty() ? "&ndash;" : scalar(t.at(key))) + "</td><td>" +
+         verdict + "</td><td>" + escape(rules.count(rule) ? rules[rule] : rule) + "</td><td>" +
+         num(t, "max_displacement_m") + "</td><td>" + num(t, "failure_displacement_m") + "</td><td>" +
+         num(t, "moved_most") + "</td><td>" + num(t, "decided_by") + "</td><td>" + num(t, "time_s") + "</td><td>" +
+         num(t, "steps") + "</td><td>" + escape(notes) + "</td></tr>";
+  }
+  return h + "</table>";
+}
 }  // namespace
 
 int reportCommand(const std::string& dirText, const std::string& outFile) {
@@ -228,11 +309,21 @@ int reportCommand(const std::string& dirText, const std::string& outFile) {
   const std::vector<fs::path> png = pictures(dir);
   if (!png.empty()) {
     h << "<h2>Pictures</h2>\n";
-    for (const auto& p : png)
-      h << "<figure><img alt=\"" << escape(p.filename().string()) << "\" src=\"data:image/png;base64,"
-        << base64(slurp(p)) << "\"><figcaption>" << escape(p.filename().string()) << "</figcaption></figure>\n";
+    for (const auto& p : png) {
+      const std::string what = caption(p.filename().string());
+      h << "<figure><img alt=\"" << escape(what.empty() ? p.filename().string() : what) << "\" src=\"data:image/png;base64,"
+        << base64(slurp(p)) << "\"><figcaption>" << escape(what) << (what.empty() ? "" : " ") << "("
+        << escape(p.filename().string()) << ")</figcaption></figure>\n";
+    }
   }
-  h << "<h2>Result (" << escape(a.file) << ")</h2>\n" << render(r) << "\n";
+  json rest = r;
+  if (const std::string trials = r.contains("trials") ? trialsTable(r["trials"]) : ""; !trials.empty()) {
+    h << "<h2>Trials</h2>\n<p>Each forward run of the search, in the order run, with the rule of the verdict "
+         "(docs/calibration.md) that decided it.</p>\n"
+      << trials << "\n";
+    rest.erase("trials");
+  }
+  h << "<h2>Result (" << escape(a.file) << ")</h2>\n" << render(rest) << "\n";
   h << "<p style=\"font-size:.8em;color:#777\">Written by ddaslope report from " << escape(dir.string())
     << ". Every number above is the one the analysis wrote.</p>\n</body></html>\n";
   const std::string out = outFile.empty() ? (dir / "report.html").string() : outFile;

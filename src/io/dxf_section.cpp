@@ -380,6 +380,9 @@ DrawnLine oneLine(const std::vector<Piece>& pieces, const std::string& key, cons
       line.points.push_back(c.points[i]);
       line.from.push_back(pieces[c.pieceOf[i]].entity);
     }
+  if (line.points.size() < 2)
+    refuse(key, describe(*pieces.front().entity) + ": its points all coincide, where " + what +
+                    " is a line of at least two distinct points");
   if (line.points.front().x() > line.points.back().x()) {
     std::reverse(line.points.begin(), line.points.end());
     std::reverse(line.from.begin(), line.from.end());

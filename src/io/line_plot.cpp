@@ -45,8 +45,15 @@ void writePng(const LinePlot& plot, const std::string& path) {
   if (!(x0 <= x1)) x0 = 0, x1 = 1, y0 = 0, y1 = 1;
   if (x1 == x0) x0 -= 1, x1 += 1;
   if (y1 == y0) y0 -= 1, y1 += 1;
-  const double dx = tickStep(x1 - x0, 8), dy = tickStep(y1 - y0, 6);
-  x0 = std::floor(x0 / dx) * dx, x1 = std::ceil(x1 / dx) * dx;
+  const bool categories = !plot.xCategories.empty();
+  const double dx = categories ? 1 : tickStep(x1 - x0, 8), dy = tickStep(y1 - y0, 6);
+  if (categories) {
+    x0 = 0.5, x1 = plot.xCategories.size() + 0.5;
+    // Bars reach across the plot: headroom above them for the legend, which names them.
+    const double legend = std::min(0.6, (28.0 + 20.0 * plot.series.size()) / (height - top - bottom));
+    y1 = y0 + (y1 - y0) / (1 - legend);
+  }
+  else x0 = std::floor(x0 / dx) * dx, x1 = std::ceil(x1 / dx) * dx;
   y0 = std::floor(y0 / dy) * dy, y1 = std::ceil(y1 / dy) * dy;
   const auto px = [&](double x) { return left + (x - x0) / (x1 - x0) * (width - left - right); };
   const auto py = [&](double y) { return height - bottom - (y - y0) / (y1 - y0) * (height - top - bottom); };
@@ -74,7 +81,25 @@ void writePng(const LinePlot& plot, const std::string& path) {
       else text(cr, ax - 8, ay, buf, 1, 0.5);
     }
   };
-  grid(true, x0, x1, dx);
+  if (categories) {
+    // Each category's name under its place, in a smaller font where it would not fit its share.
+    const double share = (px(x1) - px(x0)) / plot.xCategories.size();
+    for (size_t k = 0; k < plot.xCategories.size(); ++k) {
+      const std::string& name = plot.xCategories[k];
+      double size = 13;
+      cairo_text_extents_t e;
+      for (; size > 8; size -= 0.5) {
+        cairo_set_font_size(cr, size);
+        cairo_text_extents(cr, name.c_str(), &e);
+        if (e.x_advance <= 0.95 * share) break;
+      }
+      cairo_set_source_rgb(cr, 0.2, 0.2, 0.2);
+      text(cr, px(k + 1.0), py(y0) + 8, name, 0.5, 1);
+    }
+    cairo_set_font_size(cr, 13);
+  } else {
+    grid(true, x0, x1, dx);
+  }
   grid(false, y0, y1, dy);
   cairo_set_source_rgb(cr, 0, 0, 0);
   cairo_rectangle(cr, px(x0), py(y1), px(x1) - px(x0), py(y0) - py(y1));
@@ -104,8 +129,17 @@ void writePng(const LinePlot& plot, const std::string& path) {
     const double dashes[][2] = {{8, 4}, {2, 3}};
     if (k >= 8) cairo_set_dash(cr, dashes[(k / 8 - 1) % 2], 2, 0);
     else cairo_set_dash(cr, nullptr, 0, 0);
+    if (s.filled && !s.x.empty()) {
+      cairo_new_path(cr);
+      for (size_t i = 0; i < s.x.size(); ++i) cairo_line_to(cr, px(s.x[i]), py(s.y[i]));
+      cairo_close_path(cr);
+      cairo_set_source_rgba(cr, c[0], c[1], c[2], 0.55);
+      cairo_fill_preserve(cr);
+      cairo_set_source_rgb(cr, c[0], c[1], c[2]);
+      cairo_stroke(cr);
+    }
     bool pen = false;
-    for (size_t i = 0; i < s.x.size() && s.lines; ++i) {
+    for (size_t i = 0; i < s.x.size() && s.lines && !s.filled; ++i) {
       if (!std::isfinite(s.y[i])) {
         pen = false;
         continue;
@@ -132,7 +166,13 @@ void writePng(const LinePlot& plot, const std::string& path) {
         }
     // Legend, top right.
     const double ly = top + 18 + 20 * k;
-    if (s.lines) {
+    if (s.filled) {
+      cairo_rectangle(cr, legendX + 6, ly - 6, 13, 12);
+      cairo_set_source_rgba(cr, c[0], c[1], c[2], 0.55);
+      cairo_fill_preserve(cr);
+      cairo_set_source_rgb(cr, c[0], c[1], c[2]);
+      cairo_stroke(cr);
+    } else if (s.lines) {
       cairo_move_to(cr, legendX, ly);
       cairo_line_to(cr, legendX + 25, ly);
       cairo_stroke(cr);

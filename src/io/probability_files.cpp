@@ -393,18 +393,21 @@ std::vector<std::string> writePictures(const io::ProbabilityJob& job, const cali
   if (design) {
     // One bar per input, each its own series so that the legend names it.
     std::vector<io::PlotSeries> bars;
+    std::vector<std::string> names;
     for (size_t i = 0; i < design->importance.size(); ++i) {
       const double g = design->importance[i], x = static_cast<double>(i + 1);
       // γᵢ > 0: the limit state falls as input i grows, so failure lies at its high values.
       const std::string side = g > 0 ? "high" : "low";
       char label[64];
       std::snprintf(label, sizeof label, ": %.0f %%, failure at %s values", 100 * g * g, side.c_str());
-      bars.push_back({job.spec.inputs[i].path + label, {x - 0.3, x - 0.3, x + 0.3, x + 0.3, x - 0.3},
-                      {0, g * g, g * g, 0, 0}, false});
+      io::PlotSeries bar{job.spec.inputs[i].path + label, {x - 0.3, x - 0.3, x + 0.3, x + 0.3}, {0, g * g, g * g, 0}, false};
+      bar.filled = true;
+      bars.push_back(bar);
+      names.push_back(job.spec.inputs[i].path);
     }
-    io::writePng({"Sensitivities at the design point: " + title, "input", "importance γ²",
-                  bars},
-                 dir + "/sensitivities.png");
+    io::LinePlot plot{"Sensitivities at the design point: " + title, "input", "importance γ²", bars};
+    plot.xCategories = names;
+    io::writePng(plot, dir + "/sensitivities.png");
     written.push_back("sensitivities.png");
   }
   return written;

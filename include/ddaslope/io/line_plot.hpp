@@ -11,11 +11,14 @@ struct PlotSeries {
   bool markers = true;
   bool lines = true;  ///< false: markers only (a scatter)
   double markerRadius = 3.5;  ///< px; larger markers are drawn with a white ring (a point to find)
+  bool filled = false;  ///< the points close a shape drawn filled (a bar), its legend a square
 };
 
 struct LinePlot {
   std::string title, xLabel, yLabel;
   std::vector<PlotSeries> series;
+  /// Non-empty: the x axis names categories, the k-th (from 0) at x = k + 1, instead of numbers.
+  std::vector<std::string> xCategories = {};
 };
 
 /// Writes the plot (800 × 560 px) to `path`. Throws InputError if the file cannot be written.
