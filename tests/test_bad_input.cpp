@@ -213,7 +213,12 @@ TEST(Cli, OverlappingBlocksExitWithTwoNearAndFarFromTheOrigin) {
 // without a word. Read in linear time, it takes about a second; 60 s is a hang, not a speed target.
 TEST(Cli, FiftyThousandMaterialsAreReadWithoutAHang) {
   json d = minimal();
-  for (int k = 0; k < 50000; ++k) d["materials"]["m" + std::to_string(k)] = d["materials"]["rock"];
+  json& materials = d["materials"];
+  for (int k = 0; k < 50000; ++k) {
+    std::string name = "m";
+    name += std::to_string(k);
+    materials[name] = materials["rock"];
+  }
   const std::string path = writeTemp("many_materials.json", d.dump());
   const int status = std::system(("timeout 60 " + std::string(DDASLOPE_CLI) + " check " + path + " >/dev/null").c_str());
   EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << "exit " << WEXITSTATUS(status) << " (124: timed out)";
@@ -234,6 +239,31 @@ TEST(Cli, ALongRunStatesItsSizeBeforeItStarts) {
   const std::string text((std::istreambuf_iterator<char>(in)), {});
   EXPECT_NE(text.find("a long run: 2 blocks (6 unknowns), 2 contacts at t = 0"), std::string::npos) << text;
   EXPECT_NE(text.find("then 10000000 steps of 0.001 s"), std::string::npos) << text;
+  fs::remove_all(out);
+  fs::remove(err);
+  fs::remove(path);
+}
+
+// A silent long search (found by the CLI campaign, scripts/fuzz_cli.py: a toppling case with its
+// joints 1.6 mm apart, 6158 blocks, said nothing in its first minute): fos and critical state the
+// size of one trial before the first starts. The minimal case over 1e4 s is 1e7 steps of 2 blocks a
+// trial; each command is stopped after its first words.
+TEST(Cli, ALongSearchStatesItsSizeBeforeItStarts) {
+  json d = minimal();
+  d["analysis"]["duration"] = 1e4;
+  const std::string path = writeTemp("long_search.json", d.dump());
+  const fs::path out = fs::temp_directory_path() / ("ddaslope_long_search_" + std::to_string(::getpid()));
+  const fs::path err = fs::temp_directory_path() / ("ddaslope_long_search_err_" + std::to_string(::getpid()));
+  for (const std::string command : {"fos", "critical --solve cohesion"}) {
+    std::system(("timeout 3 " + std::string(DDASLOPE_CLI) + " " + command + " " + path + " --out " + out.string() +
+                 " >/dev/null 2>" + err.string())
+                    .c_str());
+    std::ifstream in(err);
+    const std::string text((std::istreambuf_iterator<char>(in)), {});
+    EXPECT_NE(text.find("a long search: each trial is 2 blocks (6 unknowns), 2 contacts at t = 0"), std::string::npos)
+        << command << ": " << text;
+    EXPECT_NE(text.find("and 10000000 steps of 0.001 s"), std::string::npos) << command << ": " << text;
+  }
   fs::remove_all(out);
   fs::remove(err);
   fs::remove(path);

@@ -500,7 +500,7 @@ std::string oddArgument(std::mt19937& rng) {
   static const std::vector<std::string> odd = {
       "nan", "inf", "-inf", "-1", "0", "1e400", "1e-400", "", " ", "1", "0.5", "2", "3", "a,b", "1:2:3", "nan:80:3",
       "0:1:100000", "0:80:2", "fast", "rigid", "deformable", "edge", "vertex", "cohesion", "friction", "support",
-      "seismic-coefficient", "jrc", "auto", "+x", "sliding_plane", "interface", "/nonexistent/dir", "/dev/null", "-",
+      "seismic-coefficient", "jrc", "auto", "+x", "sliding_plane", "interface", "/dev/null/dir", "/dev/null", "-",
       "--", "%s%n", std::string(3000, 'x'), "analysis.duration=0.01:0.02:2", "joints.interface.friction_angle=30:50:2",
       "0,0.01", "-5", "18446744073709551616"};
   return fuzz::pick(rng, odd);

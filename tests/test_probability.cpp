@@ -568,6 +568,12 @@ TEST(Probability, CommandLine) {
   EXPECT_EQ(clitest::runCli("probability " + zero + " --out " + dir, &err), 2);
   EXPECT_NE(err.find(zero + ": probability.inputs[0].sd: expected a standard deviation > 0, found -1"), std::string::npos)
       << err;
+  // Found by a fuzz campaign: sd 1e308 drew infinite samples.
+  const std::string huge = studyWith([](json& d) { d["probability"]["inputs"][1]["sd"] = 1e308; });
+  EXPECT_EQ(clitest::runCli("probability " + huge + " --out " + dir, &err), 2);
+  EXPECT_NE(err.find(huge + ": probability.inputs[1].sd: expected a spread whose samples stay numbers"), std::string::npos)
+      << err;
+  fs::remove(huge);
   // Cohesion normal (5 ± 5 kPa): 400 samples reach below 0. Never run, never clipped.
   const std::string negative = studyWith([](json& d) { d["probability"]["inputs"][0]["mean"] = 5000; });
   EXPECT_EQ(clitest::runCli("probability " + negative + " --out " + dir, &err), 2);

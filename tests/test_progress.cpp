@@ -2,7 +2,10 @@
 // terminal line that must stay off a pipe.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <chrono>
 #include <fstream>
+#include <thread>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
@@ -81,7 +84,30 @@ TEST(Progress, FosLogsEveryForwardRunAndEndsOnItsResult) {
 TEST(Progress, AnUnwritableLogIsBadInput) {
   std::string err;
   const int code = clitest::runCli(
-      "fos " + std::string(DDASLOPE_SOURCE_DIR) + "/cases/planar_failure.json --log-json /nonexistent/dir/p.jsonl", &err);
+      "fos " + std::string(DDASLOPE_SOURCE_DIR) + "/cases/planar_failure.json --log-json /dev/null/p.jsonl", &err);
   EXPECT_EQ(code, 2);
   EXPECT_NE(err.find("--log-json"), std::string::npos) << err;
+}
+
+// Off a terminal a long search was silent until its end (issue #44: fos over 60 s without a
+// message). It now writes a plain line once an interval (a minute in the CLI; 0.1 s here) from a
+// clock of its own, with the latest trial, or saying that none has finished; never before the
+// first interval has passed.
+TEST(Progress, OffATerminalLongWorkWritesALineAnInterval) {
+  ::testing::internal::CaptureStderr();
+  {
+    io::ProgressLog log("fos", false, "", true, 0.1);
+    std::this_thread::sleep_for(std::chrono::milliseconds(150));  // one line: no trial yet
+    log.report({"narrow", 2, 12, "F stable at 1.1", {}});
+    std::this_thread::sleep_for(std::chrono::milliseconds(150));  // one more: the trial
+    log.finish(true, "done");
+  }
+  const std::string text = ::testing::internal::GetCapturedStderr();
+  EXPECT_EQ(text.rfind("  fos working, no trial finished yet, ", 0), 0u) << text;
+  EXPECT_NE(text.find("\n  fos narrow: 2 of ~12, F stable at 1.1, "), std::string::npos) << text;
+  const auto lines = std::count(text.begin(), text.end(), '\n');
+  EXPECT_GE(lines, 2) << text;
+  EXPECT_LE(lines, 3) << text;  // 0.3 s at one line per 0.1 s at most, the first after 0.1 s
+  // After finish, nothing more.
+  std::this_thread::sleep_for(std::chrono::milliseconds(150));
 }

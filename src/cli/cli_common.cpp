@@ -293,7 +293,9 @@ std::unique_ptr<ddaslope::io::ProgressLog> startProgress(const std::string& comm
                                                          bool jsonResult) {
   const bool root = ddaslope::processRank() == 0;
   const bool terminal = root && !p.quiet && !jsonResult && isatty(STDERR_FILENO);
-  return std::make_unique<ddaslope::io::ProgressLog>(command, terminal, root ? p.logJson : std::string());
+  // Off a terminal, long work still says how far it has got, once a minute.
+  const bool minuteLines = root && !p.quiet && !isatty(STDERR_FILENO);
+  return std::make_unique<ddaslope::io::ProgressLog>(command, terminal, root ? p.logJson : std::string(), minuteLines);
 }
 
 /// Where a search's --vtk went (text output).

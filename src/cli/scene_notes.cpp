@@ -9,6 +9,7 @@
 #include "ddaslope/geometry/polygon.hpp"
 #include "ddaslope/io/ground_motion.hpp"
 #include "ddaslope/model/kinks.hpp"
+#include "ddaslope/solver/simulation.hpp"
 
 namespace ddaslope::cli {
 namespace {
@@ -159,6 +160,21 @@ std::string timeStepWarning(const ddaslope::model::Scene& scene) {
     << " m): steps of moving blocks are cut, and failures and factors of safety at this Δt may not follow the "
        "strengths (Vajont's F went from 1.12 to 1.50 at a Δt of 1.07 times that time; docs/accuracy.md). Use a Δt below "
     << fall << " s (or drop analysis.time_step: the preset's)";
+  return m.str();
+}
+
+std::string searchSizeNote(const ddaslope::model::Scene& scene) {
+  // A search runs ten to twenty trials; at ~10 µs per block and step on one core
+  // (docs/performance.md) a trial of 5e5 block-steps makes the search a minute or more.
+  const double steps = scene.settings.duration / scene.settings.timeStep + scene.settings.equilibriumMaxSteps;
+  if (!(steps * static_cast<double>(scene.blocks.size()) > 5e5)) return "";
+  const ddaslope::solver::Simulation sim(scene);  // the contacts at t = 0, found as a trial finds them
+  std::ostringstream m;
+  m.precision(3);
+  m << "a long search: each trial is " << scene.blocks.size() << " blocks (" << scene.freeUnknowns() << " unknowns), "
+    << sim.contacts().contacts().size() << " contacts at t = 0, up to " << scene.settings.equilibriumMaxSteps
+    << " steps of initial equilibrium and " << std::llround(scene.settings.duration / scene.settings.timeStep) << " steps of "
+    << scene.settings.timeStep << " s; a search runs ten to twenty trials";
   return m.str();
 }
 

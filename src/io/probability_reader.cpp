@@ -103,6 +103,20 @@ model::Distribution readDistribution(const SectionReader& r, const json& j, cons
   if (d.kind == DistributionKind::TruncatedNormal && !j.contains("min") && !j.contains("max"))
     r.fail(p, "a truncated_normal needs min, max or both (without bounds it is a normal)");
   if (!(d.max > d.min)) r.fail(p + ".max", "expected max > min, found min " + shown(d.min) + ", max " + shown(d.max));
+  // Samples, shifted to a design point as importance sampling draws them, lie well within 40
+  // standard deviations of the mean: there they must still be numbers (sd 1e308 drew inf).
+  double farthest = d.max - d.min;
+  if (d.kind == DistributionKind::Lognormal) {
+    const double s2 = std::log1p((d.sd / d.mean) * (d.sd / d.mean));
+    farthest = std::exp(std::log(d.mean) - 0.5 * s2 + 40 * std::sqrt(s2));
+  } else if (moments) {
+    farthest = std::abs(d.mean) + 40 * d.sd;
+  }
+  if (!(farthest <= 1e300))
+    r.fail(moments ? p + ".sd" : p + ".max",
+           moments ? "expected a spread whose samples stay numbers (40 sd from the mean), found mean " + shown(d.mean) +
+                         ", sd " + shown(d.sd)
+                   : "expected max - min to be a number, found min " + shown(d.min) + ", max " + shown(d.max));
   if (d.kind == DistributionKind::TruncatedNormal) {
     const double a = (d.min - d.mean) / d.sd, b = (d.max - d.mean) / d.sd;
     const double mass = a > 0 ? 0.5 * (std::erfc(a / std::sqrt(2.0)) - std::erfc(b / std::sqrt(2.0)))

@@ -1,5 +1,6 @@
 #include "ddaslope/io/progress.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -53,19 +54,51 @@ double remainingTime(double elapsed, int done, int planned) {
   return elapsed * (planned - done) / done;
 }
 
-ProgressLog::ProgressLog(std::string command, bool terminal, const std::string& jsonPath)
-    : command_(std::move(command)), terminal_(terminal), start_(std::chrono::steady_clock::now()) {
+ProgressLog::ProgressLog(std::string command, bool terminal, const std::string& jsonPath, bool minuteLines,
+                         double lineInterval)
+    : command_(std::move(command)),
+      terminal_(terminal),
+      minuteLines_(minuteLines && !terminal),
+      lineInterval_(lineInterval),
+      start_(std::chrono::steady_clock::now()) {
   if (!jsonPath.empty()) {
     json_ = std::fopen(jsonPath.c_str(), "w");
     if (!json_) throw InputError("--log-json", jsonPath, "cannot write the file");
     std::fprintf(json_, "{\"event\": \"start\", \"command\": %s, \"t\": 0}\n", quoted(command_).c_str());
     std::fflush(json_);
   }
+  // Off a terminal the line comes from a clock of its own: a trial may run for minutes, and long
+  // work must not be silent between trials.
+  if (minuteLines_)
+    ticker_ = std::thread([this] {
+      std::unique_lock<std::mutex> lock(mutex_);
+      const auto tick = std::chrono::duration<double>(std::min(1.0, lineInterval_ / 4));
+      while (!finished_) {
+        wake_.wait_for(lock, tick);
+        if (finished_) break;
+        const double t = elapsed();
+        if (t - lastLine_ < lineInterval_) continue;
+        lastLine_ = t;
+        const std::string text = hasLast_ ? lineOf(last_, t) : "working, no trial finished yet, " + formatDuration(t);
+        std::fprintf(stderr, "  %s %s\n", command_.c_str(), text.c_str());
+        std::fflush(stderr);
+      }
+    });
 }
 
 ProgressLog::~ProgressLog() {
-  if (!finished_) finish(false, "ended before its result");
+  finish(false, "ended before its result");  // nothing if it has finished
   if (json_) std::fclose(json_);
+}
+
+std::string ProgressLog::lineOf(const ProgressEvent& e, double t) const {
+  std::string text = e.stage + ": " + std::to_string(e.done);
+  if (e.planned > 0) text += " of " + std::string(e.stage == "narrow" ? "~" : "") + std::to_string(e.planned);
+  if (!e.detail.empty()) text += ", " + e.detail;
+  text += ", " + formatDuration(t);
+  const double left = remainingTime(t, e.done, e.planned);
+  if (left >= 0) text += ", ~" + formatDuration(left) + " left";
+  return text;
 }
 
 double ProgressLog::elapsed() const {
@@ -86,13 +119,11 @@ void ProgressLog::report(const ProgressEvent& e) {
     std::fputs(line.str().c_str(), json_);
     std::fflush(json_);
   }
+  last_ = e;
+  hasLast_ = true;
   if (terminal_ && (t - lastDrawn_ >= 0.1 || (e.planned > 0 && e.done >= e.planned))) {
     lastDrawn_ = t;
-    std::string text = "  " + e.stage + ": " + std::to_string(e.done);
-    if (e.planned > 0) text += " of " + std::string(e.stage == "narrow" ? "~" : "") + std::to_string(e.planned);
-    if (!e.detail.empty()) text += ", " + e.detail;
-    text += ", " + formatDuration(t);
-    if (left >= 0) text += ", ~" + formatDuration(left) + " left";
+    std::string text = "  " + lineOf(e, t);
     // Pad over the longer line before it, so no tail of it stays on screen.
     const size_t width = text.size();
     if (text.size() < lineWidth_) text.append(lineWidth_ - text.size(), ' ');
@@ -103,9 +134,14 @@ void ProgressLog::report(const ProgressEvent& e) {
 }
 
 void ProgressLog::finish(bool ok, const std::string& summary) {
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    if (finished_) return;
+    finished_ = true;
+  }
+  wake_.notify_all();
+  if (ticker_.joinable()) ticker_.join();
   const std::lock_guard<std::mutex> lock(mutex_);
-  if (finished_) return;
-  finished_ = true;
   if (terminal_ && lineWidth_ > 0) std::fprintf(stderr, "\n");
   if (json_) {
     std::fprintf(json_, "{\"event\": \"end\", \"command\": %s, \"t\": %s, \"ok\": %s, \"summary\": %s}\n",

@@ -7,7 +7,9 @@
 #include <cstdio>
 #include <functional>
 #include <memory>
+#include <condition_variable>
 #include <mutex>
+#include <thread>
 #include <string>
 #include <utility>
 #include <vector>
@@ -30,8 +32,11 @@ using ProgressSink = std::function<void(const ProgressEvent&)>;
 class ProgressLog {
  public:
   /// `terminal`: show a line on stderr (the caller decides: a terminal, and no --quiet);
-  /// `jsonPath`: "" for none. Throws InputError if the JSON file cannot be written.
-  ProgressLog(std::string command, bool terminal, const std::string& jsonPath);
+  /// `jsonPath`: "" for none; `minuteLines`: off a terminal, write the progress as a line of
+  /// stderr once every `lineInterval` seconds at most, the first after one interval (a log file,
+  /// a batch job: long work is not silent). Throws InputError if the JSON file cannot be written.
+  ProgressLog(std::string command, bool terminal, const std::string& jsonPath, bool minuteLines = false,
+              double lineInterval = 60);
   ~ProgressLog();
   ProgressLog(const ProgressLog&) = delete;
   ProgressLog& operator=(const ProgressLog&) = delete;
@@ -44,18 +49,27 @@ class ProgressLog {
   }
   /// The command's end: a last JSON line {"event": "end", "ok": …, "summary": …}.
   void finish(bool ok, const std::string& summary);
-  bool active() const { return terminal_ || json_; }
+  bool active() const { return terminal_ || json_ || minuteLines_; }
 
  private:
   double elapsed() const;
+  /// The event as a line of text at time t: stage, done of planned, detail, elapsed, time left.
+  std::string lineOf(const ProgressEvent& e, double t) const;
   std::string command_;
   bool terminal_;
+  bool minuteLines_;
+  double lineInterval_;
+  double lastLine_ = 0;
   std::FILE* json_ = nullptr;
   std::chrono::steady_clock::time_point start_;
   double lastDrawn_ = -1;
   size_t lineWidth_ = 0;
   bool finished_ = false;
+  ProgressEvent last_;  ///< the latest event, for the lines off a terminal
+  bool hasLast_ = false;
   std::mutex mutex_;
+  std::condition_variable wake_;
+  std::thread ticker_;  ///< writes those lines (minuteLines)
 };
 
 /// "1.5 s", "2 min 05 s", "1 h 03 min": a duration for the terminal line.
