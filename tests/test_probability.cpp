@@ -568,7 +568,7 @@ TEST(Probability, CommandLine) {
   EXPECT_EQ(clitest::runCli("probability " + zero + " --out " + dir, &err), 2);
   EXPECT_NE(err.find(zero + ": probability.inputs[0].sd: expected a standard deviation > 0, found -1"), std::string::npos)
       << err;
-  // Found by a fuzz campaign: sd 1e308 drew infinite samples.
+  // A spread so wide that samples would be infinite: refused before any is drawn.
   const std::string huge = studyWith([](json& d) { d["probability"]["inputs"][1]["sd"] = 1e308; });
   EXPECT_EQ(clitest::runCli("probability " + huge + " --out " + dir, &err), 2);
   EXPECT_NE(err.find(huge + ": probability.inputs[1].sd: expected a spread whose samples stay numbers"), std::string::npos)

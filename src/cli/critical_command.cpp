@@ -238,10 +238,7 @@ int criticalCommand(const std::string& casePath, const Overrides& o, const Criti
   // Said before the search, whose trials at such a Δt take long, and kept in critical.json.
   const std::string dtWarning = timeStepWarning(scene);
   warnAboutTrials(casePath, dtWarning);
-  if (!opt.progress.quiet) {
-    const std::string size = searchSizeNote(scene);
-    if (!size.empty()) std::fprintf(stderr, "ddaslope: %s\n", size.c_str());
-  }
+  if (!opt.progress.quiet) saySearchSize(scene);
   const auto r = solve(scene, s);
   log->finish(r.found, r.found ? "critical " + opt.solve + " " + std::to_string(r.critical) : r.message);
   const char* unit = cohesion ? "Pa" : "degrees";

@@ -143,10 +143,7 @@ int fosCommand(const std::string& casePath, const Overrides& o, const FosOptions
   // Said before the search, whose trials at such a Δt take long, and kept in fos.json.
   const std::string dtWarning = timeStepWarning(scene);
   warnAboutTrials(casePath, dtWarning);
-  if (!opt.progress.quiet) {
-    const std::string size = searchSizeNote(scene);
-    if (!size.empty()) std::fprintf(stderr, "ddaslope: %s\n", size.c_str());
-  }
+  if (!opt.progress.quiet) saySearchSize(scene);
   const auto log = startProgress("fos", opt.progress, opt.json);
   std::unique_ptr<MechanismPictures> pictures;
   const auto r = factorFor(scene, casePath, opt, ddaslope::io::sinkOf(log.get()), &pictures);

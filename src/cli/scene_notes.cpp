@@ -163,19 +163,19 @@ std::string timeStepWarning(const ddaslope::model::Scene& scene) {
   return m.str();
 }
 
-std::string searchSizeNote(const ddaslope::model::Scene& scene) {
+void saySearchSize(const ddaslope::model::Scene& scene) {
   // A search runs ten to twenty trials; at ~10 µs per block and step on one core
   // (docs/performance.md) a trial of 5e5 block-steps makes the search a minute or more.
   const double steps = scene.settings.duration / scene.settings.timeStep + scene.settings.equilibriumMaxSteps;
-  if (!(steps * static_cast<double>(scene.blocks.size()) > 5e5)) return "";
+  if (!(steps * static_cast<double>(scene.blocks.size()) > 5e5)) return;
   const ddaslope::solver::Simulation sim(scene);  // the contacts at t = 0, found as a trial finds them
   std::ostringstream m;
   m.precision(3);
-  m << "a long search: each trial is " << scene.blocks.size() << " blocks (" << scene.freeUnknowns() << " unknowns), "
+  m << "ddaslope: a long search: each trial is " << scene.blocks.size() << " blocks (" << scene.freeUnknowns() << " unknowns), "
     << sim.contacts().contacts().size() << " contacts at t = 0, up to " << scene.settings.equilibriumMaxSteps
     << " steps of initial equilibrium and " << std::llround(scene.settings.duration / scene.settings.timeStep) << " steps of "
-    << scene.settings.timeStep << " s; a search runs ten to twenty trials";
-  return m.str();
+    << scene.settings.timeStep << " s; a search runs ten to twenty trials\n";
+  std::fputs(m.str().c_str(), stderr);
 }
 
 /// The seismic loading in force: the coefficients and the record's span and peaks.

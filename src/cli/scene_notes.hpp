@@ -25,8 +25,9 @@ std::string notchWarning(const model::Scene& scene);
 /// limit, where answers stop holding (docs/accuracy.md, "Δt beyond the step limit"); empty if not.
 std::string timeStepWarning(const model::Scene& scene);
 /// For a search whose trials are each a minute's work or more between them: the size of one trial
-/// (blocks, unknowns, contacts at t = 0, steps) said before it starts; empty for a small scene.
-std::string searchSizeNote(const model::Scene& scene);
+/// (blocks, unknowns, contacts at t = 0, steps), said on stderr before it starts; nothing for a
+/// small scene.
+void saySearchSize(const model::Scene& scene);
 /// The water in force: the tension crack (its position, depth and water), and on each face of a
 /// free block below the water its resultant and greatest pressure, named by the block or joint it
 /// meets (the pressure on each joint), or as a free face.

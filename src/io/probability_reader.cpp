@@ -104,7 +104,7 @@ model::Distribution readDistribution(const SectionReader& r, const json& j, cons
     r.fail(p, "a truncated_normal needs min, max or both (without bounds it is a normal)");
   if (!(d.max > d.min)) r.fail(p + ".max", "expected max > min, found min " + shown(d.min) + ", max " + shown(d.max));
   // Samples, shifted to a design point as importance sampling draws them, lie well within 40
-  // standard deviations of the mean: there they must still be numbers (sd 1e308 drew inf).
+  // standard deviations of the mean: there they must still be numbers (an sd of 1e308 gives inf).
   double farthest = d.max - d.min;
   if (d.kind == DistributionKind::Lognormal) {
     const double s2 = std::log1p((d.sd / d.mean) * (d.sd / d.mean));
