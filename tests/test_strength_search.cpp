@@ -81,6 +81,26 @@ TEST(StrengthReduction, PlanarFailureMatchesHoekAndBray) {
   }
 }
 
+// The same three planar failures with every trial started from the rest at the case's own
+// strengths (TrialStart::Settled): Hoek & Bray's FS within the same 2 %. The set with FS < 1 fails
+// at its own strengths, so its trials start from every contact held and say so.
+TEST(StrengthReduction, TrialsFromTheSettledStateMatchHoekAndBray) {
+  struct Set {
+    double c, phi, psi;
+  };
+  calibration::SearchSettings settled;
+  settled.trialStart = calibration::TrialStart::Settled;
+  for (const Set& set : {Set{25e3, 30, 35}, Set{10e3, 35, 40}, Set{0, 30, 35}}) {
+    const Planar p = planar(set.psi, set.c, set.phi);
+    const double expected = p.factor(set.c, set.phi * M_PI / 180);
+    const calibration::FactorOfSafetyResult r = calibration::factorOfSafety(p.scene, {}, 0.005, settled);
+    SCOPED_TRACE("c " + std::to_string(set.c) + " phi " + std::to_string(set.phi) + " psi " + std::to_string(set.psi));
+    ASSERT_TRUE(r.found) << r.message;
+    EXPECT_NEAR(r.factor, expected, 0.02 * expected);
+    EXPECT_EQ(r.trialStart, expected > 1 ? calibration::TrialStart::Settled : calibration::TrialStart::Held);
+  }
+}
+
 // The critical (c, φ) curve of the planar failure matches c_cr = W (sin ψ − cos ψ tan φ)/A
 // (Hoek & Bray's FS = 1, benchmarks.md §C) at every point within 1 %, and is 0 once φ ≥ ψ.
 TEST(CriticalStrength, CurveOfPlanarFailureMatchesClosedForm) {

@@ -528,15 +528,37 @@ FactorOfSafetyResult factorOfSafety(const model::Scene& scene, const std::vector
   if (reduced.empty())
     for (size_t j = 0; j < scene.joints.size(); ++j) reduced.push_back(static_cast<int>(j));
   const auto held = sharedEquilibrium(scene);
-  return factorOfSafetyOf(
+  // The rest of the first trial, at F = 1 (factorOfSafetyOf runs it alone, before any other),
+  // once that trial stands: where the later trials start with TrialStart::Settled.
+  std::optional<solver::HeldEquilibrium> settled;
+  bool first = true;
+  FactorOfSafetyResult r = factorOfSafetyOf(
       [&](double f, double length) {
         model::Scene trial = scene;
         trial.settings.duration *= length;
         for (int j : reduced) trial.joints[j] = scene.joints[j].reducedBy(f);
-        return judgeStability(trial, s.verdict, held ? &*held : nullptr, endOf(s, f));
+        if (first) {
+          first = false;
+          const bool keep = held && s.trialStart == TrialStart::Settled && f == 1 && length == 1;
+          TrialResult r = judgeStability(trial, s.verdict, held ? &*held : nullptr, endOf(s, f), keep ? &settled : nullptr);
+          if (!r.stable) settled.reset();
+          return r;
+        }
+        return judgeStability(trial, s.verdict, settled ? &*settled : held ? &*held : nullptr, endOf(s, f));
       },
       width, s);
+  r.trialStart = settled ? TrialStart::Settled : TrialStart::Held;
+  return r;
 }
+
+std::optional<solver::HeldEquilibrium> settledStart(const model::Scene& scene, const solver::HeldEquilibrium& held,
+                                                    const VerdictSettings& verdict) {
+  std::optional<solver::HeldEquilibrium> settled;
+  if (!judgeStability(scene, verdict, &held, {}, &settled).stable) settled.reset();
+  return settled;
+}
+
+const char* name(TrialStart start) { return start == TrialStart::Settled ? "settled" : "held"; }
 
 FactorOfSafetyResult factorOfSafetyOf(const std::function<TrialResult(double, double)>& verdict, double width,
                                       const SearchSettings& s) {

@@ -241,7 +241,8 @@ WindowVerdict judgeWindows(const WindowMotion& m, bool* marginal) {
 }
 
 TrialResult judgeStability(const model::Scene& scene, const VerdictSettings& settings,
-                           const solver::HeldEquilibrium* shared, const TrialEndObserver& atEnd) {
+                           const solver::HeldEquilibrium* shared, const TrialEndObserver& atEnd,
+                           std::optional<solver::HeldEquilibrium>* settled) {
   solver::Simulation sim(scene);
   // The call's settings first, then the case's (analysis.failure_displacement, resting_speed).
   const double threshold = settings.failureDisplacement > 0      ? settings.failureDisplacement
@@ -334,6 +335,7 @@ TrialResult judgeStability(const model::Scene& scene, const VerdictSettings& set
   };
   try {
     sim.bringToEquilibrium(shared);
+    if (settled && shared && sim.statistics().startedAtRest) *settled = sim.settledState(*shared);
     // Rule 0 counts the motion once contacts may slip (stages 2 and 3), not the elastic settlement
     // with every contact held (stage 1), which a soft rock makes large on a slope that stands.
     const std::vector<Vec2>& held = sim.monitorsAfterHeldEquilibrium();

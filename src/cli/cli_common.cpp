@@ -178,6 +178,29 @@ ddaslope::model::Scene loadCaseText(const std::string& text, const std::string& 
 }
 
 /// The settings every forward run of a command uses, and where Δt came from.
+calibration::TrialStart trialStartOf(const std::string& word) {
+  return word == "held" ? calibration::TrialStart::Held : calibration::TrialStart::Settled;
+}
+
+CLI::Option* addTrialStartOption(CLI::App* cmd, std::string& word) {
+  return cmd
+      ->add_option("--trial-start", word,
+                   "where each trial's equilibrium starts: settled (from the rest at the case's own strengths, F = 1, "
+                   "when it stands; as FLAC's and UDEC's strength reduction) or held (every contact held, each trial "
+                   "settling with its own strengths); docs/calibration.md")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"settled", "held"}));
+}
+
+std::string trialStartNote(const std::string& subject, calibration::TrialStart used, const std::string& asked) {
+  if (used == calibration::TrialStart::Settled)
+    return subject + " started from the rest at the case's own strengths (F = 1), the joints then weakened "
+                     "(--trial-start settled)";
+  if (asked == "held") return subject + " settled from every contact held with the reduced strengths (--trial-start held)";
+  return subject + " settled from every contact held with the reduced strengths: the case fails at its own strengths, "
+                   "so there is no rest at F = 1 to start from";
+}
+
 std::string settingsLine(const ddaslope::model::Scene& scene) {
   const ddaslope::model::AnalysisSettings& s = scene.settings;
   char buf[320];

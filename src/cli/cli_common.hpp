@@ -58,6 +58,14 @@ ddaslope::model::Scene loadCaseText(const std::string& text, const std::string& 
 /// The settings every forward run of a command uses, and where Δt came from.
 std::string settingsLine(const ddaslope::model::Scene& scene);
 
+/// --trial-start of fos and run --at-fos: "settled" or "held" (CLI checks the word).
+calibration::TrialStart trialStartOf(const std::string& word);
+/// Registers --trial-start on a command that reduces strengths as fos does.
+CLI::Option* addTrialStartOption(CLI::App* cmd, std::string& word);
+/// Where a strength reduction's trials started, in words, and why when it is not the one asked for.
+/// `subject`: "the trials", "the run".
+std::string trialStartNote(const std::string& subject, calibration::TrialStart used, const std::string& asked);
+
 /// A search's --vtk DIR: every trial's final state becomes a frame of the VTK series in `dir`
 /// (io/scene_vtk.hpp) at the value it tried, so ParaView's time slider steps through the trials
 /// by value; its verdict rides along as field data (stable, verdict). Written by the root process.

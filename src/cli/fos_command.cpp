@@ -32,6 +32,7 @@ ddaslope::calibration::FactorOfSafetyResult factorFor(const ddaslope::model::Sce
   ddaslope::calibration::SearchSettings s;
   s.threads = opt.threads;
   s.progress = std::move(progress);
+  s.trialStart = trialStartOf(opt.trialStart);
   recordTrialStates(s, opt.vtkDir, scene);
   if (pictures) *pictures = std::make_unique<MechanismPictures>(s, scene);
   return ddaslope::calibration::factorOfSafety(scene, joints, opt.width, s);
@@ -160,7 +161,7 @@ int fosCommand(const std::string& casePath, const Overrides& o, const FosOptions
     j.set("case", casePath).set("found", r.found).set("factor_of_safety", r.found ? r.factor : NAN);
     j.set("bracket", std::vector<double>{r.stableEnd, r.failingEnd}).set("width", opt.width);
     j.set("forward_runs", r.runs).set("rounds", r.rounds).set("wall_time_s", r.wallTime).set("message", r.message);
-    j.set("settings", settingsLine(scene));
+    j.set("settings", settingsLine(scene)).set("trial_start", ddaslope::calibration::name(r.trialStart));
     ddaslope::calibration::appendReview(j, r.review);
     ddaslope::calibration::appendTrials(j, r.trials, "factor");
     if (!opt.vtkDir.empty()) j.set("vtk", opt.vtkDir);
@@ -178,6 +179,7 @@ int fosCommand(const std::string& casePath, const Overrides& o, const FosOptions
     if (!r.message.empty()) std::printf("  %s\n", r.message.c_str());
     std::printf("%d forward runs in %d rounds of %d, %.2f s wall; %s\n", r.runs, r.rounds, opt.threads, r.wallTime,
                 settingsLine(scene).c_str());
+    std::printf("  %s\n", trialStartNote("the trials after the first", r.trialStart, opt.trialStart).c_str());
     printTrialStatesNote(opt.vtkDir, r.runs);
     std::string joints;
     for (const auto& n : opt.joints) joints += (joints.empty() ? " --joints " : ",") + n;
@@ -206,6 +208,7 @@ void addFosOptions(CLI::App* cmd, std::string& casePath, Overrides& overrides, F
   cmd->add_option("--out", opt.outDir, "output directory: the mechanism pictures (and --sweep's CSV and PNG)")
       ->capture_default_str();
   cmd->add_option("--vtk", opt.vtkDir, "write each trial's final state as a VTK series in this folder (ParaView)");
+  addTrialStartOption(cmd, opt.trialStart);
   addModelOptions(cmd, overrides);
   cmd->add_flag("--json", opt.json, "print the result as JSON");
   addProgressOptions(cmd, opt.progress);

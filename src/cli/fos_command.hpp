@@ -19,6 +19,7 @@ struct FosOptions {
   std::string outDir = "out/fos";
   ProgressOptions progress;
   std::string vtkDir;  ///< every trial's final state as a VTK series (recordTrialStates)
+  std::string trialStart = "held";  ///< settled or held (calibration::TrialStart)
 };
 
 /// Registers the subcommand's options on `cmd` (its case, the model options into `overrides`, …).

@@ -6,8 +6,11 @@
 #include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <optional>
 
+#include "ddaslope/calibration/strength_search.hpp"
 #include "ddaslope/io/run_case.hpp"
+#include "ddaslope/solver/simulation.hpp"
 #include "ddaslope/model/input_limits.hpp"
 #include "scene_notes.hpp"
 
@@ -37,6 +40,7 @@ void addRunOptions(CLI::App* run, std::string& casePath, Overrides& overrides, R
   run->add_option("--joints", opt.reducedJoints, "the joints --at-fos reduces (default: all), e.g. a,b")
       ->delimiter(',')
       ->needs(atFos);
+  addTrialStartOption(run, opt.trialStart)->needs(atFos);
   // One run's contact search and judgement may share the cores (the result does not change). One
   // by default: with the pair cache the work they share is small, and on large walls two threads
   // did not make a step measurably cheaper (docs/performance.md, "Threads").
@@ -77,8 +81,18 @@ int runCommand(const std::string& casePath, const Overrides& o, const RunCommand
   model::Scene scene = loadCase(casePath, o);
   warnAboutTrials(casePath, timeStepWarning(scene));
   std::vector<std::string> reduced;
+  // --at-fos starts where fos's trials start: from the rest at the case's own strengths, when
+  // the case stands there.
+  std::optional<solver::HeldEquilibrium> settled;
+  if (c.atFactor > 0 && scene.settings.initialEquilibrium && trialStartOf(c.trialStart) == calibration::TrialStart::Settled) {
+    const solver::HeldEquilibrium held = solver::Simulation(scene).holdEquilibrium();
+    settled = calibration::settledStart(scene, held, {});
+  }
   if (c.atFactor > 0) {
     reduced = reduceStrengths(scene, casePath, c);
+    if (scene.settings.initialEquilibrium)
+      std::printf("  %s\n", trialStartNote("the run", settled ? calibration::TrialStart::Settled : calibration::TrialStart::Held,
+                                             c.trialStart).c_str());
     // The case's expectations are claims about its own strengths, not about reduced ones.
     if (!scene.expectations.empty())
       std::printf("  the case's expectations are for its own strengths: not checked at F = %.6g\n", c.atFactor);
@@ -97,6 +111,7 @@ int runCommand(const std::string& casePath, const Overrides& o, const RunCommand
   opt.vtkEvery = c.vtkEvery;
   opt.strengthReduction = c.atFactor;
   opt.reducedJoints = reduced;
+  opt.sharedEquilibrium = settled ? &*settled : nullptr;
   const io::RunOutcome r = io::runScene(scene, opt);
   if (!r.completed) {
     std::cerr << "ddaslope: " << casePath << (r.budgetStop ? ": budget exceeded: " : ": non-convergence: ") << r.failure << "\n"

@@ -19,6 +19,7 @@ struct RunCommandOptions {
   /// --at-fos: the joints' strengths reduced by this factor as `fos` reduces them (0: not)
   double atFactor = 0;
   std::vector<std::string> reducedJoints;  ///< --joints: the joints --at-fos reduces (empty: all)
+  std::string trialStart = "held";         ///< --trial-start: where --at-fos's equilibrium starts, as fos's trials
 };
 
 /// Registers the subcommand's options on `cmd` (its case, --out, --snapshots, --vtk, the model

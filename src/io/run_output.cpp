@@ -128,7 +128,9 @@ void writeSummary(const fs::path& dir, const model::Scene& scene, const RunOptio
   j["status"] = o.completed ? "completed" : (o.budgetStop ? "budget_exceeded" : "non_convergence");
   if (!o.completed) j["failure"] = o.failure;
   if (opt.strengthReduction > 0)
-    j["strength_reduction"] = {{"factor", opt.strengthReduction}, {"joints", opt.reducedJoints}};
+    j["strength_reduction"] = {{"factor", opt.strengthReduction},
+                               {"joints", opt.reducedJoints},
+                               {"start", opt.sharedEquilibrium ? "settled" : "held"}};
   const solver::RunStatistics& st = o.statistics;
   j["time"] = o.trace.steps.empty() ? 0.0 : o.trace.steps.back().time;
   j["steps"] = st.steps;

@@ -322,6 +322,19 @@ HeldEquilibrium Simulation::holdEquilibrium() {
   return h;
 }
 
+HeldEquilibrium Simulation::settledState(const HeldEquilibrium& from) const {
+  HeldEquilibrium h = from;
+  h.blocks = scene_.blocks;
+  // At rest: what velocity is left is the last step's round-off, and stage 2 starts from rest.
+  for (model::Block& b : h.blocks) b.velocity.setZero();
+  h.monitors = scene_.monitors;
+  h.pointLoads = scene_.pointLoads;
+  h.fixedPoints = scene_.fixedPoints;
+  h.supports = scene_.supports;
+  h.contacts = contacts_;
+  return h;
+}
+
 void Simulation::bringToEquilibrium(const HeldEquilibrium* shared) {
   if (!scene_.settings.initialEquilibrium) {
     stats_.startedAtRest = false;  // not brought to rest: the analysis starts as the case is

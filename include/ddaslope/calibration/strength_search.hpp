@@ -2,6 +2,7 @@
 // The searches over joint strength: critical cohesion or friction angle of one joint by
 // bisection, and the strength-reduction factor of safety (benchmarks.md §G).
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -37,6 +38,9 @@ struct TrialReview {
   int reruns = 0;              ///< trials re-run longer
 };
 
+enum class TrialStart { Settled, Held };
+const char* name(TrialStart start);  ///< "settled", "held"
+
 struct SearchSettings {
   VerdictSettings verdict;
   int threads = 2;  ///< independent forward runs evaluated at once
@@ -47,6 +51,13 @@ struct SearchSettings {
   /// seismic coefficient), from the trial's own thread (a search's --vtk). Not passed on to the
   /// searches of criticalCurve.
   std::function<void(double value, const solver::Simulation&, const TrialResult&)> finalStates;
+  /// Strength reduction (factorOfSafety): where each trial's equilibrium starts. Settled: from the
+  /// rest the trial at the case's own strengths (F = 1) found, when that trial stands, as the
+  /// strength reduction of FLAC and UDEC starts from the model in equilibrium; a trial then only
+  /// settles what its weaker joints let go. Held: every trial settles from every contact held
+  /// (stage 1) with its own strengths, as all trials do when F = 1 fails (docs/calibration.md,
+  /// "Where a trial starts").
+  TrialStart trialStart = TrialStart::Held;
 };
 
 struct CriticalResult {
@@ -115,6 +126,8 @@ struct FactorOfSafetyResult {
   double factor = 0;      ///< midpoint of the final bracket
   double stableEnd = 0;   ///< largest F tried that holds
   double failingEnd = 0;  ///< smallest F tried that fails
+  /// Where the trials after the first started: Settled only if asked for and F = 1 stands.
+  TrialStart trialStart = TrialStart::Held;
   int runs = 0;
   int rounds = 0;
   double wallTime = 0;
@@ -128,6 +141,11 @@ struct FactorOfSafetyResult {
 /// shrinks the bracket by threads + 1.
 FactorOfSafetyResult factorOfSafety(const model::Scene& scene, const std::vector<int>& joints, double width,
                                     const SearchSettings& s = {});
+/// The start factorOfSafety's trials take with TrialStart::Settled: the rest of the scene at its
+/// own strengths, from `held` (its stage 1), if a trial there stands; none otherwise. `run
+/// --at-fos` starts from it as the search's trials do.
+std::optional<solver::HeldEquilibrium> settledStart(const model::Scene& scene, const solver::HeldEquilibrium& held,
+                                                    const VerdictSettings& verdict);
 /// The same search on any verdict of (F, duration factor): factorOfSafety's, or a test's.
 FactorOfSafetyResult factorOfSafetyOf(const std::function<TrialResult(double, double)>& verdict, double width,
                                       const SearchSettings& s = {});

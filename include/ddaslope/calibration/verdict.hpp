@@ -1,6 +1,7 @@
 #pragma once
 // Stability verdict of one forward run: the function the bisection and back-analysis loops search.
 #include <functional>
+#include <optional>
 #include <string>
 
 #include "ddaslope/model/scene.hpp"
@@ -101,8 +102,11 @@ using TrialEndObserver = std::function<void(const solver::Simulation&, const Tri
 
 /// Runs the scene (equilibrium first, from `shared` when given: see solver::HeldEquilibrium)
 /// until its duration or until rule (a) fires; then `atEnd`, if any, sees the final state.
+/// `settled` (with `shared`): receives the state at t = 0 when the equilibrium found rest
+/// (Simulation::settledState), and is left alone otherwise.
 TrialResult judgeStability(const model::Scene& scene, const VerdictSettings& settings = {},
-                           const solver::HeldEquilibrium* shared = nullptr, const TrialEndObserver& atEnd = {});
+                           const solver::HeldEquilibrium* shared = nullptr, const TrialEndObserver& atEnd = {},
+                           std::optional<solver::HeldEquilibrium>* settled = nullptr);
 
 /// What a window judgement sees of one monitor: its net displacement over the last two windows
 /// and its noise floor. Pure, for tests.

@@ -85,6 +85,7 @@ struct RunStatistics {
 
 /// The scene after the first equilibrium stage (every initial contact held). It does not depend
 /// on joint strengths, so trials that differ only in strength can start from one shared copy.
+/// Simulation::settledState packs a later rest the same way.
 struct HeldEquilibrium {
   std::vector<model::Block> blocks;
   std::vector<model::Monitor> monitors;
@@ -119,6 +120,11 @@ class Simulation {
   void bringToEquilibrium(const HeldEquilibrium* shared = nullptr);
   /// Runs stage 1 only and returns its state (the scene is left in it).
   HeldEquilibrium holdEquilibrium();
+  /// The scene as it stands now, after bringToEquilibrium(`from`) found rest, packed as a start
+  /// for runs of the same scene with other joint strengths (their stages 2 and 3 begin there;
+  /// `from`'s held blocks and static step are kept). A strength-reduction search starts its
+  /// trials from the rest at the case's own strengths this way.
+  HeldEquilibrium settledState(const HeldEquilibrium& from) const;
   /// One accepted step. Throws NonConvergenceError once maxStepCuts cuts have failed.
   StepRecord advance();
   bool finished() const;
