@@ -177,7 +177,6 @@ ddaslope::model::Scene loadCaseText(const std::string& text, const std::string& 
   return scene;
 }
 
-/// The settings every forward run of a command uses, and where Δt came from.
 calibration::TrialStart trialStartOf(const std::string& word) {
   return word == "held" ? calibration::TrialStart::Held : calibration::TrialStart::Settled;
 }
@@ -201,6 +200,7 @@ std::string trialStartNote(const std::string& subject, calibration::TrialStart u
                    "so there is no rest at F = 1 to start from";
 }
 
+/// The settings every forward run of a command uses, and where Δt came from.
 std::string settingsLine(const ddaslope::model::Scene& scene) {
   const ddaslope::model::AnalysisSettings& s = scene.settings;
   char buf[320];
