@@ -18,8 +18,9 @@ using calibration::TrialResult;
 namespace {
 
 /// A 1 × 1 m block on a frictionless horizontal base 100 m long: what moves it is what the test
-/// gives it (an initial velocity, a horizontal component of gravity), exactly.
-model::Scene blockOnFrictionlessBase(double vx, double gx) {
+/// gives it (an initial velocity, a horizontal component of gravity), exactly. `settle`: brought to
+/// rest before t = 0 (the default); else the analysis starts as drawn.
+model::Scene blockOnFrictionlessBase(double vx, double gx, bool settle = true) {
   const std::string text = R"({
     "gravity": [)" + std::to_string(gx) + R"(, -9.81],
     "materials": {"rock": {"density": 2500, "young_modulus": 1e10, "poisson_ratio": 0.25}},
@@ -28,15 +29,15 @@ model::Scene blockOnFrictionlessBase(double vx, double gx) {
       {"id": "base", "material": "rock", "fixed": true, "vertices": [[0, -2], [100, -2], [100, 0], [0, 0]]},
       {"id": "block", "material": "rock", "vertices": [[10, 0], [11, 0], [11, 1], [10, 1]],
        "velocity": [)" + std::to_string(vx) + R"(, 0]}],
-    "analysis": {"duration": 1.0, "time_step": 0.001}})";
+    "analysis": {"duration": 1.0, "time_step": 0.001, "initial_equilibrium": )" + (settle ? "true" : "false") + R"(}})";
   return io::parseCase(text, "block_on_frictionless_base");
 }
 
 /// The verdict of that scene against a failure displacement of `failure` m.
-TrialResult judgedOnFrictionlessBase(double vx, double gx, double failure) {
+TrialResult judgedOnFrictionlessBase(double vx, double gx, double failure, bool settle = true) {
   calibration::VerdictSettings v;
   v.failureDisplacement = failure;
-  return calibration::judgeStability(blockOnFrictionlessBase(vx, gx), v);
+  return calibration::judgeStability(blockOnFrictionlessBase(vx, gx, settle), v);
 }
 
 /// A verdict for the search tests: stable below `critical`, failing above, with whatever the
@@ -88,14 +89,21 @@ TEST(SmallMotion, GrowingMotionIsFailureEvenWhenSmall) {
 
 // The same acceleration against a failure displacement of 4 cm: 5 mm in the first second is more
 // than 10 % of it, so the still-moving rule decides at once; against 4 mm, the block passes it at
-// t = √(2 · 0.004 / 0.01) = 0.894 s (rule (a)).
+// t = √(2 · 0.004 / 0.01) = 0.894 s (rule (a)). Both runs start as drawn, at rest: brought to
+// rest first, the block slides past either displacement while the scene settles, and rule (0)
+// decides before t = 0 (the last three checks).
 TEST(SmallMotion, MotionLargeAgainstTheFailureDisplacementFailsAtOnce) {
-  const TrialResult moving = judgedOnFrictionlessBase(0, 0.01, 0.04);
+  const TrialResult moving = judgedOnFrictionlessBase(0, 0.01, 0.04, false);
   EXPECT_EQ(moving.rule, calibration::VerdictRule::StillMoving);
   EXPECT_EQ(moving.extensions, 0);
-  const TrialResult passed = judgedOnFrictionlessBase(0, 0.01, 0.004);
+  const TrialResult passed = judgedOnFrictionlessBase(0, 0.01, 0.004, false);
   EXPECT_EQ(passed.rule, calibration::VerdictRule::PassedDisplacement);
   EXPECT_NEAR(passed.timeReached, std::sqrt(2 * 0.004 / 0.01), 0.002);
+  for (double failure : {0.04, 0.004}) {
+    const TrialResult settled = judgedOnFrictionlessBase(0, 0.01, failure);
+    EXPECT_EQ(settled.rule, calibration::VerdictRule::MovedWhileSettling) << failure;
+    EXPECT_GT(settled.settlingDisplacement, failure);
+  }
 }
 
 // Rule (b) asks each point about its own motion: block A, launched at 0.58 m/s on a rough base

@@ -13,6 +13,7 @@
 #include "ddaslope/model/incline_scene.hpp"
 #include "ddaslope/model/settings_override.hpp"
 #include "ddaslope/solver/simulation.hpp"
+#include "scene_builders.hpp"
 
 using namespace ddaslope;
 using calibration::judgeWindows;
@@ -154,8 +155,9 @@ TEST(Verdict, ElasticSettlementIsNotFailure) {
 
 namespace {
 
-calibration::TrialResult judged(model::Scene s, bool earlyRest) {
+calibration::TrialResult judged(model::Scene s, bool earlyRest, bool settle = true) {
   s.settings.earlyRest = earlyRest;
+  s.settings.initialEquilibrium = settle;
   return calibration::judgeStability(s);
 }
 
@@ -180,13 +182,15 @@ TEST(EarlyRest, AStandingBlockStopsEarlyWithTheWholeRunsVerdict) {
 // A creep too slow to see at first is never stopped as rest: on 30° with φ 0.02° below it the
 // block slides at g (sin α − cos α tan φ) = 3.95e-3 m/s² (benchmarks.md A2), a smooth path with
 // no scatter that grows as t²; the early and whole runs agree that it fails, and neither stops
-// as rest.
+// as rest. The runs start as drawn: brought to rest first, the block slides past the failure
+// displacement while the scene settles, and rule (0) decides before any run.
 TEST(EarlyRest, ASlowCreepIsNeverCalledRest) {
   model::InclineSpec spec;
   spec.alphaDeg = 30, spec.phiDeg = 29.98, spec.duration = 2;
   ASSERT_NEAR(model::slidingAcceleration(spec), 3.95e-3, 1e-4);
-  const calibration::TrialResult early = judged(model::makeInclineScene(spec), true);
-  const calibration::TrialResult whole = judged(model::makeInclineScene(spec), false);
+  const calibration::TrialResult early = judged(model::makeInclineScene(spec), true, false);
+  const calibration::TrialResult whole = judged(model::makeInclineScene(spec), false, false);
+  EXPECT_GT(early.steps, 0);
   EXPECT_FALSE(whole.stable) << whole.reason;
   EXPECT_FALSE(early.stable) << early.reason;
   EXPECT_FALSE(early.earlyRest);
@@ -221,5 +225,56 @@ TEST(EarlyRest, FactorOfSafetyIsTheSameWithAndWithout) {
     const calibration::FactorOfSafetyResult early = calibration::factorOfSafety(s, {}, 5e-3);
     ASSERT_TRUE(whole.found && early.found) << name;
     EXPECT_EQ(early.factor, whole.factor) << name;
+  }
+}
+
+namespace {
+
+/// Whether a run without the verdict's limit (the equilibrium running its course, and the
+/// analysis from where it leaves the scene) moves a free block's vertex past `failure` within the
+/// run's duration.
+bool analysisPasses(const model::Scene& scene, double failure) {
+  solver::Simulation sim(scene);
+  sim.bringToEquilibrium();
+  std::vector<std::vector<Vec2>> start;
+  for (const model::Block& b : sim.scene().blocks) start.push_back(b.vertices);
+  while (!sim.finished()) {
+    sim.advance();
+    for (size_t b = 0; b < start.size(); ++b)
+      for (size_t v = 0; v < start[b].size(); ++v)
+        if ((sim.scene().blocks[b].vertices[v] - start[b][v]).norm() > failure) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+// Rule (0) decides a trial the moment a point passes the failure displacement while the scene
+// settles before t = 0: the equilibrium stops there and no analysis follows. Its verdict is the
+// one the whole run gives (the equilibrium calling the scene failing, and the analysis from the
+// state it then starts from passing the failure displacement): a block on 30° with φ = 25° and
+// 29.5°, sliding at g (sin α − cos α tan φ) = 0.75 and 0.098 m/s² (benchmarks.md A2), and Hoek &
+// Bray's planar wedge with its strengths divided by 1.2 × its FS (benchmarks.md C).
+TEST(Verdict, GivingWayWhileSettlingDecidesTheTrial) {
+  std::vector<std::pair<std::string, model::Scene>> scenes;
+  for (double phi : {25.0, 29.5}) {
+    model::InclineSpec spec;
+    spec.alphaDeg = 30, spec.phiDeg = phi;
+    scenes.emplace_back("incline, phi " + std::to_string(phi), model::makeInclineScene(spec));
+  }
+  const scenes::Planar p = scenes::planar(35, 25e3, 30);
+  const double f = 1.2 * p.factor(25e3, 30 * M_PI / 180);
+  scenes.emplace_back("planar wedge at 1.2 FS", scenes::planar(35, 25e3 / f, std::atan(std::tan(30 * M_PI / 180) / f) * 180 / M_PI).scene);
+  for (const auto& [label, scene] : scenes) {
+    SCOPED_TRACE(label);
+    const calibration::TrialResult r = calibration::judgeStability(scene);
+    EXPECT_FALSE(r.stable) << r.reason;
+    EXPECT_EQ(r.rule, calibration::VerdictRule::MovedWhileSettling) << r.reason;
+    EXPECT_EQ(r.steps, 0);
+    EXPECT_GT(r.equilibriumSteps, 0);
+    EXPECT_GT(r.settlingDisplacement, r.failureDisplacement);
+    // Stopped at the step that passed: beyond it by at most one step's largest motion, g2·w0.
+    EXPECT_LE(r.settlingDisplacement, r.failureDisplacement + solver::Simulation(scene).stepLimit());
+    EXPECT_TRUE(analysisPasses(scene, r.failureDisplacement));
   }
 }

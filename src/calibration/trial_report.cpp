@@ -22,7 +22,8 @@ void appendTrials(io::JsonRecord& j, const std::vector<TrialRecord>& trials, con
     item.set("last_window_motion_m", r.lastWindowMotion).set("previous_window_motion_m", r.previousWindowMotion);
     item.set("noise_floor_m", r.noiseFloor).set("final_speed_m_s", r.finalSpeed);
     item.set("moved_most", r.movedMost).set("decided_by", r.decidedBy);
-    item.set("time_s", r.timeReached).set("steps", r.steps).set("extended", r.extended).set("extensions", r.extensions);
+    item.set("time_s", r.timeReached).set("steps", r.steps);
+    item.set("equilibrium_steps", r.equilibriumSteps).set("extended", r.extended).set("extensions", r.extensions);
     item.set("marginal", r.marginal).set("rerun", t.rerun).set("early_rest", r.earlyRest);
     j.append("trials", item);
   }

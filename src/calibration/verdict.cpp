@@ -314,7 +314,8 @@ TrialResult judgeStability(const model::Scene& scene, const VerdictSettings& set
     r.stable = rule == VerdictRule::AtRest || rule == VerdictRule::SlowingDown;
     r.undecided = rule == VerdictRule::Undecided;
     r.reason = describe(rule);
-    r.steps = static_cast<int>(monitorPath.time.size()) - 1;
+    r.equilibriumSteps = sim.statistics().equilibriumSteps + sim.statistics().settlingSteps;
+    r.steps = std::max(0, static_cast<int>(monitorPath.time.size()) - 1);  // none recorded: no step after t = 0
     if (rule != VerdictRule::AtRest && rule != VerdictRule::SlowingDown && rule != VerdictRule::StillMoving &&
         rule != VerdictRule::Undecided) {
       // Decided on a displacement (or no run): no window judged it, whatever an extension had.
@@ -334,6 +335,8 @@ TrialResult judgeStability(const model::Scene& scene, const VerdictSettings& set
     return r;
   };
   try {
+    // Rule (0) is decided the moment a point passes the threshold while the scene settles.
+    sim.stopSettlingPast(threshold);
     sim.bringToEquilibrium(shared);
     if (settled && shared && sim.statistics().startedAtRest) *settled = sim.settledState(*shared);
     // Rule 0 counts the motion once contacts may slip (stages 2 and 3), not the elastic settlement

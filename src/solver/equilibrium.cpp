@@ -25,8 +25,8 @@ double Simulation::restAcceleration() const {
 }
 
 Simulation::Rest Simulation::settle(Regime regime, double& dt, double largestDt) {
-  // A scene that moves this far while settling is failing, not settling.
-  const double failingTravel = scene_.settings.maxDisplacementRatio * w0_;
+  const double failingTravel = regime == Regime::HeldEquilibrium ? scene_.settings.maxDisplacementRatio * w0_
+                                                                  : failingSettlingTravel();
   double travel = 0;
   // Without stage 3 an unconfirmed rest is kept as a fallback while static steps from the
   // analysis Δt look for a confirmed one (many-block scenes near failure, e.g. Vajont, creep on).
@@ -73,6 +73,7 @@ Simulation::Rest Simulation::settle(Regime regime, double& dt, double largestDt)
     stats_.equilibriumResidual = 2 * worst / (dt * dt) / std::max(scene_.gravity.norm(), 1e-3);
     travel += worst;
     if (regime == Regime::Relaxation) relaxationTravel_ = travel;
+    if (regime == Regime::Relaxation && passedSettlingLimit()) return Rest::GaveWay;
     if (log_) {
       std::ostringstream m;
       m << (regime == Regime::HeldEquilibrium ? "equilibrium (contacts held)" : "equilibrium (relaxation)")
@@ -121,7 +122,7 @@ bool Simulation::settleDynamically() {
   // peaked while the out-of-balance force keeps pushing towards equilibrium. The scene is at rest
   // when a step started from zero velocity converges without freezing contacts and implies an
   // acceleration below restAcceleration(): the test confirmedAtRest() applies to stage 2.
-  const double failingTravel = scene_.settings.maxDisplacementRatio * w0_;
+  const double failingTravel = failingSettlingTravel();
   const int budget = kSettlingStepsPerEquilibriumStep * scene_.settings.equilibriumMaxSteps;
   const bool dynamic = integrator_.dynamic();
   // Releasing the held contacts sets a large scene ringing as a sudden load does, and its
@@ -165,6 +166,7 @@ bool Simulation::settleDynamically() {
     if (equilibriumProgress_) equilibriumProgress_("settling", s + 1, budget);
     const double worst = largestVertexDisplacement(a);
     travel += worst;
+    if (passedSettlingLimit()) return false;
     const double implied = 2 * worst / (dt * dt);
     if (log_) {
       std::ostringstream m;
@@ -249,6 +251,31 @@ void Simulation::polishRest(double staticDt) {
       << stats_.equilibriumResidual << " g";
     log_(m.str());
   }
+}
+
+double Simulation::failingSettlingTravel() const {
+  // A scene that moves this far while settling is failing, not settling. With a limit set, one
+  // that travels like a failing scene settles on until a block passes the limit (and the verdict
+  // is certain) or it travels twice the limit: travel sums each step's largest motion, vibration
+  // included, so it outruns any block's net displacement.
+  return std::max(scene_.settings.maxDisplacementRatio * w0_, 2 * settlingLimit_);
+}
+
+bool Simulation::passedSettlingLimit() {
+  if (settlingLimit_ <= 0 || heldBlocks_.size() != scene_.blocks.size()) return false;
+  const double limit2 = settlingLimit_ * settlingLimit_;
+  for (size_t b = 0; b < scene_.blocks.size(); ++b) {
+    if (active_[b] < 0) continue;
+    const std::vector<Vec2>& now = scene_.blocks[b].vertices;
+    const std::vector<Vec2>& was = heldBlocks_[b].vertices;
+    for (size_t v = 0; v < now.size() && v < was.size(); ++v)
+      if ((now[v] - was[v]).squaredNorm() > limit2) {
+        stats_.gaveWayWhileSettling = true;
+        if (log_) log_("equilibrium: block \"" + scene_.blocks[b].id + "\" moved past the set limit; settling stops");
+        return true;
+      }
+  }
+  return false;
 }
 
 bool Simulation::confirmedAtRest(const Attempt& last, double restAcceleration) {
@@ -388,7 +415,9 @@ void Simulation::bringToEquilibrium(const HeldEquilibrium* shared) {
     }
     stats_.relaxationConverged = rest == Rest::Confirmed || rest == Rest::Unconfirmed;
     stats_.startedAtRest = rest == Rest::Confirmed;
-    if (rest == Rest::NotFound) {
+    if (rest == Rest::GaveWay) {
+      // Left where it gave way (stopSettlingPast).
+    } else if (rest == Rest::NotFound) {
       scene_ = heldScene;
       contacts_ = heldContacts;
     } else if ((rest == Rest::Unconfirmed || rest == Rest::Unsettled) && scene_.settings.settleDynamically) {
@@ -404,7 +433,7 @@ void Simulation::bringToEquilibrium(const HeldEquilibrium* shared) {
         stats_.relaxationConverged = stats_.startedAtRest;
         if (stats_.startedAtRest) polishRest(shared->dt);
       }
-      if (!stats_.startedAtRest) {
+      if (!stats_.startedAtRest && !stats_.gaveWayWhileSettling) {
         // Failing, or still moving after the budget: start from stage 2's rest, or from stage 1's
         // state if stage 2 found none, as without stage 3.
         const bool relaxed = rest == Rest::Unconfirmed;

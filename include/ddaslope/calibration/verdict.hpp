@@ -14,7 +14,8 @@ namespace ddaslope::calibration {
 /// (0) it moved more than `failureDisplacement` while the scene came to rest before t = 0, once
 ///     its contacts could slip (stages 2 and 3 of the equilibrium; stage 1's elastic settlement
 ///     with every contact held does not count): a slope that gives way there and locks again
-///     metres further on has failed, even if it then stands;
+///     metres further on has failed, even if it then stands. The equilibrium stops at the step a
+///     point passes it (Simulation::stopSettlingPast), and no analysis follows;
 /// (a) it moves more than `failureDisplacement` from where it is at t = 0, after the equilibrium;
 ///     the run stops there: its verdict is certain; or
 /// (b) at the end of the run it is still moving: over the last quarter of the run its net
@@ -89,6 +90,7 @@ struct TrialResult {
   double noiseFloor = 0;           ///< that point's floor (m)
   double timeReached = 0;          ///< simulated time when the trial stopped (s)
   int steps = 0;                   ///< accepted steps after t = 0
+  int equilibriumSteps = 0;        ///< steps before t = 0: the equilibrium's static and settling steps
   bool extended = false;           ///< run longer than its duration (a marginal verdict or a small motion)
   int extensions = 0;              ///< how many times, each by the duration
   bool marginal = false;           ///< still marginal after the extension: decided by the 90 % rule

@@ -58,6 +58,7 @@ struct RunStatistics {
   int settlingSteps = 0;             ///< stage 3: dynamic steps at the analysis Δt (kinetic damping)
   bool startedAtRest = true;         ///< the analysis starts from a confirmed rest (stage 2 or 3;
                                      ///< false without initial_equilibrium)
+  bool gaveWayWhileSettling = false;  ///< stages 2–3 ended as a block passed stopSettlingPast()'s limit
   int symbolicAnalyses = 0;
   long factorisations = 0;         ///< numeric Cholesky factorisations
   long factorUpdates = 0;          ///< low-rank factor updates that replaced one (large systems)
@@ -118,6 +119,12 @@ class Simulation {
   /// `shared`: start stage 2 from this stage-1 state (from holdEquilibrium() of a scene that
   /// differs from this one at most in joint strengths) instead of computing stage 1.
   void bringToEquilibrium(const HeldEquilibrium* shared = nullptr);
+  /// Ends stages 2 and 3 of the equilibrium as soon as a vertex of a block has moved more than
+  /// `displacement` (m) from where stage 1 left it, and leaves the scene there: for a verdict
+  /// whose rule (0) is then decided (the slope gave way before t = 0), settling on towards a rest
+  /// or a failing travel, and the analysis after it, would be spent on a settled question. 0 (the
+  /// default): off, the equilibrium runs its course.
+  void stopSettlingPast(double displacement) { settlingLimit_ = displacement; }
   /// Runs stage 1 only and returns its state (the scene is left in it).
   HeldEquilibrium holdEquilibrium();
   /// The scene as it stands now, after bringToEquilibrium(`from`) found rest, packed as a start
@@ -180,7 +187,8 @@ class Simulation {
   enum class Regime { Analysis, HeldEquilibrium, Relaxation, Settling };
   /// How settle() ended: at a rest confirmed at the analysis Δt, at an unconfirmed one, with no
   /// static rest but no sign of failure either (stage 3 settles it), or failing.
-  enum class Rest { Confirmed, Unconfirmed, Unsettled, NotFound };
+  /// GaveWay: a block passed stopSettlingPast()'s limit.
+  enum class Rest { Confirmed, Unconfirmed, Unsettled, NotFound, GaveWay };
   struct Attempt {
     bool converged = false;
     std::string failure;
@@ -234,6 +242,12 @@ class Simulation {
   /// Stage 3: dynamic steps at the analysis Δt with kinetic damping until a step from rest stays
   /// at rest (true), or until the scene travels g2·w0 or the budget runs out (false).
   bool settleDynamically();
+  /// Travel (summed largest vertex displacement per step, m) beyond which stages 2 and 3 call the
+  /// scene failing: g2·w0, or twice stopSettlingPast()'s limit if larger.
+  double failingSettlingTravel() const;
+  /// True (and recorded in the statistics) once a vertex of an active block is farther than
+  /// stopSettlingPast()'s limit from where stage 1 left it.
+  bool passedSettlingLimit();
   /// Acceleration (m/s²) below which a step from rest counts as rest: 1e-6 g.
   double restAcceleration() const;
   /// True when `last` (a step at rest) froze no contact and one step from rest at the analysis
@@ -354,6 +368,7 @@ class Simulation {
   double loadWork_ = 0;  ///< work of water and point loads since t = 0 (J/m)
   double groundMotionWork_ = 0;  ///< the record's share of it (J/m)
   double relaxationTravel_ = 0;  ///< summed largest vertex displacement of stage 2's steps (m)
+  double settlingLimit_ = 0;     ///< see stopSettlingPast(); 0: off
   std::vector<int> active_;  ///< dof block index per block, −1 when fixed or held
   int nActive_ = 0;
   contact::ContactSet contacts_;
