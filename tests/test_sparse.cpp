@@ -61,6 +61,24 @@ TEST(SparseSolve, ReportsIndefiniteMatrix) {
   EXPECT_FALSE(chol.factorise(k));
 }
 
+// Positive pivots first, then a negative one: [[I, 2I], [2I, I]] has eigenvalues −1 and 3. A small
+// system's simplicial factorisation must refuse it as the supernodal one does.
+TEST(SparseSolve, ReportsIndefiniteMatrixPastItsFirstPivots) {
+  assembly::BlockSparseMatrix k;
+  k.setPattern(2, {{0, 1}});
+  k.setZero();
+  k.addDiagonal(0, Mat6::Identity());
+  k.addDiagonal(1, Mat6::Identity());
+  k.addCoupling(0, 1, 2 * Mat6::Identity());
+  solver::SparseCholesky chol;
+  EXPECT_FALSE(chol.factorise(k));
+  k.setZero();
+  k.addDiagonal(0, Mat6::Identity());
+  k.addDiagonal(1, Mat6::Identity());
+  k.addCoupling(0, 1, 0.5 * Mat6::Identity());  // eigenvalues 0.5 and 1.5: definite
+  EXPECT_TRUE(chol.factorise(k));
+}
+
 // Rigid blocks (three unknowns): the matrix keeps the leading 3×3 of every 6×6 term and solves
 // that system exactly (dense reference: the same sub-blocks).
 TEST(SparseSolve, RigidBlocksKeepTheLeadingThreeUnknowns) {

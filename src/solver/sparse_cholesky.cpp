@@ -75,8 +75,9 @@ struct SparseCholesky::Impl {
     cholmod_start(&common);
     common.print = 0;
     common.error_handler = nullptr;
-    // Supernodal LLᵀ: a simplicial LDLᵀ would factorise an indefinite matrix silently, and a
-    // lost positive definiteness is a failure the step control must see.
+    // LLᵀ (supernodal; simplicial for small systems, factorise()): an LDLᵀ would factorise an
+    // indefinite matrix silently, and a lost positive definiteness is a failure the step control
+    // must see.
     common.supernodal = CHOLMOD_SUPERNODAL;
     defaultFirstOrdering = common.method[0].ordering;
   }
@@ -134,6 +135,12 @@ bool SparseCholesky::factorise(const assembly::BlockSparseMatrix& k) {
   if (!impl_->factor || impl_->patternVersion != k.patternVersion() || impl_->patternOwner != &k) {
     if (impl_->factor) cholmod_free_factor(&impl_->factor, &impl_->common);
     impl_->chooseOrdering();
+    // A small system's supernodes are a few columns wide: a supernodal factorisation spends more
+    // on its BLAS calls and OpenMP regions than on arithmetic. It is factorised simplicially, LLᵀ
+    // so that a lost positive definiteness still fails (an LDLᵀ would go on silently).
+    const bool small = a.nrow < static_cast<size_t>(model::kLargeSystemMinUnknowns);
+    impl_->common.supernodal = small ? CHOLMOD_SIMPLICIAL : CHOLMOD_SUPERNODAL;
+    impl_->common.final_ll = small;
     impl_->factor = cholmod_analyze(&a, &impl_->common);
     DDASLOPE_ASSERT(impl_->factor != nullptr, "CHOLMOD symbolic analysis failed");
     impl_->patternVersion = k.patternVersion();
