@@ -278,9 +278,13 @@ std::vector<std::string> MechanismPictures::write(const std::string& dir, const 
     const auto found = kept_->states.find(value);
     if (found == kept_->states.end()) continue;
     const auto& [state, result] = found->second;
-    char title[256];
-    std::snprintf(title, sizeof title, "%s: %s = %.6g, %s (%s; a point moved %.3g m after t = 0)", casePath.c_str(), quantity.c_str(),
-                  value, verdict, calibration::name(result.rule), result.maxDisplacement);
+    // Rule (0) decides before t = 0: its motion is the settling's.
+    const bool settling = result.rule == calibration::VerdictRule::MovedWhileSettling;
+    char title[320];
+    std::snprintf(title, sizeof title, "%s: %s = %.6g, %s (%s; a point moved %.3g m %s)", casePath.c_str(),
+                  quantity.c_str(), value, verdict, calibration::name(result.rule),
+                  settling ? result.settlingDisplacement : result.maxDisplacement,
+                  settling ? "while the scene settled before t = 0" : "after t = 0");
     io::writeScenePicture(state, kept_->frame, dir + "/" + file, title, result.failureDisplacement);
     written.push_back(dir + "/" + file);
   }
