@@ -278,3 +278,21 @@ TEST(Verdict, GivingWayWhileSettlingDecidesTheTrial) {
     EXPECT_TRUE(analysisPasses(scene, r.failureDisplacement));
   }
 }
+
+// A scene that travels like a failing one (g2·w0) while it settles goes on settling towards the
+// failure displacement without kinetic damping: damping takes the momentum that would carry it
+// on, and a damped scene could come to rest short of the threshold where the analysis slides
+// past it. Goodman & Bray's toppling slope with vertex-to-edge contacts at F = 0.99177 gave way
+// 0.385 m and came to rest (stable) when the settling went on damped, and failed in the run from
+// every contact held before the settling went on at all: its verdict is that run's.
+TEST(Verdict, SettlingOnAsAFailingSceneDoesNotRestOnDampedMomentum) {
+  model::SettingsOverride o;
+  o.contactTreatment = "vertex";
+  model::Scene s = io::readCase(std::string(DDASLOPE_SOURCE_DIR) + "/cases/goodman_bray_toppling.json",
+                                io::caseOverridesFor(o));
+  const model::Scene own = s;
+  for (size_t j = 0; j < s.joints.size(); ++j) s.joints[j] = own.joints[j].reducedBy(0.99177);
+  const calibration::TrialResult r = calibration::judgeStability(s);
+  EXPECT_FALSE(r.stable) << r.reason;
+  EXPECT_TRUE(analysisPasses(s, r.failureDisplacement));
+}

@@ -25,8 +25,9 @@ double Simulation::restAcceleration() const {
 }
 
 Simulation::Rest Simulation::settle(Regime regime, double& dt, double largestDt) {
-  const double failingTravel = regime == Regime::HeldEquilibrium ? scene_.settings.maxDisplacementRatio * w0_
-                                                                  : failingSettlingTravel();
+  // A scene that moves this far while settling is failing, not settling. (Static steps carry no
+  // momentum: past this, one could still find a rest a dynamic run would slide through.)
+  const double failingTravel = scene_.settings.maxDisplacementRatio * w0_;
   double travel = 0;
   // Without stage 3 an unconfirmed rest is kept as a fallback while static steps from the
   // analysis Δt look for a confirmed one (many-block scenes near failure, e.g. Vajont, creep on).
@@ -122,9 +123,15 @@ bool Simulation::settleDynamically() {
   // peaked while the out-of-balance force keeps pushing towards equilibrium. The scene is at rest
   // when a step started from zero velocity converges without freezing contacts and implies an
   // acceleration below restAcceleration(): the test confirmedAtRest() applies to stage 2.
-  const double failingTravel = failingSettlingTravel();
+  // Travelling g2·w0 marks a failing scene. With stopSettlingPast()'s limit set, it goes on, as a
+  // dynamic run without kinetic damping (so it cannot come to rest on momentum the damping took),
+  // until a block passes the limit or it has travelled twice the limit (travel sums each step's
+  // largest motion, vibration included, so it outruns any block's net displacement).
+  const double failingTravel = scene_.settings.maxDisplacementRatio * w0_;
   const int budget = kSettlingStepsPerEquilibriumStep * scene_.settings.equilibriumMaxSteps;
   const bool dynamic = integrator_.dynamic();
+  // (A static analysis's steps carry no momentum: it stops at g2·w0.)
+  const double givingUpTravel = dynamic ? std::max(failingTravel, 2 * settlingLimit_) : failingTravel;
   // Releasing the held contacts sets a large scene ringing as a sudden load does, and its
   // lightly loaded contacts cycle at any Δt, so that the settling cuts Δt again and again. A large
   // system holds a contact whose cycling breaks its law by little, as its analysis steps do
@@ -179,7 +186,8 @@ bool Simulation::settleDynamically() {
       stats_.equilibriumResidual = implied / std::max(scene_.gravity.norm(), 1e-3);
       return true;
     }
-    if (travel > failingTravel) return false;
+    if (travel > givingUpTravel) return false;
+    const bool failing = travel > failingTravel;
     if (fromRest) {
       if (implied < 0.5 * leastImplied) {
         stalledPeaks = 0;
@@ -199,7 +207,7 @@ bool Simulation::settleDynamically() {
     for (size_t b = 0; b < scene_.blocks.size(); ++b)
       if (active_[b] >= 0) kinetic += kineticEnergy(scene_.blocks[b], mass_[b]);
     // A static analysis carries no velocity: each of its steps starts from rest.
-    fromRest = !dynamic || kinetic < lastKinetic;
+    fromRest = !failing && (!dynamic || kinetic < lastKinetic);
     if (fromRest) {
       for (model::Block& b : scene_.blocks) b.velocity.setZero();
       kinetic = 0;
@@ -251,14 +259,6 @@ void Simulation::polishRest(double staticDt) {
       << stats_.equilibriumResidual << " g";
     log_(m.str());
   }
-}
-
-double Simulation::failingSettlingTravel() const {
-  // A scene that moves this far while settling is failing, not settling. With a limit set, one
-  // that travels like a failing scene settles on until a block passes the limit (and the verdict
-  // is certain) or it travels twice the limit: travel sums each step's largest motion, vibration
-  // included, so it outruns any block's net displacement.
-  return std::max(scene_.settings.maxDisplacementRatio * w0_, 2 * settlingLimit_);
 }
 
 bool Simulation::passedSettlingLimit() {

@@ -122,8 +122,9 @@ class Simulation {
   /// Ends stages 2 and 3 of the equilibrium as soon as a vertex of a block has moved more than
   /// `displacement` (m) from where stage 1 left it, and leaves the scene there: for a verdict
   /// whose rule (0) is then decided (the slope gave way before t = 0), settling on towards a rest
-  /// or a failing travel, and the analysis after it, would be spent on a settled question. 0 (the
-  /// default): off, the equilibrium runs its course.
+  /// or a failing travel, and the analysis after it, would be spent on a settled question. Stage 3
+  /// then also goes on past a failing travel (g2·w0), without kinetic damping, up to twice the
+  /// limit. 0 (the default): off, the equilibrium runs its course.
   void stopSettlingPast(double displacement) { settlingLimit_ = displacement; }
   /// Runs stage 1 only and returns its state (the scene is left in it).
   HeldEquilibrium holdEquilibrium();
@@ -242,9 +243,6 @@ class Simulation {
   /// Stage 3: dynamic steps at the analysis Δt with kinetic damping until a step from rest stays
   /// at rest (true), or until the scene travels g2·w0 or the budget runs out (false).
   bool settleDynamically();
-  /// Travel (summed largest vertex displacement per step, m) beyond which stages 2 and 3 call the
-  /// scene failing: g2·w0, or twice stopSettlingPast()'s limit if larger.
-  double failingSettlingTravel() const;
   /// True (and recorded in the statistics) once a vertex of an active block is farther than
   /// stopSettlingPast()'s limit from where stage 1 left it.
   bool passedSettlingLimit();
