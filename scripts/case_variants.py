@@ -99,6 +99,8 @@ def main():
     elif v == "translate":
         dx, dy = a.values
         transform_points(case, lambda p: [p[0] + dx, p[1] + dy])
+        if "level" in case.get("water", {}):
+            case["water"]["level"] += dy  # a level is an elevation: it moves with the scene
     elif v == "mirror":
         transform_points(case, lambda p: [-p[0], p[1]])
         for b in case["blocks"]:

@@ -415,9 +415,8 @@ void Simulation::bringToEquilibrium(const HeldEquilibrium* shared) {
     }
     stats_.relaxationConverged = rest == Rest::Confirmed || rest == Rest::Unconfirmed;
     stats_.startedAtRest = rest == Rest::Confirmed;
-    if (rest == Rest::GaveWay) {
-      // Left where it gave way (stopSettlingPast).
-    } else if (rest == Rest::NotFound) {
+    // A scene that gave way (stopSettlingPast) is left where it did: neither branch takes it.
+    if (rest == Rest::NotFound) {
       scene_ = heldScene;
       contacts_ = heldContacts;
     } else if ((rest == Rest::Unconfirmed || rest == Rest::Unsettled) && scene_.settings.settleDynamically) {
