@@ -182,7 +182,12 @@ const char* name(model::Sampling s) { return s == model::Sampling::MonteCarlo ? 
 
 const char* name(model::ProbabilityMeasure m) { return m == model::ProbabilityMeasure::Verdict ? "verdict" : "fos"; }
 const char* name(model::ProbabilityMethod m) {
-  return m == model::ProbabilityMethod::Sampling ? "sampling" : "importance_sampling";
+  switch (m) {
+    case model::ProbabilityMethod::Sampling: return "sampling";
+    case model::ProbabilityMethod::ImportanceSampling: return "importance_sampling";
+    case model::ProbabilityMethod::ActiveLearning: return "active_learning";
+  }
+  return "?";
 }
 
 std::string describe(const Distribution& d) {

@@ -17,7 +17,7 @@ std::string packSample(const SampleResult& r) {
   BytePacker b;
   b.put(r.index).put(r.inputs.size());
   for (double v : r.inputs) b.put(v);
-  b.put(r.outcome).put(r.rule).put(r.factor).put(r.maxDisplacement).put(r.runTime);
+  b.put(r.outcome).put(r.rule).put(r.factor).put(r.maxDisplacement).put(r.runTime).put(r.runs);
   return b.bytes();
 }
 
@@ -32,6 +32,7 @@ SampleResult unpackSample(const std::string& bytes) {
   r.factor = b.get<double>();
   r.maxDisplacement = b.get<double>();
   r.runTime = b.get<double>();
+  r.runs = b.get<int>();
   return r;
 }
 
@@ -55,6 +56,7 @@ SampleResult evaluateSample(const model::Scene& scene, const SampleSettings& set
     s.verdict = settings.verdict;
     s.threads = 1;  // the samples run in parallel instead
     const FactorOfSafetyResult r = factorOfSafety(scene, settings.fosJoints, settings.fosWidth, s);
+    out.runs = static_cast<int>(r.trials.size());
     // The search always starts at F = 1: that run is the unreduced slope's verdict (its review's
     // re-run, if any, which the trials list after it).
     const auto one = std::find_if(r.trials.rbegin(), r.trials.rend(), [](const TrialRecord& t) { return t.value == 1; });

@@ -43,7 +43,15 @@ io::ProbabilityJob readStudy(const std::string& path, const ProbabilityOptions& 
     s.sampling = opt.sampling == "monte_carlo" ? model::Sampling::MonteCarlo : model::Sampling::LatinHypercube;
   if (!opt.method.empty())
     s.method = opt.method == "importance_sampling" ? model::ProbabilityMethod::ImportanceSampling
+               : opt.method == "active_learning"   ? model::ProbabilityMethod::ActiveLearning
                                                    : model::ProbabilityMethod::Sampling;
+  if (s.method == model::ProbabilityMethod::ActiveLearning && !opt.measure.empty())
+    throw InputError("--measure", opt.measure, "active learning searches F at the samples it learns from and judges "
+                                               "its confirmations by verdicts: --measure does not apply");
+  if (s.method == model::ProbabilityMethod::ActiveLearning && (opt.resume || opt.stopAfter > 0))
+    throw InputError(opt.resume ? "--resume" : "--stop-after", "",
+                     "active learning chooses each search from the ones before it and runs in one go: it cannot be "
+                     "stopped and resumed");
   if (s.method == model::ProbabilityMethod::ImportanceSampling && s.measure == model::ProbabilityMeasure::FactorOfSafety)
     throw InputError(opt.measure.empty() ? job.file : "--measure", opt.measure.empty() ? "probability.measure" : "fos",
                      "importance sampling judges each sample by one forward run's verdict: expected the measure "
@@ -185,11 +193,117 @@ void printDesignPoint(const io::ProbabilityJob& job, const io::DesignPointReport
                  job.file.c_str(), p.otherRegions.size());
 }
 
+void printStudy(const io::ProbabilityJob& job);
+
+/// The study by active learning (calibration/active_learning.hpp): a population of `samples`
+/// points classified by a surrogate of F learnt from searches, confirmed by forward runs.
+int activeLearningStudy(const io::ProbabilityJob& job, const SceneMaker& make, const calibration::SampleSettings& fos,
+                        const model::Scene& reference, const ProbabilityOptions& opt,
+                        std::chrono::steady_clock::time_point t0) {
+  const model::ProbabilitySpec& spec = job.spec;
+  const calibration::SampleDesign design(spec);
+  if (fs::exists(opt.outDir + "/learning.csv") && !opt.overwrite)
+    throw InputError(opt.outDir + "/learning.csv", "", "holds the runs of a study already: --overwrite starts again");
+  checkDrawnValues(job, design, make);
+  const std::string line = settingsLine(reference);
+  calibration::SampleSettings verdict = fos;
+  verdict.measure = model::ProbabilityMeasure::Verdict;
+  calibration::ActiveLearningProblem problem;
+  problem.population.resize(design.inputs(), design.samples());
+  for (int k = 0; k < design.samples(); ++k) {
+    const std::vector<double> u = design.independent(k);
+    for (int i = 0; i < design.inputs(); ++i) problem.population(i, k) = u[static_cast<size_t>(i)];
+  }
+  const auto sceneOf = [&](int k) {
+    try {
+      return make(design.values(k));
+    } catch (const InputError& e) {  // a combination of values the case refuses
+      throw InputError(job.file, "probability", "sample " + std::to_string(k) + " cannot be run: " + e.what());
+    }
+  };
+  problem.evaluate = [&](int k) {
+    const SampleResult r = calibration::evaluateSample(sceneOf(k), fos, k, design.values(k));
+    calibration::PerformanceValue v;
+    v.converged = r.outcome != calibration::SampleOutcome::NotConverged && std::isfinite(r.factor);
+    v.margin = v.converged ? r.factor - 1 : 0;
+    v.fails = r.outcome == calibration::SampleOutcome::Fails;
+    v.runs = r.runs;
+    return v;
+  };
+  problem.judge = [&](int k) {
+    const SampleResult r = calibration::evaluateSample(sceneOf(k), verdict, k, design.values(k));
+    return r.outcome == calibration::SampleOutcome::Stable ? calibration::PointVerdict::Stable
+           : r.outcome == calibration::SampleOutcome::Fails ? calibration::PointVerdict::Fails
+                                                            : calibration::PointVerdict::NotConverged;
+  };
+  calibration::ActiveLearningSettings settings;
+  settings.threads = opt.threads;
+  if (!opt.json) {
+    printStudy(job);
+    std::printf("  forward runs at %s\n", line.c_str());
+    std::printf("  learning F on %d population points: searches at the points the surrogate is least sure of, %d "
+                "at a time\n", design.samples(), std::min(opt.threads, settings.batch));
+    std::fflush(stdout);
+  }
+  const calibration::ActiveLearningResult r = calibration::learnFailureDomain(problem, settings);
+  fs::create_directories(opt.outDir);
+  for (const char* name : {"samples.csv", "probability_settings.json", "summary.partial.json", "pf_convergence.png",
+                           "fos_histogram.png", "sensitivities.png"})
+    fs::remove(opt.outDir + "/" + name);
+  const std::string json = io::activeLearningSummaryJson(job, r, line);
+  const std::vector<std::string> files = io::writeActiveLearningFiles(job, design, r, opt.outDir);
+  writeAtomically(opt.outDir + "/summary.json", json);
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const calibration::LearnedProbability p = calibration::probabilityOf(r);
+  if (opt.json) {
+    std::printf("%s", json.c_str());
+  } else {
+    std::printf("  Pf = %.4g: %d of %d population points classified failing; 95 %% interval %.4g-%.4g (Wilson, the "
+                "population's sampling error), coefficient of variation %.3f\n",
+                p.pf, r.failing, p.converged, p.interval.low, p.interval.high, p.coefficientOfVariation);
+    if (std::isfinite(p.beta))
+      std::printf("  reliability index β = Φ⁻¹(1 − Pf) = %.4g (%.4g to %.4g)\n", p.beta, p.betaInterval.low,
+                  p.betaInterval.high);
+    std::printf("  forward runs: %d in %d searches of F and %d verdicts; %d surrogate fits\n", r.searchRuns + r.verdicts,
+                r.searches, r.verdicts, r.rounds);
+    std::printf("  verdicts: %d decided points the surrogate was unsure of (U < 2), %d confirmed points it was sure "
+                "of, %d of which contradicted it (and were searched)\n",
+                r.decidedByVerdict, r.verdicts - r.decidedByVerdict, r.disagreements);
+    if (r.learnt)
+      std::printf("  learnt: every point not run has U ≥ 2 (least %.3g), and the last verdicts agreed with the "
+                  "surrogate\n", r.minU);
+    std::printf("  not converged: %d\n", r.notConverged);
+    std::printf("  %.2f s wall on %d thread%s; wrote %s/summary.json", wall, opt.threads, opt.threads == 1 ? "" : "s",
+                opt.outDir.c_str());
+    for (const auto& f : files) std::printf(", %s", f.c_str());
+    std::printf("\n");
+  }
+  if (!r.message.empty()) {
+    std::fprintf(stderr, "ddaslope: %s: active learning could not start: %s\n", job.file.c_str(), r.message.c_str());
+    return kExitNonConvergence;
+  }
+  if (!r.learnt)
+    std::fprintf(stderr, "ddaslope: warning: %s: the learning stopped at its budget of searches with %d population "
+                         "points still unsure (U < 2, least %.3g): Pf lies within the bounds %.4g-%.4g of the summary\n",
+                 job.file.c_str(), r.unsureFailing + r.unsureStable, r.minU, p.bounds.low, p.bounds.high);
+  if (r.notConverged > 0)
+    std::fprintf(stderr, "ddaslope: warning: %s: %d runs did not converge: counted apart (learning.csv), Pf's bounds "
+                         "with them are in the summary\n",
+                 job.file.c_str(), r.notConverged);
+  return kExitOk;
+}
+
 void printStudy(const io::ProbabilityJob& job) {
   const model::ProbabilitySpec& s = job.spec;
-  std::printf("probability of failure: %s (%s), %s, measure %s, %s, %d samples, seed %llu\n", job.casePath.c_str(),
-              job.file.c_str(), calibration::name(s.method), calibration::name(s.measure), calibration::name(s.sampling),
-              s.samples, static_cast<unsigned long long>(s.seed));
+  if (s.method == model::ProbabilityMethod::ActiveLearning)
+    std::printf("probability of failure: %s (%s), active_learning (searches of F to %g, confirmation verdicts), "
+                "population of %d %s points, seed %llu\n",
+                job.casePath.c_str(), job.file.c_str(), s.fosWidth, s.samples, calibration::name(s.sampling),
+                static_cast<unsigned long long>(s.seed));
+  else
+    std::printf("probability of failure: %s (%s), %s, measure %s, %s, %d samples, seed %llu\n", job.casePath.c_str(),
+                job.file.c_str(), calibration::name(s.method), calibration::name(s.measure),
+                calibration::name(s.sampling), s.samples, static_cast<unsigned long long>(s.seed));
   for (const auto& in : s.inputs)
     std::printf("  %s: %s\n", in.path.c_str(), calibration::describe(in.distribution).c_str());
   for (const auto& c : s.correlations)
@@ -254,9 +368,10 @@ void addProbabilityOptions(CLI::App* cmd, std::string& path, ProbabilityOptions&
   cmd->add_option("--measure", opt.measure, "verdict (one run per sample) or fos (a strength-reduction search per sample)")
       ->check(CLI::IsMember({"verdict", "fos"}));
   cmd->add_option("--method", opt.method,
-                  "sampling (from the inputs' distribution) or importance_sampling (around FORM's design point: "
-                  "small Pf); default: the section's")
-      ->check(CLI::IsMember({"sampling", "importance_sampling"}));
+                  "sampling (from the inputs' distribution), importance_sampling (around FORM's design point: "
+                  "small Pf) or active_learning (a surrogate of F learnt from searches: small Pf, any number of "
+                  "failure regions); default: the section's")
+      ->check(CLI::IsMember({"sampling", "importance_sampling", "active_learning"}));
   cmd->add_option("--sampling", opt.sampling, "monte_carlo or latin_hypercube (default: the section's)")
       ->check(CLI::IsMember({"monte_carlo", "latin_hypercube"}));
   cmd->add_option("--threads", opt.threads, "samples run at once (the result does not depend on it)")
@@ -279,9 +394,14 @@ int probabilityCommand(const std::string& path, const Overrides& o, const Probab
   const SceneMaker make{job, o};
   const model::Scene reference = loadCase(job.casePath, o, io::caseOverridesFor(job.model));
   calibration::SampleSettings settings;
-  settings.measure = spec.measure;
+  settings.measure = spec.method == model::ProbabilityMethod::ActiveLearning ? model::ProbabilityMeasure::FactorOfSafety
+                                                                            : spec.measure;
   settings.fosWidth = spec.fosWidth;
   for (const auto& name : spec.fosJoints) settings.fosJoints.push_back(jointIndex(reference, name, job.casePath));
+  if (spec.method == model::ProbabilityMethod::ActiveLearning) {
+    if (processRank() != 0) return kExitOk;
+    return activeLearningStudy(job, make, settings, reference, opt, t0);
+  }
   calibration::SampleDesign design(spec);
   // A folder holding a study is refused before anything runs (the design point's runs included).
   // The root alone keeps the folder: under mpirun the others would see the file it has just begun.

@@ -4,7 +4,9 @@
 #include <charconv>
 #include <cmath>
 #include <filesystem>
+#include <cstdio>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <set>
 #include <sstream>
@@ -409,6 +411,104 @@ std::vector<std::string> writePictures(const io::ProbabilityJob& job, const cali
     plot.xCategories = names;
     io::writePng(plot, dir + "/sensitivities.png");
     written.push_back("sensitivities.png");
+  }
+  return written;
+}
+
+std::string activeLearningSummaryJson(const io::ProbabilityJob& job, const calibration::ActiveLearningResult& r,
+                                      const std::string& settingsLine) {
+  const model::ProbabilitySpec& spec = job.spec;
+  const calibration::LearnedProbability p = calibration::probabilityOf(r);
+  const auto finite = [](double v) { return std::isfinite(v) ? v : std::numeric_limits<double>::quiet_NaN(); };
+  io::JsonRecord j;
+  j.set("study", job.file).set("case", job.casePath).set("complete", true);
+  j.set("method", calibration::name(spec.method)).set("sampling", calibration::name(spec.sampling));
+  j.set("seed", spec.seed).set("population", r.population);
+  appendStudy(j, spec);
+  j.set("fos_joints", spec.fosJoints).set("fos_width", spec.fosWidth);
+  j.set("converged", p.converged).set("not_converged", r.notConverged).set("failing", r.failing);
+  j.set("probability_of_failure", p.pf);
+  j.set("interval_95", std::vector<double>{p.interval.low, p.interval.high});
+  j.set("interval_method", "Wilson score over the population (its Monte Carlo error; the classification as exact)");
+  j.set("coefficient_of_variation", p.coefficientOfVariation);
+  j.set("bounds_95_with_unsure_and_not_converged", std::vector<double>{p.bounds.low, p.bounds.high});
+  j.set("reliability_index", finite(p.beta));
+  j.set("reliability_index_interval_95", std::vector<double>{finite(p.betaInterval.low), finite(p.betaInterval.high)});
+  j.set("forward_runs", r.searchRuns + r.verdicts);
+  io::JsonRecord l;
+  l.set("learnt", r.learnt).set("searches", r.searches).set("search_runs", r.searchRuns);
+  l.set("verdict_runs", r.verdicts).set("unsure_decided_by_verdict", r.decidedByVerdict);
+  l.set("sure_contradicted_by_verdict", r.disagreements);
+  l.set("surrogate_fits", r.rounds).set("min_u", finite(r.minU)).set("stop_u", 2.0);
+  l.set("unsure_failing", r.unsureFailing).set("unsure_stable", r.unsureStable);
+  std::vector<double> scales(r.lengthScales.data(), r.lengthScales.data() + r.lengthScales.size());
+  l.set("length_scales", scales);
+  if (!r.message.empty()) l.set("message", r.message);
+  j.set("active_learning", l);
+  j.set("settings", settingsLine);
+  return j.dump() + "\n";
+}
+
+std::vector<std::string> writeActiveLearningFiles(const io::ProbabilityJob& job, const calibration::SampleDesign& design,
+                                                  const calibration::ActiveLearningResult& r, const std::string& dir) {
+  using calibration::LearnedRole;
+  using calibration::PointVerdict;
+  std::vector<std::string> written;
+  {
+    std::string csv = "order,sample,role";
+    for (const auto& in : job.spec.inputs) csv += "," + in.path;
+    csv += ",outcome,factor_of_safety,forward_runs,predicted_margin,predicted_sd,agrees\n";
+    int order = 0;
+    for (const calibration::LearnedPoint& lp : r.points) {
+      csv += std::to_string(order++) + "," + std::to_string(lp.index) + "," + calibration::name(lp.role);
+      for (double v : design.values(lp.index)) csv += "," + exactText(v);
+      const bool confirmation = lp.role == LearnedRole::Confirmation;
+      const char* outcome = confirmation ? (lp.verdict == PointVerdict::Stable  ? "stable"
+                                            : lp.verdict == PointVerdict::Fails ? "fails"
+                                                                                : "not_converged")
+                            : !lp.value.converged ? "not_converged"
+                            : lp.value.fails      ? "fails"
+                                                  : "stable";
+      csv += std::string(",") + outcome;
+      csv += "," + (confirmation || !lp.value.converged ? std::string() : exactText(1 + lp.value.margin));
+      csv += "," + std::to_string(confirmation ? 1 : lp.value.runs);
+      csv += "," + exactText(lp.predictedMean) + "," + exactText(lp.predictedSd);
+      csv += std::string(",") + (confirmation ? (lp.agrees ? "yes" : "no") : "") + "\n";
+    }
+    writeAtomically(dir + "/learning.csv", csv);
+    written.push_back("learning.csv");
+  }
+  const auto [ax, ay] = planeAxes(job.spec);
+  if (ax >= 0) {
+    // At most 20 000 population points drawn (the first, in index order): enough to see the
+    // classified regions without a picture of solid colour.
+    const int shown = std::min(r.population, 20000);
+    io::PlotSeries stable{"population (first " + std::to_string(shown) + "), classified stable", {}, {}, true, false, 1.2};
+    io::PlotSeries fails{"population (all), classified failing", {}, {}, true, false, 1.8};
+    for (int k = 0; k < shown; ++k) {
+      const std::vector<double> v = design.values(k);
+      io::PlotSeries& s = r.fails[static_cast<size_t>(k)] ? fails : stable;
+      s.x.push_back(v[static_cast<size_t>(ax)]);
+      s.y.push_back(v[static_cast<size_t>(ay)]);
+    }
+    for (int k = shown; k < r.population; ++k)
+      if (r.fails[static_cast<size_t>(k)]) {
+        const std::vector<double> v = design.values(k);
+        fails.x.push_back(v[static_cast<size_t>(ax)]);
+        fails.y.push_back(v[static_cast<size_t>(ay)]);
+      }
+    io::PlotSeries searched{"searched (F)", {}, {}, true, false, 4.5};
+    io::PlotSeries confirmed{"judged by one forward run (verdict)", {}, {}, true, false, 3.5};
+    for (const calibration::LearnedPoint& lp : r.points) {
+      const std::vector<double> v = design.values(lp.index);
+      io::PlotSeries& s = lp.role == LearnedRole::Confirmation ? confirmed : searched;
+      s.x.push_back(v[static_cast<size_t>(ax)]);
+      s.y.push_back(v[static_cast<size_t>(ay)]);
+    }
+    io::writePng({"Active learning, " + std::to_string(r.population) + " points: " + job.casePath, job.spec.inputs[static_cast<size_t>(ax)].path,
+                  job.spec.inputs[static_cast<size_t>(ay)].path, {stable, fails, searched, confirmed}},
+                 dir + "/samples_plane.png");
+    written.push_back("samples_plane.png");
   }
   return written;
 }

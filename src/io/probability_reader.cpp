@@ -212,10 +212,12 @@ model::ProbabilitySpec readSection(const SectionReader& r, const json& j) {
     s.sampling = r.choice(j.at("sampling"), p + ".sampling", {"monte_carlo", "latin_hypercube"}) == "monte_carlo"
                      ? model::Sampling::MonteCarlo
                      : model::Sampling::LatinHypercube;
-  if (j.contains("method"))
-    s.method = r.choice(j.at("method"), p + ".method", {"sampling", "importance_sampling"}) == "importance_sampling"
-                   ? model::ProbabilityMethod::ImportanceSampling
-                   : model::ProbabilityMethod::Sampling;
+  if (j.contains("method")) {
+    const std::string m = r.choice(j.at("method"), p + ".method", {"sampling", "importance_sampling", "active_learning"});
+    s.method = m == "importance_sampling" ? model::ProbabilityMethod::ImportanceSampling
+               : m == "active_learning"   ? model::ProbabilityMethod::ActiveLearning
+                                          : model::ProbabilityMethod::Sampling;
+  }
   if (j.contains("measure"))
     s.measure = r.choice(j.at("measure"), p + ".measure", {"verdict", "fos"}) == "fos"
                     ? model::ProbabilityMeasure::FactorOfSafety
@@ -243,6 +245,9 @@ model::ProbabilitySpec readSection(const SectionReader& r, const json& j) {
                                               : std::vector<model::InputCorrelation>{};
   // Read whatever the measure: `--measure fos` may choose it for a section that says "verdict".
   if (j.contains("fos")) readFos(r, j.at("fos"), s);
+  if (s.method == model::ProbabilityMethod::ActiveLearning && j.contains("measure"))
+    r.fail(p + ".measure", std::string("active learning searches F at the samples it learns from and judges its "
+                                       "confirmations by verdicts: expected no measure, found ") + j.at("measure").dump());
   if (s.method == model::ProbabilityMethod::ImportanceSampling && s.measure == model::ProbabilityMeasure::FactorOfSafety)
     r.fail(p + ".measure", "importance sampling judges each sample by one forward run's verdict: expected the "
                            "measure verdict, found fos (F's statistics over weighted samples are not computed)");

@@ -47,7 +47,7 @@ double distributionSd(const model::Distribution& d);
 const char* name(model::DistributionKind kind);
 const char* name(model::Sampling sampling);      ///< "monte_carlo", "latin_hypercube"
 const char* name(model::ProbabilityMeasure m);   ///< "verdict", "fos"
-const char* name(model::ProbabilityMethod m);    ///< "sampling", "importance_sampling"
+const char* name(model::ProbabilityMethod m);    ///< "sampling", "importance_sampling", "active_learning"
 /// E.g. "normal (mean 20000, sd 5000)", "truncated_normal (mean 30, sd 3 before truncation to [20, 40])".
 std::string describe(const model::Distribution& d);
 
@@ -83,10 +83,10 @@ class SampleDesign {
   double weight(int index) const;
   /// L, row-major.
   const std::vector<double>& cholesky() const { return cholesky_; }
-
- private:
   /// Sample `index`'s independent standard normals, before the centre and the correlation.
   std::vector<double> independent(int index) const;
+
+ private:
   std::vector<double> correlated(const std::vector<double>& u) const;
   std::vector<double> centre_;                   ///< empty: no importance sampling
   std::vector<model::UncertainInput> inputs_;
@@ -113,6 +113,7 @@ struct SampleResult {
   double maxDisplacement = 0;  ///< m, the largest monitor displacement after t = 0 (at F = 1)
   double runTime = 0;          ///< s of wall time; never part of a summary
   double weight = 1;           ///< importance sampling: SampleDesign::weight of its index
+  int runs = 1;                ///< forward runs spent (a search's trials)
 };
 
 struct Interval {

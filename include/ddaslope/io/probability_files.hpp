@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "ddaslope/calibration/active_learning.hpp"
 #include "ddaslope/calibration/probability.hpp"
 #include "ddaslope/calibration/reliability.hpp"
 #include "ddaslope/io/probability_reader.hpp"
@@ -76,5 +77,19 @@ std::string summaryJson(const ProbabilityJob& job, const calibration::Probabilit
 std::vector<std::string> writePictures(const ProbabilityJob& job, const calibration::ProbabilitySummary& s,
                                        const std::vector<calibration::SampleResult>& sorted, const std::string& dir,
                                        const DesignPointReport* design = nullptr);
+
+/// Active learning's summary.json text (docs/probability.md, *Active learning*): the study, Pf
+/// with its interval and bounds, β, the forward runs (searches' and confirmations'), and how the
+/// learning ended. No run times: equal runs give equal bytes.
+std::string activeLearningSummaryJson(const ProbabilityJob& job, const calibration::ActiveLearningResult& r,
+                                      const std::string& settingsLine);
+
+/// Active learning's other files, each written whole through a temporary file: learning.csv (the
+/// points run, in the order run: role, the inputs, outcome, F, forward runs, the surrogate's
+/// prediction where the point was chosen, whether a confirmation agreed) and samples_plane.png
+/// (two inputs: the population as classified, the searches and the confirmations). Returns the
+/// names written.
+std::vector<std::string> writeActiveLearningFiles(const ProbabilityJob& job, const calibration::SampleDesign& design,
+                                                  const calibration::ActiveLearningResult& r, const std::string& dir);
 
 }  // namespace ddaslope::io

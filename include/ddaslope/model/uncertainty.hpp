@@ -42,8 +42,10 @@ enum class Sampling { MonteCarlo, LatinHypercube };
 enum class ProbabilityMeasure { Verdict, FactorOfSafety };
 
 /// Where the samples are drawn: from the inputs' distribution (plain sampling), or around the
-/// design point that FORM finds first, each sample weighted (importance sampling: small Pf).
-enum class ProbabilityMethod { Sampling, ImportanceSampling };
+/// design point that FORM finds first, each sample weighted (importance sampling: small Pf), or
+/// classified by a surrogate of F learnt from searches at the samples it is least sure of
+/// (active learning, AK-MCS: small Pf, any number of failure regions).
+enum class ProbabilityMethod { Sampling, ImportanceSampling, ActiveLearning };
 
 struct ProbabilitySpec {
   std::vector<UncertainInput> inputs;

@@ -1,0 +1,125 @@
+#pragma once
+// Probabilities of failure by active learning (AK-MCS: Echard, Gayton & Lemaire 2011, Structural
+// Safety 33, 145–154), docs/probability.md, *Active learning*.
+//
+// A Monte Carlo population of the study's inputs is classified, stable or failing, by a kriging
+// surrogate of the factor of safety (kriging.hpp) instead of a forward run each. The surrogate
+// learns from strength-reduction searches at the population points whose sign it is least sure
+// of: the learning function U = |mean|/sd is the distance of the predicted margin F − 1 from 0 in
+// predicted standard deviations, and learning stops when every point has U ≥ 2 (each sign wrong
+// with probability at most Φ(−2) = 2.3 % under the surrogate's own model), except for a handful
+// of points: those are judged by one forward run each, cheaper than the searches that would make
+// the surrogate sure of them (a point a hair from the limit state needs many). The classification
+// is then confirmed by forward runs: the points the surrogate is least sure of among the others
+// are judged too, and a verdict that contradicts a sure surrogate makes that point a search and
+// the learning goes on. Pf is the failing share of the population, with its Monte Carlo interval, and the
+// points still below U = 2 (when the search budget ran out) bound it.
+//
+// Every population point lies in all failure regions the inputs reach, so a slope that fails at
+// both low and high values of an input is classified right (importance sampling around one
+// design point misses the other region's share).
+#include <functional>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "ddaslope/calibration/probability.hpp"
+#include "ddaslope/calibration/reliability.hpp"
+
+namespace ddaslope::calibration {
+
+/// What a strength-reduction search says at one point.
+struct PerformanceValue {
+  bool converged = false;
+  double margin = 0;   ///< F − 1
+  bool fails = false;  ///< the verdict at F = 1 (agrees with margin < 0)
+  int runs = 0;        ///< forward runs spent
+};
+
+struct ActiveLearningProblem {
+  /// The population in the independent standard normals, d × N: column k is population point k.
+  Eigen::MatrixXd population;
+  /// The search at population point k. Called from several threads at once.
+  std::function<PerformanceValue(int k)> evaluate;
+  /// One forward run's verdict at population point k (the confirmation). Called from several
+  /// threads at once.
+  std::function<PointVerdict(int k)> judge;
+};
+
+struct ActiveLearningSettings {
+  /// Points searched first: population points 0 … initial − 1 (0: max(12, 2(d + 2))).
+  int initial = 0;
+  /// Points learnt per round: the least sure point, then the least sure one at least
+  /// `separation` from it. Fixed, so that the answer does not depend on the thread count.
+  int batch = 2;
+  double separation = 0.25;
+  /// Learning stops when every unrun point has U ≥ stopU.
+  double stopU = 2;
+  /// Searches at most; past it the classification's unsure points bound Pf.
+  int maxSearches = 200;
+  /// Learning stops when at most this many unrun points have U < stopU: each of them is then
+  /// judged by one forward run instead of a search, and so are as many of the least sure of the
+  /// others (the confirmation).
+  int confirmations = 20;
+  /// Searches or verdicts at once.
+  int threads = 1;
+};
+
+enum class LearnedRole { Initial, Learning, Confirmation };
+/// "initial", "learning", "confirmation".
+const char* name(LearnedRole role);
+
+/// One point run, in the order they were run.
+struct LearnedPoint {
+  int index = 0;  ///< population point
+  LearnedRole role = LearnedRole::Initial;
+  PerformanceValue value;                        ///< a search (initial, learning)
+  PointVerdict verdict = PointVerdict::Stable;   ///< a confirmation's verdict
+  /// The surrogate's margin and its sd where the point was chosen (NaN for the initial points).
+  double predictedMean = std::numeric_limits<double>::quiet_NaN();
+  double predictedSd = std::numeric_limits<double>::quiet_NaN();
+  bool agrees = true;  ///< a confirmation: its verdict has the surrogate's sign
+};
+
+struct ActiveLearningResult {
+  std::vector<LearnedPoint> points;
+  int population = 0;
+  int failing = 0;       ///< population points classified failing (a run point by its run)
+  int notConverged = 0;  ///< run points whose search or verdict did not converge: counted apart
+  /// Unrun points classified with U < stopU (the search budget ran out), by predicted sign.
+  int unsureFailing = 0, unsureStable = 0;
+  double minU = 0;       ///< the least U of the unrun points at the end
+  bool learnt = false;   ///< every unrun point reached U ≥ stopU and the last confirmation agreed
+  int rounds = 0;        ///< surrogate fits
+  int searches = 0, searchRuns = 0, verdicts = 0;
+  /// Confirmations of points the surrogate was sure of (U ≥ stopU) that contradicted it.
+  int disagreements = 0;
+  /// Unsure points (U < stopU) decided by their own forward run at the end of the learning.
+  int decidedByVerdict = 0;
+  Eigen::VectorXd lengthScales;
+  std::vector<char> fails;  ///< each population point's final class
+  std::string message;      ///< why the learning could not start (too few points converged)
+};
+
+/// What the classified population says.
+struct LearnedProbability {
+  int converged = 0;  ///< population points less those run that did not converge
+  /// failing / converged, with the Wilson interval of a Monte Carlo estimate from `converged`
+  /// samples (the population's sampling error; the classification is taken as exact).
+  double pf = 0;
+  Interval interval;
+  double coefficientOfVariation = std::numeric_limits<double>::quiet_NaN();  ///< √((1 − Pf)/(Pf n))
+  double beta = 0;
+  Interval betaInterval;
+  /// Wilson's lower end with the unsure points called stable and the not-converged ones dropped,
+  /// to its upper end with both called failing (as wide as the interval when learning finished).
+  Interval bounds;
+};
+LearnedProbability probabilityOf(const ActiveLearningResult& r);
+
+/// Classifies the population (see the file comment).
+ActiveLearningResult learnFailureDomain(const ActiveLearningProblem& problem, const ActiveLearningSettings& settings);
+
+}  // namespace ddaslope::calibration

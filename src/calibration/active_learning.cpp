@@ -1,0 +1,250 @@
+#include "ddaslope/calibration/active_learning.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+#include "ddaslope/calibration/kriging.hpp"
+#include "ddaslope/core/task_farm.hpp"
+
+namespace ddaslope::calibration {
+namespace {
+
+/// Population points predicted per block: bounds the n × block correlation matrices.
+constexpr Eigen::Index kPredictBlock = 4096;
+
+/// The state of a population point.
+enum class Known : char { No, Fails, Stable, NotConverged };
+
+class Learner {
+ public:
+  Learner(const ActiveLearningProblem& p, const ActiveLearningSettings& s)
+      : p_(p), s_(s), n_(static_cast<int>(p.population.cols())), known_(static_cast<size_t>(n_), Known::No),
+        mean_(n_), sd_(n_) {}
+
+  ActiveLearningResult run() {
+    r_.population = n_;
+    const int d = static_cast<int>(p_.population.rows());
+    const int initial = std::min(n_, s_.initial > 0 ? s_.initial : std::max(12, 2 * (d + 2)));
+    std::vector<int> first(static_cast<size_t>(initial));
+    std::iota(first.begin(), first.end(), 0);
+    search(first, LearnedRole::Initial);
+    while (true) {
+      if (static_cast<int>(trainX_.size()) < d + 2) {
+        r_.message = "only " + std::to_string(trainX_.size()) + " of the first searches converged: at least " +
+                     std::to_string(d + 2) + " are needed to fit the surrogate";
+        break;
+      }
+      fitAndPredict();
+      const std::vector<int> unsure = leastSure();
+      if (countUnsure() > s_.confirmations) {
+        if (r_.searches >= s_.maxSearches) break;
+        search(batch(unsure), LearnedRole::Learning);
+        continue;
+      }
+      // Few enough unsure points to judge each by one forward run (a search would cost ten): they
+      // are judged, which decides them, and so are as many of the least sure of the others, which
+      // confirms the surrogate where it claims to know.
+      const size_t unsureCount = static_cast<size_t>(countUnsure());
+      std::vector<int> check(unsure.begin(),
+                             unsure.begin() + std::min(unsure.size(), unsureCount + static_cast<size_t>(s_.confirmations)));
+      const std::vector<int> wrong = confirm(check);
+      if (wrong.empty()) {
+        r_.learnt = true;
+        break;
+      }
+      if (r_.searches >= s_.maxSearches) break;
+      search(wrong, LearnedRole::Learning);
+    }
+    finish();
+    return std::move(r_);
+  }
+
+ private:
+  double u(int k) const {
+    if (known_[static_cast<size_t>(k)] != Known::No) return std::numeric_limits<double>::infinity();
+    return sd_[k] > 0 ? std::abs(mean_[k]) / sd_[k] : std::numeric_limits<double>::infinity();
+  }
+
+  int countUnsure() const {
+    int count = 0;
+    for (int k = 0; k < n_; ++k) count += u(k) < s_.stopU;
+    return count;
+  }
+
+  /// The unrun points, least sure first (ties by index: deterministic).
+  std::vector<int> leastSure() const {
+    std::vector<int> order;
+    for (int k = 0; k < n_; ++k)
+      if (known_[static_cast<size_t>(k)] == Known::No) order.push_back(k);
+    const size_t keep = std::min<size_t>(order.size(), std::max<size_t>(2 * static_cast<size_t>(s_.confirmations), 64));
+    std::partial_sort(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(keep), order.end(), [&](int a, int b) {
+      const double ua = u(a), ub = u(b);
+      return ua < ub || (ua == ub && a < b);
+    });
+    order.resize(keep);
+    return order;
+  }
+
+  /// The least sure point, then each next least sure one at least `separation` from those chosen.
+  std::vector<int> batch(const std::vector<int>& unsure) const {
+    std::vector<int> chosen{unsure.front()};
+    for (size_t i = 1; i < unsure.size() && static_cast<int>(chosen.size()) < s_.batch; ++i) {
+      if (u(unsure[i]) >= s_.stopU) break;
+      bool apart = true;
+      for (int c : chosen) apart = apart && (p_.population.col(unsure[i]) - p_.population.col(c)).norm() >= s_.separation;
+      if (apart) chosen.push_back(unsure[i]);
+    }
+    return chosen;
+  }
+
+  void search(const std::vector<int>& points, LearnedRole role) {
+    std::vector<PerformanceValue> values(points.size());
+    runOnThreads(static_cast<int>(points.size()), s_.threads,
+                 [&](int i) { values[static_cast<size_t>(i)] = p_.evaluate(points[static_cast<size_t>(i)]); });
+    for (size_t i = 0; i < points.size(); ++i) {
+      const int k = points[i];
+      LearnedPoint lp;
+      lp.index = k;
+      lp.role = role;
+      lp.value = values[i];
+      if (role != LearnedRole::Initial) lp.predictedMean = mean_[k], lp.predictedSd = sd_[k];
+      r_.points.push_back(lp);
+      ++r_.searches;
+      r_.searchRuns += values[i].runs;
+      if (!values[i].converged) {
+        known_[static_cast<size_t>(k)] = Known::NotConverged;
+        continue;
+      }
+      known_[static_cast<size_t>(k)] = values[i].fails ? Known::Fails : Known::Stable;
+      trainX_.push_back(k);
+      trainY_.push_back(values[i].margin);
+    }
+  }
+
+  /// Judges `points` by one forward run each; returns those whose verdict contradicts the surrogate.
+  std::vector<int> confirm(const std::vector<int>& points) {
+    std::vector<PointVerdict> verdicts(points.size());
+    runOnThreads(static_cast<int>(points.size()), s_.threads,
+                 [&](int i) { verdicts[static_cast<size_t>(i)] = p_.judge(points[static_cast<size_t>(i)]); });
+    std::vector<int> wrong;
+    for (size_t i = 0; i < points.size(); ++i) {
+      const int k = points[i];
+      LearnedPoint lp;
+      lp.index = k;
+      lp.role = LearnedRole::Confirmation;
+      lp.verdict = verdicts[i];
+      lp.predictedMean = mean_[k];
+      lp.predictedSd = sd_[k];
+      ++r_.verdicts;
+      if (verdicts[i] == PointVerdict::NotConverged) {
+        known_[static_cast<size_t>(k)] = Known::NotConverged;
+      } else {
+        const bool fails = verdicts[i] == PointVerdict::Fails;
+        lp.agrees = fails == (mean_[k] < 0);
+        const bool sure = u(k) >= s_.stopU;
+        known_[static_cast<size_t>(k)] = fails ? Known::Fails : Known::Stable;
+        if (!sure) {
+          ++r_.decidedByVerdict;
+        } else if (!lp.agrees) {
+          // The surrogate was sure and wrong: it must learn there.
+          ++r_.disagreements;
+          wrong.push_back(k);
+        }
+      }
+      r_.points.push_back(lp);
+    }
+    // A contradicted point is searched, so the surrogate learns its margin: it is no longer
+    // known from its verdict alone.
+    for (int k : wrong) known_[static_cast<size_t>(k)] = Known::No;
+    return wrong;
+  }
+
+  void fitAndPredict() {
+    const Eigen::Index d = p_.population.rows(), m = static_cast<Eigen::Index>(trainX_.size());
+    Eigen::MatrixXd x(m, d);
+    Eigen::VectorXd y(m);
+    for (Eigen::Index i = 0; i < m; ++i) {
+      x.row(i) = p_.population.col(trainX_[static_cast<size_t>(i)]).transpose();
+      y[i] = trainY_[static_cast<size_t>(i)];
+    }
+    model_.fit(x, y);
+    ++r_.rounds;
+    const int blocks = static_cast<int>((n_ + kPredictBlock - 1) / kPredictBlock);
+    parallelBlocks(blocks);
+  }
+
+  void parallelBlocks(int blocks) {
+    runOnThreads(blocks, s_.threads, [&](int b) {
+      const Eigen::Index begin = b * kPredictBlock, count = std::min<Eigen::Index>(kPredictBlock, n_ - begin);
+      Eigen::VectorXd mean, sd;
+      model_.predict(p_.population.middleCols(begin, count), mean, sd);
+      mean_.segment(begin, count) = mean;
+      sd_.segment(begin, count) = sd;
+    });
+  }
+
+  void finish() {
+    r_.fails.assign(static_cast<size_t>(n_), 0);
+    r_.minU = std::numeric_limits<double>::infinity();
+    const bool predicted = r_.rounds > 0;
+    for (int k = 0; k < n_; ++k) {
+      switch (known_[static_cast<size_t>(k)]) {
+        case Known::Fails: r_.fails[static_cast<size_t>(k)] = 1; break;
+        case Known::Stable: break;
+        case Known::NotConverged: ++r_.notConverged; break;
+        case Known::No:
+          if (!predicted) break;
+          r_.fails[static_cast<size_t>(k)] = mean_[k] < 0;
+          r_.minU = std::min(r_.minU, u(k));
+          if (u(k) < s_.stopU) ++(mean_[k] < 0 ? r_.unsureFailing : r_.unsureStable);
+          break;
+      }
+      r_.failing += r_.fails[static_cast<size_t>(k)];
+    }
+    if (predicted) r_.lengthScales = model_.lengthScales();
+  }
+
+  const ActiveLearningProblem& p_;
+  const ActiveLearningSettings& s_;
+  int n_;
+  std::vector<Known> known_;
+  Eigen::VectorXd mean_, sd_;
+  std::vector<int> trainX_;
+  std::vector<double> trainY_;
+  Kriging model_;
+  ActiveLearningResult r_;
+};
+
+}  // namespace
+
+const char* name(LearnedRole role) {
+  switch (role) {
+    case LearnedRole::Initial: return "initial";
+    case LearnedRole::Learning: return "learning";
+    case LearnedRole::Confirmation: return "confirmation";
+  }
+  return "?";
+}
+
+LearnedProbability probabilityOf(const ActiveLearningResult& r) {
+  LearnedProbability p;
+  p.converged = r.population - r.notConverged;
+  if (p.converged <= 0) return p;
+  p.pf = static_cast<double>(r.failing) / p.converged;
+  p.interval = wilsonInterval(r.failing, p.converged);
+  if (r.failing > 0) p.coefficientOfVariation = std::sqrt((1 - p.pf) / (p.pf * p.converged));
+  p.beta = reliabilityIndex(p.pf);
+  p.betaInterval = {reliabilityIndex(p.interval.high), reliabilityIndex(p.interval.low)};
+  p.bounds = {wilsonInterval(r.failing - r.unsureFailing, r.population).low,
+              wilsonInterval(r.failing + r.unsureStable + r.notConverged, r.population).high};
+  p.bounds.low = std::min(p.bounds.low, p.interval.low);
+  p.bounds.high = std::max(p.bounds.high, p.interval.high);
+  return p;
+}
+
+ActiveLearningResult learnFailureDomain(const ActiveLearningProblem& problem, const ActiveLearningSettings& settings) {
+  return Learner(problem, settings).run();
+}
+
+}  // namespace ddaslope::calibration
