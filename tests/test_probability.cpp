@@ -760,6 +760,7 @@ TEST(Probability, SmallPfOfCorrelatedInputsByImportanceSampling) {
 // must-show), and classify the population as Hoek & Bray's closed form does: the failing count
 // may differ from the closed form's only by points within 0.002 of FS = 1 (DDA's boundary lies
 // within 0.1 % of the closed form's, docs/probability.md). The same bytes on 1 and 2 threads.
+// The surrogate's design point gives the sensitivities.
 TEST(Probability, SmallPfByActiveLearning) {
   const std::string job = kSource + "/calibration/planar_failure/probability_small.json";
   const PlanarGeometry g(io::readCase(kSource + "/cases/planar_failure.json"));
@@ -776,6 +777,9 @@ TEST(Probability, SmallPfByActiveLearning) {
   EXPECT_LE(s["forward_runs"].get<int>(), 3000);
   EXPECT_TRUE(s["active_learning"]["learnt"].get<bool>());
   EXPECT_EQ(s["not_converged"], 0);
+  // The surrogate's design point, found without a forward run, is the closed form's FORM point
+  // (β 2.9041) within the tolerance importance sampling's rays are held to.
+  EXPECT_NEAR(s["design_point"]["reliability_index_form"].get<double>(), closedFormBeta(g, 35000, 5000, 33, 3), 0.02);
   io::ProbabilityJob study = io::readProbabilityJob(job);
   study.spec.samples = 100000;
   const calibration::SampleDesign design(study.spec);
@@ -795,6 +799,7 @@ TEST(Probability, SmallPfByActiveLearning) {
   EXPECT_EQ(slurp(one + "/summary.json"), slurp(two + "/summary.json"));
   EXPECT_TRUE(fs::exists(two + "/learning.csv"));
   EXPECT_TRUE(fs::exists(two + "/samples_plane.png"));
+  EXPECT_TRUE(fs::exists(two + "/sensitivities.png"));
   // A folder that holds a learning is kept unless --overwrite.
   EXPECT_EQ(clitest::runCli("probability " + job + args + one, &err), 2);
   EXPECT_NE(err.find("holds the runs of a study already"), std::string::npos) << err;

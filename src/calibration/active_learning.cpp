@@ -4,6 +4,8 @@
 #include <cmath>
 #include <numeric>
 
+#include <nlopt.hpp>
+
 #include "ddaslope/calibration/kriging.hpp"
 #include "ddaslope/core/task_farm.hpp"
 
@@ -202,7 +204,7 @@ class Learner {
       }
       r_.failing += r_.fails[static_cast<size_t>(k)];
     }
-    if (predicted) r_.lengthScales = model_.lengthScales();
+    if (predicted) r_.lengthScales = model_.lengthScales(), r_.surrogate = model_;
   }
 
   const ActiveLearningProblem& p_;
@@ -241,6 +243,55 @@ LearnedProbability probabilityOf(const ActiveLearningResult& r) {
   p.bounds.low = std::min(p.bounds.low, p.interval.low);
   p.bounds.high = std::max(p.bounds.high, p.interval.high);
   return p;
+}
+
+DesignPoint surrogateDesignPoint(const ActiveLearningProblem& problem, const ActiveLearningResult& r) {
+  DesignPoint d;
+  const Eigen::Index dims = problem.population.rows();
+  Eigen::Index start = -1;
+  for (Eigen::Index k = 0; k < problem.population.cols(); ++k)
+    if (r.fails[static_cast<size_t>(k)] &&
+        (start < 0 || problem.population.col(k).squaredNorm() < problem.population.col(start).squaredNorm()))
+      start = k;
+  if (start < 0 || r.rounds == 0) {
+    d.message = "no population point fails";
+    return d;
+  }
+  struct Data {
+    const Kriging* model;
+  } data{&r.surrogate};
+  const auto margin = [](unsigned n, const double* x, double*, void* p) {
+    const Eigen::MatrixXd at = Eigen::Map<const Eigen::MatrixXd>(x, n, 1);
+    Eigen::VectorXd mean, sd;
+    static_cast<Data*>(p)->model->predict(at, mean, sd);
+    return mean[0];
+  };
+  const auto norm2 = [](const std::vector<double>& x, std::vector<double>&, void*) {
+    double s = 0;
+    for (double v : x) s += v * v;
+    return s;
+  };
+  nlopt::opt opt(nlopt::LN_COBYLA, static_cast<unsigned>(dims));
+  opt.set_min_objective(norm2, nullptr);
+  opt.add_inequality_constraint(margin, &data, 1e-6);
+  opt.set_xtol_abs(1e-4);
+  opt.set_maxeval(2000);
+  std::vector<double> u(problem.population.col(start).data(), problem.population.col(start).data() + dims);
+  const std::vector<double> fallback = u;
+  double value = 0;
+  try {
+    opt.optimize(u, value);
+  } catch (const std::exception&) {
+    // Round-off: keep the failing population point, a conservative (farther) estimate.
+  }
+  if (margin(static_cast<unsigned>(dims), u.data(), nullptr, &data) > 1e-4) u = fallback;
+  d.found = true;
+  d.converged = true;
+  d.u = u;
+  d.beta = std::sqrt(norm2(u, u, nullptr));
+  d.alpha.resize(u.size());
+  for (size_t i = 0; i < u.size(); ++i) d.alpha[i] = d.beta > 0 ? u[i] / d.beta : 0;
+  return d;
 }
 
 ActiveLearningResult learnFailureDomain(const ActiveLearningProblem& problem, const ActiveLearningSettings& settings) {

@@ -177,15 +177,20 @@ io::DesignPointReport designPoint(const calibration::SampleDesign& design, const
   return report;
 }
 
+/// The design point's inputs, α, γ and γ², one line each.
+void printSensitivities(const io::ProbabilityJob& job, const io::DesignPointReport& d) {
+  std::printf("    %-44s %14s %9s %9s %8s\n", "input", "value", "alpha", "gamma", "gamma^2");
+  for (size_t i = 0; i < d.values.size(); ++i)
+    std::printf("    %-44s %14.6g %9.4f %9.4f %7.1f%%\n", job.spec.inputs[i].path.c_str(), d.values[i], d.point.alpha[i],
+                d.importance[i], 100 * d.importance[i] * d.importance[i]);
+}
+
 void printDesignPoint(const io::ProbabilityJob& job, const io::DesignPointReport& d) {
   const calibration::DesignPoint& p = d.point;
   std::printf("  design point (FORM): β = %.4f, Pf ≈ Φ(−β) = %.4g; %d forward runs on %d rays, %d secant steps%s\n",
               p.beta, calibration::normalCdf(-p.beta), p.runs, p.rays, p.steps,
               p.converged ? "" : " (the direction did not settle: the sampling centre is the nearest point found)");
-  std::printf("    %-44s %14s %9s %9s %8s\n", "input", "value", "alpha", "gamma", "gamma^2");
-  for (size_t i = 0; i < d.values.size(); ++i)
-    std::printf("    %-44s %14.6g %9.4f %9.4f %7.1f%%\n", job.spec.inputs[i].path.c_str(), d.values[i], p.alpha[i],
-                d.importance[i], 100 * d.importance[i] * d.importance[i]);
+  printSensitivities(job, d);
   if (!p.otherRegions.empty())
     std::fprintf(stderr, "ddaslope: warning: %s: failure was also found in %zu direction(s) more than 90° from the "
                          "design point's: importance sampling around one point may miss their share of Pf (compare "
@@ -246,12 +251,17 @@ int activeLearningStudy(const io::ProbabilityJob& job, const SceneMaker& make, c
     std::fflush(stdout);
   }
   const calibration::ActiveLearningResult r = calibration::learnFailureDomain(problem, settings);
+  std::optional<io::DesignPointReport> point;
+  if (const calibration::DesignPoint d = calibration::surrogateDesignPoint(problem, r); d.found) {
+    point = io::DesignPointReport{d, design.valuesAt(d.u), calibration::importanceVector(d.alpha, design.cholesky())};
+  }
+  const io::DesignPointReport* pointReport = point ? &*point : nullptr;
   fs::create_directories(opt.outDir);
   for (const char* name : {"samples.csv", "probability_settings.json", "summary.partial.json", "pf_convergence.png",
-                           "fos_histogram.png", "sensitivities.png"})
+                           "fos_histogram.png", "sensitivities.png", "samples_plane.png"})
     fs::remove(opt.outDir + "/" + name);
-  const std::string json = io::activeLearningSummaryJson(job, r, line);
-  const std::vector<std::string> files = io::writeActiveLearningFiles(job, design, r, opt.outDir);
+  const std::string json = io::activeLearningSummaryJson(job, r, line, pointReport);
+  const std::vector<std::string> files = io::writeActiveLearningFiles(job, design, r, opt.outDir, pointReport);
   writeAtomically(opt.outDir + "/summary.json", json);
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const calibration::LearnedProbability p = calibration::probabilityOf(r);
@@ -272,6 +282,11 @@ int activeLearningStudy(const io::ProbabilityJob& job, const SceneMaker& make, c
     if (r.learnt)
       std::printf("  learnt: every point not run has U ≥ 2 (least %.3g), and the last verdicts agreed with the "
                   "surrogate\n", r.minU);
+    if (point) {
+      std::printf("  design point of the surrogate (its margin 0 nearest the medians, no forward run): β = %.4f, "
+                  "Φ(−β) = %.4g\n", point->point.beta, calibration::normalCdf(-point->point.beta));
+      printSensitivities(job, *point);
+    }
     std::printf("  not converged: %d\n", r.notConverged);
     std::printf("  %.2f s wall on %d thread%s; wrote %s/summary.json", wall, opt.threads, opt.threads == 1 ? "" : "s",
                 opt.outDir.c_str());

@@ -323,6 +323,27 @@ std::string summaryJson(const io::ProbabilityJob& job, const calibration::Probab
   return j.dump() + "\n";
 }
 
+std::string writeSensitivities(const io::ProbabilityJob& job, const DesignPointReport& design, const std::string& dir) {
+  // One bar per input, each its own series so that the legend names it.
+  std::vector<io::PlotSeries> bars;
+  std::vector<std::string> names;
+  for (size_t i = 0; i < design.importance.size(); ++i) {
+    const double g = design.importance[i], x = static_cast<double>(i + 1);
+    // γᵢ > 0: the limit state falls as input i grows, so failure lies at its high values.
+    const std::string side = g > 0 ? "high" : "low";
+    char label[64];
+    std::snprintf(label, sizeof label, ": %.0f %%, failure at %s values", 100 * g * g, side.c_str());
+    io::PlotSeries bar{job.spec.inputs[i].path + label, {x - 0.3, x - 0.3, x + 0.3, x + 0.3}, {0, g * g, g * g, 0}, false};
+    bar.filled = true;
+    bars.push_back(bar);
+    names.push_back(job.spec.inputs[i].path);
+  }
+  io::LinePlot plot{"Sensitivities at the design point: " + job.casePath, "input", "importance γ²", bars};
+  plot.xCategories = names;
+  io::writePng(plot, dir + "/sensitivities.png");
+  return "sensitivities.png";
+}
+
 std::vector<std::string> writePictures(const io::ProbabilityJob& job, const calibration::ProbabilitySummary& s,
                                        const std::vector<SampleResult>& sorted, const std::string& dir,
                                        const DesignPointReport* design) {
@@ -392,31 +413,12 @@ std::vector<std::string> writePictures(const io::ProbabilityJob& job, const cali
                  dir + "/fos_histogram.png");
     written.push_back("fos_histogram.png");
   }
-  if (design) {
-    // One bar per input, each its own series so that the legend names it.
-    std::vector<io::PlotSeries> bars;
-    std::vector<std::string> names;
-    for (size_t i = 0; i < design->importance.size(); ++i) {
-      const double g = design->importance[i], x = static_cast<double>(i + 1);
-      // γᵢ > 0: the limit state falls as input i grows, so failure lies at its high values.
-      const std::string side = g > 0 ? "high" : "low";
-      char label[64];
-      std::snprintf(label, sizeof label, ": %.0f %%, failure at %s values", 100 * g * g, side.c_str());
-      io::PlotSeries bar{job.spec.inputs[i].path + label, {x - 0.3, x - 0.3, x + 0.3, x + 0.3}, {0, g * g, g * g, 0}, false};
-      bar.filled = true;
-      bars.push_back(bar);
-      names.push_back(job.spec.inputs[i].path);
-    }
-    io::LinePlot plot{"Sensitivities at the design point: " + title, "input", "importance γ²", bars};
-    plot.xCategories = names;
-    io::writePng(plot, dir + "/sensitivities.png");
-    written.push_back("sensitivities.png");
-  }
+  if (design) written.push_back(writeSensitivities(job, *design, dir));
   return written;
 }
 
 std::string activeLearningSummaryJson(const io::ProbabilityJob& job, const calibration::ActiveLearningResult& r,
-                                      const std::string& settingsLine) {
+                                      const std::string& settingsLine, const DesignPointReport* design) {
   const model::ProbabilitySpec& spec = job.spec;
   const calibration::LearnedProbability p = calibration::probabilityOf(r);
   const auto finite = [](double v) { return std::isfinite(v) ? v : std::numeric_limits<double>::quiet_NaN(); };
@@ -445,12 +447,27 @@ std::string activeLearningSummaryJson(const io::ProbabilityJob& job, const calib
   l.set("length_scales", scales);
   if (!r.message.empty()) l.set("message", r.message);
   j.set("active_learning", l);
+  if (design) {
+    const calibration::DesignPoint& d = design->point;
+    io::JsonRecord dp;
+    dp.set("source", "the surrogate's margin 0 nearest the medians (no forward run)");
+    dp.set("reliability_index_form", d.beta).set("probability_of_failure_form", calibration::normalCdf(-d.beta));
+    dp.set("u", d.u);
+    for (size_t i = 0; i < spec.inputs.size(); ++i) {
+      io::JsonRecord in;
+      in.set("path", spec.inputs[i].path).set("value", design->values[i]).set("alpha", d.alpha[i]);
+      in.set("importance_gamma", design->importance[i]).set("importance_share", design->importance[i] * design->importance[i]);
+      dp.append("inputs", in);
+    }
+    j.set("design_point", dp);
+  }
   j.set("settings", settingsLine);
   return j.dump() + "\n";
 }
 
 std::vector<std::string> writeActiveLearningFiles(const io::ProbabilityJob& job, const calibration::SampleDesign& design,
-                                                  const calibration::ActiveLearningResult& r, const std::string& dir) {
+                                                  const calibration::ActiveLearningResult& r, const std::string& dir,
+                                                  const DesignPointReport* point) {
   using calibration::LearnedRole;
   using calibration::PointVerdict;
   std::vector<std::string> written;
@@ -510,6 +527,7 @@ std::vector<std::string> writeActiveLearningFiles(const io::ProbabilityJob& job,
                  dir + "/samples_plane.png");
     written.push_back("samples_plane.png");
   }
+  if (point) written.push_back(writeSensitivities(job, *point, dir));
   return written;
 }
 

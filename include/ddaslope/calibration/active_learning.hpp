@@ -25,6 +25,7 @@
 
 #include <Eigen/Dense>
 
+#include "ddaslope/calibration/kriging.hpp"
 #include "ddaslope/calibration/probability.hpp"
 #include "ddaslope/calibration/reliability.hpp"
 
@@ -100,6 +101,7 @@ struct ActiveLearningResult {
   int decidedByVerdict = 0;
   Eigen::VectorXd lengthScales;
   std::vector<char> fails;  ///< each population point's final class
+  Kriging surrogate;        ///< the last fit (none when rounds = 0)
   std::string message;      ///< why the learning could not start (too few points converged)
 };
 
@@ -118,6 +120,12 @@ struct LearnedProbability {
   Interval bounds;
 };
 LearnedProbability probabilityOf(const ActiveLearningResult& r);
+
+/// The surrogate's design point: the point of least |u| where the surrogate's margin is 0,
+/// found from the failing population point of least |u| (constrained COBYLA, no forward run).
+/// It gives FORM's sensitivities α (and γ) for the study without the rays of findDesignPoint;
+/// found = false when no population point fails. runs = 0: it costs none.
+DesignPoint surrogateDesignPoint(const ActiveLearningProblem& problem, const ActiveLearningResult& r);
 
 /// Classifies the population (see the file comment).
 ActiveLearningResult learnFailureDomain(const ActiveLearningProblem& problem, const ActiveLearningSettings& settings);

@@ -82,7 +82,7 @@ std::vector<std::string> writePictures(const ProbabilityJob& job, const calibrat
 /// with its interval and bounds, β, the forward runs (searches' and confirmations'), and how the
 /// learning ended. No run times: equal runs give equal bytes.
 std::string activeLearningSummaryJson(const ProbabilityJob& job, const calibration::ActiveLearningResult& r,
-                                      const std::string& settingsLine);
+                                      const std::string& settingsLine, const DesignPointReport* design = nullptr);
 
 /// Active learning's other files, each written whole through a temporary file: learning.csv (the
 /// points run, in the order run: role, the inputs, outcome, F, forward runs, the surrogate's
@@ -90,6 +90,10 @@ std::string activeLearningSummaryJson(const ProbabilityJob& job, const calibrati
 /// (two inputs: the population as classified, the searches and the confirmations). Returns the
 /// names written.
 std::vector<std::string> writeActiveLearningFiles(const ProbabilityJob& job, const calibration::SampleDesign& design,
-                                                  const calibration::ActiveLearningResult& r, const std::string& dir);
+                                                  const calibration::ActiveLearningResult& r, const std::string& dir,
+                                                  const DesignPointReport* point = nullptr);
+
+/// sensitivities.png: γ² of each input at the design point, and the side failure lies on.
+std::string writeSensitivities(const ProbabilityJob& job, const DesignPointReport& point, const std::string& dir);
 
 }  // namespace ddaslope::io
