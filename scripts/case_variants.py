@@ -68,6 +68,9 @@ def transform_points(case, f):
     for key in ("monitors", "point_loads", "fixed_points"):
         for m in case.get(key, []):
             m["point"] = f(m["point"])
+    for s in case.get("supports", []):  # a bolt or anchor: its head and end are points of the scene
+        s["head"] = f(s["head"])
+        s["end"] = f(s["end"])
     water = case.get("water", {})
     if "phreatic_line" in water:
         water["phreatic_line"] = [f(p) for p in water["phreatic_line"]]
@@ -113,10 +116,14 @@ def main():
         for b in case["blocks"]:
             if "velocity" in b:
                 b["velocity"][0] = -b["velocity"][0]
+        for load in case.get("point_loads", []):
+            load["force"][0] = -load["force"][0]
     elif v == "rotate":
         (deg,) = a.values
         transform_points(case, lambda p: rotate_vector(p, deg))
         case["gravity"] = rotate_vector(case.get("gravity", [0, -9.81]), deg)
+        for load in case.get("point_loads", []):
+            load["force"] = rotate_vector(load["force"], deg)
         if "water" in case:
             sys.exit("rotate: a water table is horizontal by definition; rotate a case without water")
     elif v == "reverse-blocks":
