@@ -268,12 +268,18 @@ int activeLearningStudy(const io::ProbabilityJob& job, const SceneMaker& make, c
   if (opt.json) {
     std::printf("%s", json.c_str());
   } else {
+    char cov[48] = "none (no point fails)";
+    if (std::isfinite(p.coefficientOfVariation)) std::snprintf(cov, sizeof cov, "%.3f", p.coefficientOfVariation);
     std::printf("  Pf = %.4g: %d of %d population points classified failing; 95 %% interval %.4g-%.4g (Wilson, the "
-                "population's sampling error), coefficient of variation %.3f\n",
-                p.pf, r.failing, p.converged, p.interval.low, p.interval.high, p.coefficientOfVariation);
+                "population's sampling error), coefficient of variation %s\n",
+                p.pf, r.failing, p.converged, p.interval.low, p.interval.high, cov);
     if (std::isfinite(p.beta))
       std::printf("  reliability index β = Φ⁻¹(1 − Pf) = %.4g (%.4g to %.4g)\n", p.beta, p.betaInterval.low,
                   p.betaInterval.high);
+    else if (p.converged > 0)
+      std::printf("  reliability index β = Φ⁻¹(1 − Pf): %s (at least %.4g with 95 %% confidence)\n",
+                  p.pf == 0 ? "unbounded, no point fails" : "-∞, every point fails",
+                  p.pf == 0 ? p.betaInterval.low : p.betaInterval.high);
     std::printf("  forward runs: %d in %d searches of F and %d verdicts; %d surrogate fits\n", r.searchRuns + r.verdicts,
                 r.searches, r.verdicts, r.rounds);
     std::printf("  verdicts: %d decided points the surrogate was unsure of (U < 2), %d confirmed points it was sure "
@@ -305,6 +311,15 @@ int activeLearningStudy(const io::ProbabilityJob& job, const SceneMaker& make, c
     std::fprintf(stderr, "ddaslope: warning: %s: %d runs did not converge: counted apart (learning.csv), Pf's bounds "
                          "with them are in the summary\n",
                  job.file.c_str(), r.notConverged);
+  // The population sets Pf's precision: N ≈ (1 − Pf)/(Pf·CoV²) for a coefficient of variation CoV.
+  if (r.failing == 0)
+    std::fprintf(stderr, "ddaslope: warning: %s: no point of the population fails: Pf < %.3g (95 %%); a larger "
+                         "population (--samples) or importance_sampling resolves a smaller Pf\n",
+                 job.file.c_str(), p.interval.high);
+  else if (p.coefficientOfVariation > 0.1)
+    std::fprintf(stderr, "ddaslope: warning: %s: Pf's coefficient of variation is %.2f with %d population points; "
+                         "about %.0f give 0.1 (--samples, at most 1000000)\n",
+                 job.file.c_str(), p.coefficientOfVariation, p.converged, std::ceil((1 - p.pf) / (p.pf * 0.01)));
   return kExitOk;
 }
 
