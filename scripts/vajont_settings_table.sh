@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The Vajont rows of docs/accuracy.md's rigid-block and preset tables: the critical friction of
-# cases/vajont.json (c = 0) and the run-out at φ_res = 5.54° (calibration/vajont_runout's estimate), each with
-# the case's own settings, rigid blocks and the three presets, with wall times.
+# cases/vajont.json (c = 0) and the run-out at φ_res = 5.54° (a fixed input, so that the rows compare
+# across versions; the back-analysed estimate is docs/vajont.md's), each with the case's own settings,
+# rigid blocks and the three presets, with wall times.
 # Usage: scripts/vajont_settings_table.sh [BIN]   (about 4 minutes; from the repository root; time
 # it on an otherwise idle machine)
 set -euo pipefail

@@ -38,19 +38,24 @@ class Learner {
         break;
       }
       fitAndPredict();
-      const std::vector<int> unsure = leastSure();
-      if (countUnsure() > s_.confirmations) {
+      // Unsure points where the surrogate's own uncertainty still exceeds the searches'
+      // resolution: a search there teaches it something. The other unsure points lie within the
+      // resolution of F = 1, where no search can make the surrogate sure: a verdict decides them.
+      int unsureCount = 0, learnable = 0;
+      for (int k = 0; k < n_; ++k)
+        if (u(k) < s_.stopU) ++unsureCount, learnable += sd_[k] > s_.resolution;
+      if (learnable > 0 && unsureCount > s_.confirmations) {
         if (r_.searches >= s_.maxSearches) break;
-        search(batch(unsure), LearnedRole::Learning);
+        search(batch(leastSure(64, true)), LearnedRole::Learning);
         continue;
       }
-      // Few enough unsure points to judge each by one forward run (a search would cost ten): they
-      // are judged, which decides them, and so are as many of the least sure of the others, which
-      // confirms the surrogate where it claims to know.
-      const size_t unsureCount = static_cast<size_t>(countUnsure());
-      std::vector<int> check(unsure.begin(),
-                             unsure.begin() + std::min(unsure.size(), unsureCount + static_cast<size_t>(s_.confirmations)));
+      // The unsure points are judged by one forward run each (a search would cost ten), which
+      // decides them, and so are as many of the least sure of the others, which confirms the
+      // surrogate where it claims to know.
+      const int decide = std::min(unsureCount, s_.maxVerdicts);
+      const std::vector<int> check = leastSure(static_cast<size_t>(decide + s_.confirmations), false);
       const std::vector<int> wrong = confirm(check);
+      if (decide < unsureCount) break;  // the rest stay unsure, and bound Pf
       if (wrong.empty()) {
         r_.learnt = true;
         break;
@@ -68,18 +73,13 @@ class Learner {
     return sd_[k] > 0 ? std::abs(mean_[k]) / sd_[k] : std::numeric_limits<double>::infinity();
   }
 
-  int countUnsure() const {
-    int count = 0;
-    for (int k = 0; k < n_; ++k) count += u(k) < s_.stopU;
-    return count;
-  }
-
-  /// The unrun points, least sure first (ties by index: deterministic).
-  std::vector<int> leastSure() const {
+  /// The `keep` unrun points of least U, least sure first (ties by index: deterministic); with
+  /// `learnable`, only those whose predicted sd exceeds the searches' resolution.
+  std::vector<int> leastSure(size_t keep, bool learnable) const {
     std::vector<int> order;
     for (int k = 0; k < n_; ++k)
-      if (known_[static_cast<size_t>(k)] == Known::No) order.push_back(k);
-    const size_t keep = std::min<size_t>(order.size(), std::max<size_t>(2 * static_cast<size_t>(s_.confirmations), 64));
+      if (known_[static_cast<size_t>(k)] == Known::No && (!learnable || sd_[k] > s_.resolution)) order.push_back(k);
+    keep = std::min(keep, order.size());
     std::partial_sort(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(keep), order.end(), [&](int a, int b) {
       const double ua = u(a), ub = u(b);
       return ua < ub || (ua == ub && a < b);

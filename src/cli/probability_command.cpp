@@ -243,6 +243,7 @@ int activeLearningStudy(const io::ProbabilityJob& job, const SceneMaker& make, c
   };
   calibration::ActiveLearningSettings settings;
   settings.threads = opt.threads;
+  settings.resolution = spec.fosWidth / 4;
   if (!opt.json) {
     printStudy(job);
     std::printf("  forward runs at %s\n", line.c_str());

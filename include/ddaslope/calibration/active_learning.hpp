@@ -60,10 +60,15 @@ struct ActiveLearningSettings {
   double stopU = 2;
   /// Searches at most; past it the classification's unsure points bound Pf.
   int maxSearches = 200;
-  /// Learning stops when at most this many unrun points have U < stopU: each of them is then
-  /// judged by one forward run instead of a search, and so are as many of the least sure of the
-  /// others (the confirmation).
+  /// The standard deviation of a search's margin (its F is known to ± width/2): where the
+  /// surrogate's own sd is below it, another search cannot make the surrogate surer.
+  double resolution = 0.005 / 4;
+  /// Learning stops when at most this many unrun points have U < stopU, or when none of them has
+  /// a predicted sd above the resolution. Each unsure point is then judged by one forward run
+  /// instead of a search, and so are `confirmations` of the least sure of the others.
   int confirmations = 20;
+  /// Unsure points judged by verdicts at most; past it the rest stay unsure and bound Pf.
+  int maxVerdicts = 2000;
   /// Searches or verdicts at once.
   int threads = 1;
 };
