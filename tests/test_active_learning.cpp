@@ -165,5 +165,58 @@ TEST(ActiveLearning, ConfirmationVerdictsAreReportedAndNeverInventFailures) {
   const Eigen::MatrixXd u = normals(2, 5000);
   for (int k = 0; k < 5000; ++k) wrongFailing += r.result.fails[static_cast<size_t>(k)] && g(u.col(k)) >= 0;
   EXPECT_LE(wrongFailing, r.result.unsureFailing);
-  if (r.result.learnt) EXPECT_NEAR(r.result.failing, r.exactFailing, 0.05 * r.exactFailing + 2);
+  EXPECT_TRUE(r.result.learnt);
+  EXPECT_NEAR(r.result.failing, r.exactFailing, 0.05 * r.exactFailing + 2);
+}
+
+// A point that was run counts by its run, whatever the surrogate says: with the search budget
+// spent on the first searches, verdicts that contradict the surrogate (here every verdict says
+// "fails") cannot be searched, yet each of those points must be classified failing, and the
+// learning must say it did not finish.
+TEST(ActiveLearning, APointThatWasRunKeepsItsVerdictWhenTheBudgetIsSpent) {
+  ActiveLearningProblem p;
+  p.population = normals(2, 2000);
+  p.evaluate = [&](int k) {
+    PerformanceValue v;
+    v.converged = true;
+    v.margin = 3 - p.population(0, k);
+    v.fails = v.margin < 0;
+    v.runs = 1;
+    return v;
+  };
+  p.judge = [](int) { return PointVerdict::Fails; };
+  ActiveLearningSettings s;
+  s.maxSearches = 12;
+  const ActiveLearningResult r = calibration::learnFailureDomain(p, s);
+  EXPECT_FALSE(r.learnt);
+  EXPECT_EQ(r.searches, 12);
+  int judged = 0;
+  for (const calibration::LearnedPoint& lp : r.points)
+    if (lp.role == calibration::LearnedRole::Confirmation) {
+      ++judged;
+      EXPECT_TRUE(r.fails[static_cast<size_t>(lp.index)]) << "population point " << lp.index;
+    }
+  EXPECT_GT(judged, 0);
+  EXPECT_GT(r.disagreements, 0);
+}
+
+// Too few of the first searches converge to fit the surrogate (d + 2 = 4 are needed): the
+// learning says why, fits nothing and classifies nothing as failing by default.
+TEST(ActiveLearning, TooFewConvergedSearchesAreReportedNotClassified) {
+  ActiveLearningProblem p;
+  p.population = normals(2, 500);
+  p.evaluate = [](int k) {
+    PerformanceValue v;
+    v.converged = k < 2;
+    v.margin = -1;
+    v.fails = true;
+    v.runs = 1;
+    return v;
+  };
+  p.judge = [](int) { return PointVerdict::Fails; };
+  const ActiveLearningResult r = calibration::learnFailureDomain(p, ActiveLearningSettings{});
+  EXPECT_FALSE(r.learnt);
+  EXPECT_EQ(r.rounds, 0);
+  EXPECT_NE(r.message.find("only 2 of the first searches converged"), std::string::npos) << r.message;
+  EXPECT_EQ(r.notConverged, 10);
 }

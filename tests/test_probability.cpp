@@ -844,8 +844,10 @@ TEST(Probability, ActiveLearningAgreesWithTheVerdictsOfItsPopulation) {
 }
 
 // Active learning chooses each search from those before it: it runs in one go, and the measure is
-// its own (searches and verdicts). Refused with the option or key named.
-TEST(Probability, ActiveLearningRefusesResumeAndAMeasure) {
+// its own (searches and verdicts). Refused with the option named, before any run: --resume, a
+// --measure, a population no larger than the first searches, a folder holding another study's
+// samples, an --out that cannot be a folder.
+TEST(Probability, ActiveLearningRefusesWhatItCannotDo) {
   const std::string job = kSource + "/calibration/planar_failure/probability_small.json";
   const std::string dir = tempDir("al_refused");
   std::string err;
@@ -853,13 +855,23 @@ TEST(Probability, ActiveLearningRefusesResumeAndAMeasure) {
   EXPECT_NE(err.find("--resume: active learning chooses each search"), std::string::npos) << err;
   EXPECT_EQ(clitest::runCli("probability " + job + " --method active_learning --measure fos --out " + dir, &err), 2);
   EXPECT_NE(err.find("--measure: fos: active learning searches F"), std::string::npos) << err;
-  expectStudyError(
-      [](json& d) {
-        d["probability"]["method"] = "active_learning";
-        d["probability"]["measure"] = "verdict";
-      },
-      "probability.measure", "active learning searches F");
+  // Too small a population to learn from: refused before any run.
+  EXPECT_EQ(clitest::runCli("probability " + job + " --method active_learning --samples 12 --out " + dir, &err), 2);
+  EXPECT_NE(err.find("--samples: 12: active learning classifies a population larger than its 12 first searches"),
+            std::string::npos) << err;
+  // A folder that holds another study's samples is kept, whichever method wrote them.
+  const std::string sampled = tempDir("al_sampled");
+  clitest::captureCli("probability " + kJob + " --samples 20 --out " + sampled, &err);
+  EXPECT_EQ(clitest::runCli("probability " + job + " --method active_learning --out " + sampled, &err), 2);
+  EXPECT_NE(err.find("samples.csv: holds the runs of a study already"), std::string::npos) << err;
+  EXPECT_TRUE(fs::exists(sampled + "/samples.csv"));
+  // An --out that cannot be a folder is refused before the runs.
+  const std::string file = clitest::writeTemp("al_not_a_folder", "x");
+  EXPECT_EQ(clitest::runCli("probability " + job + " --method active_learning --out " + file, &err), 2);
+  EXPECT_NE(err.find("cannot create the folder"), std::string::npos) << err;
   EXPECT_FALSE(fs::exists(dir + "/summary.json"));
+  fs::remove(file);
+  fs::remove_all(sampled);
   fs::remove_all(dir);
 }
 

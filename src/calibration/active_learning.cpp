@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <numeric>
 
 #include <nlopt.hpp>
@@ -27,7 +28,7 @@ class Learner {
   ActiveLearningResult run() {
     r_.population = n_;
     const int d = static_cast<int>(p_.population.rows());
-    const int initial = std::min(n_, s_.initial > 0 ? s_.initial : std::max(12, 2 * (d + 2)));
+    const int initial = std::min(n_, s_.initial > 0 ? s_.initial : initialSearches(d));
     std::vector<int> first(static_cast<size_t>(initial));
     std::iota(first.begin(), first.end(), 0);
     search(first, LearnedRole::Initial);
@@ -44,9 +45,12 @@ class Learner {
       int unsureCount = 0, learnable = 0;
       for (int k = 0; k < n_; ++k)
         if (u(k) < s_.stopU) ++unsureCount, learnable += sd_[k] > s_.resolution;
+      if (s_.progress) s_.progress(r_.searches, r_.verdicts, unsureCount);
       if (learnable > 0 && unsureCount > s_.confirmations) {
         if (r_.searches >= s_.maxSearches) break;
-        search(batch(leastSure(64, true)), LearnedRole::Learning);
+        std::vector<int> next = batch(leastSure(64, true));
+        next.resize(std::min(next.size(), static_cast<size_t>(s_.maxSearches - r_.searches)));
+        search(next, LearnedRole::Learning);
         continue;
       }
       // The unsure points are judged by one forward run each (a search would cost ten), which
@@ -61,16 +65,20 @@ class Learner {
         break;
       }
       if (r_.searches >= s_.maxSearches) break;
-      search(wrong, LearnedRole::Learning);
+      const size_t room = static_cast<size_t>(s_.maxSearches - r_.searches);
+      search(std::vector<int>(wrong.begin(), wrong.begin() + std::min(room, wrong.size())), LearnedRole::Learning);
     }
     finish();
     return std::move(r_);
   }
 
  private:
+  /// U of an unrun point: its margin's distance from 0 in standard deviations, the surrogate's
+  /// own combined with the searches' resolution (the margins it learnt are known no better).
   double u(int k) const {
     if (known_[static_cast<size_t>(k)] != Known::No) return std::numeric_limits<double>::infinity();
-    return sd_[k] > 0 ? std::abs(mean_[k]) / sd_[k] : std::numeric_limits<double>::infinity();
+    const double sd = std::hypot(sd_[k], s_.resolution);
+    return sd > 0 ? std::abs(mean_[k]) / sd : std::numeric_limits<double>::infinity();
   }
 
   /// The `keep` unrun points of least U, least sure first (ties by index: deterministic); with
@@ -145,6 +153,7 @@ class Learner {
         const bool fails = verdicts[i] == PointVerdict::Fails;
         lp.agrees = fails == (mean_[k] < 0);
         const bool sure = u(k) >= s_.stopU;
+        lp.sure = sure;
         known_[static_cast<size_t>(k)] = fails ? Known::Fails : Known::Stable;
         if (!sure) {
           ++r_.decidedByVerdict;
@@ -156,9 +165,8 @@ class Learner {
       }
       r_.points.push_back(lp);
     }
-    // A contradicted point is searched, so the surrogate learns its margin: it is no longer
-    // known from its verdict alone.
-    for (int k : wrong) known_[static_cast<size_t>(k)] = Known::No;
+    // A contradicted point keeps its verdict; it is searched next (budget allowing) so that the
+    // surrogate learns its margin.
     return wrong;
   }
 
@@ -229,6 +237,8 @@ const char* name(LearnedRole role) {
   return "?";
 }
 
+int initialSearches(int dimensions) { return std::max(12, 2 * (dimensions + 2)); }
+
 LearnedProbability probabilityOf(const ActiveLearningResult& r) {
   LearnedProbability p;
   p.converged = r.population - r.notConverged;
@@ -253,9 +263,26 @@ DesignPoint surrogateDesignPoint(const ActiveLearningProblem& problem, const Act
     if (r.fails[static_cast<size_t>(k)] &&
         (start < 0 || problem.population.col(k).squaredNorm() < problem.population.col(start).squaredNorm()))
       start = k;
-  if (start < 0 || r.rounds == 0) {
+  if (r.rounds == 0) {
+    d.message = "no surrogate was fitted";
+    return d;
+  }
+  if (start < 0) {
     d.message = "no population point fails";
     return d;
+  }
+  {
+    // At the medians' side of the limit state only: a slope that fails at its medians has no
+    // nearest failing point, and a direction taken there would be noise.
+    Eigen::VectorXd mean, sd;
+    r.surrogate.predict(Eigen::MatrixXd::Zero(dims, 1), mean, sd);
+    if (mean[0] <= 0) {
+      char text[96];
+      std::snprintf(text, sizeof text, "the slope fails at the inputs' medians, where the surrogate's F is %.3f",
+                    1 + mean[0]);
+      d.message = text;
+      return d;
+    }
   }
   struct Data {
     const Kriging* model;

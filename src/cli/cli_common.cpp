@@ -160,20 +160,40 @@ ddaslope::model::Scene loadCase(const std::string& casePath, const Overrides& o,
                       std::move(extra));
 }
 
-ddaslope::model::Scene loadCaseText(const std::string& text, const std::string& casePath, const Overrides& o,
-                                    std::vector<ddaslope::io::CaseOverride> extra) {
+namespace {
+
+/// The command line's overrides and `extra`, in the order they apply: --set, extra, model options.
+std::vector<ddaslope::io::CaseOverride> allOverrides(const Overrides& o, std::vector<ddaslope::io::CaseOverride> extra) {
   std::vector<ddaslope::io::CaseOverride> all;
   for (const auto& s : o.settings) all.push_back(parseSetting(s));
   all.insert(all.end(), extra.begin(), extra.end());
   for (auto& m : ddaslope::io::caseOverridesFor(o.model)) all.push_back(std::move(m));
-  ddaslope::model::Scene scene = ddaslope::io::parseCase(text, casePath, all);
-  // `run --duration` shortens a run after the case is read: the case's expected values at later
-  // times stay valid (reported as not reached), and the shorter run's workload needs no new check.
+  return all;
+}
+
+/// `run --duration` shortens a run after the case is read: the case's expected values at later
+/// times stay valid (reported as not reached), and the shorter run's workload needs no new check.
+void applyDuration(ddaslope::model::Scene& scene, const std::string& casePath, const Overrides& o) {
   if (o.duration > 0 && o.duration < scene.settings.duration) scene.settings.duration = o.duration;
   else if (o.duration > 0) {
     scene.settings.duration = o.duration;
     ddaslope::io::checkWorkload(scene, casePath);
   }
+}
+
+}  // namespace
+
+ddaslope::model::Scene loadParsedCase(const ddaslope::io::ParsedCase& parsed, const std::string& casePath,
+                                      const Overrides& o, std::vector<ddaslope::io::CaseOverride> extra) {
+  ddaslope::model::Scene scene = parsed.read(allOverrides(o, std::move(extra)));
+  applyDuration(scene, casePath, o);
+  return scene;
+}
+
+ddaslope::model::Scene loadCaseText(const std::string& text, const std::string& casePath, const Overrides& o,
+                                    std::vector<ddaslope::io::CaseOverride> extra) {
+  ddaslope::model::Scene scene = ddaslope::io::parseCase(text, casePath, allOverrides(o, std::move(extra)));
+  applyDuration(scene, casePath, o);
   return scene;
 }
 

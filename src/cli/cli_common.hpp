@@ -54,6 +54,9 @@ ddaslope::model::Scene loadCase(const std::string& casePath, const Overrides& o,
 /// loadCase on the text of the case file, read once by the caller (a study's samples).
 ddaslope::model::Scene loadCaseText(const std::string& text, const std::string& casePath, const Overrides& o,
                                     std::vector<ddaslope::io::CaseOverride> extra = {});
+/// loadCaseText of a case parsed once (a study's samples read it many times).
+ddaslope::model::Scene loadParsedCase(const ddaslope::io::ParsedCase& parsed, const std::string& casePath,
+                                      const Overrides& o, std::vector<ddaslope::io::CaseOverride> extra = {});
 
 /// The settings every forward run of a command uses, and where Δt came from.
 std::string settingsLine(const ddaslope::model::Scene& scene);

@@ -64,11 +64,12 @@ io::ProbabilityJob readStudy(const std::string& path, const ProbabilityOptions& 
 struct SceneMaker {
   const io::ProbabilityJob& job;
   const Overrides& overrides;
+  io::ParsedCase parsed{job.caseText, job.casePath};  ///< parsed once: a study reads it per sample
   model::Scene operator()(const std::vector<double>& values) const {
     std::vector<io::CaseOverride> extra;
     for (size_t i = 0; i < values.size(); ++i) extra.emplace_back(job.spec.inputs[i].path, values[i]);
     for (auto& m : io::caseOverridesFor(job.model)) extra.push_back(std::move(m));
-    return loadCaseText(job.caseText, job.casePath, overrides, extra);
+    return loadParsedCase(parsed, job.casePath, overrides, extra);
   }
 };
 
@@ -116,6 +117,40 @@ void checkDrawnValues(const io::ProbabilityJob& job, const calibration::SampleDe
     }
 }
 
+/// Active learning classifies population points it never runs: each must be a scene the case
+/// accepts, or a refused combination (a residual friction angle drawn above the peak) would be
+/// counted silently. Every point is read before any run; the lowest refused index is named,
+/// whatever the thread count.
+void checkEveryPoint(const io::ProbabilityJob& job, const calibration::SampleDesign& design, const SceneMaker& make,
+                     int threads) {
+  constexpr int kChunk = 1024;
+  const int chunks = (design.samples() + kChunk - 1) / kChunk;
+  std::vector<int> refused(static_cast<size_t>(chunks), -1);
+  std::vector<std::string> why(static_cast<size_t>(chunks));
+  runOnThreads(chunks, threads, [&](int c) {
+    for (int k = c * kChunk; k < std::min(design.samples(), (c + 1) * kChunk); ++k) {
+      try {
+        make(design.values(k));
+      } catch (const InputError& e) {
+        refused[static_cast<size_t>(c)] = k;
+        why[static_cast<size_t>(c)] = e.what();
+        return;
+      }
+    }
+  });
+  for (int c = 0; c < chunks; ++c)
+    if (refused[static_cast<size_t>(c)] >= 0) {
+      const int k = refused[static_cast<size_t>(c)];
+      std::string values;
+      const std::vector<double> v = design.values(k);
+      for (size_t i = 0; i < v.size(); ++i)
+        values += (i ? ", " : "") + job.spec.inputs[i].path + " = " + exactText(v[i]);
+      throw InputError(job.file, "probability.inputs",
+                       "population point " + std::to_string(k) + " draws " + values + ", a combination the case refuses (" +
+                           why[static_cast<size_t>(c)] + "). Bound the inputs so that every combination is accepted");
+    }
+}
+
 /// The study's folder: a study there is continued (--resume), replaced (--overwrite) or kept (an
 /// error, so that no sample is ever lost). Returns the samples it holds (resumed).
 std::vector<SampleResult> prepareFolder(const ProbabilityOptions& opt, SampleTable& table,
@@ -127,7 +162,8 @@ std::vector<SampleResult> prepareFolder(const ProbabilityOptions& opt, SampleTab
                                        "starts again");
   if (opt.overwrite)
     for (const char* name : {"samples.csv", "probability_settings.json", "summary.json", "summary.partial.json",
-                             "pf_convergence.png", "samples_plane.png", "fos_histogram.png", "sensitivities.png"})
+                             "pf_convergence.png", "samples_plane.png", "fos_histogram.png", "sensitivities.png",
+                             "learning.csv"})
       fs::remove(opt.outDir + "/" + name);
   std::vector<SampleResult> done;
   if (opt.resume && fs::exists(table.path())) {
@@ -207,9 +243,23 @@ int activeLearningStudy(const io::ProbabilityJob& job, const SceneMaker& make, c
                         std::chrono::steady_clock::time_point t0) {
   const model::ProbabilitySpec& spec = job.spec;
   const calibration::SampleDesign design(spec);
-  if (fs::exists(opt.outDir + "/learning.csv") && !opt.overwrite)
-    throw InputError(opt.outDir + "/learning.csv", "", "holds the runs of a study already: --overwrite starts again");
+  const int initial = calibration::initialSearches(design.inputs());
+  if (spec.samples <= initial)
+    throw InputError(opt.samples > 0 ? "--samples" : job.file, opt.samples > 0 ? std::to_string(opt.samples) : "probability.samples",
+                     "active learning classifies a population larger than its " + std::to_string(initial) +
+                         " first searches: expected more than " + std::to_string(initial) + " points, found " +
+                         std::to_string(spec.samples) + " (for so few, sampling runs every one)");
+  // Nothing is lost: a folder that holds any study's runs is kept unless --overwrite, and the
+  // folder must be writable before the runs begin.
+  for (const char* held : {"learning.csv", "samples.csv"})
+    if (fs::exists(opt.outDir + "/" + held) && !opt.overwrite)
+      throw InputError(opt.outDir + "/" + held, "", "holds the runs of a study already: --overwrite starts again");
+  std::error_code made;
+  fs::create_directories(opt.outDir, made);
+  if (made || !fs::is_directory(opt.outDir))
+    throw InputError("--out", opt.outDir, "cannot create the folder" + (made ? ": " + made.message() : std::string()));
   checkDrawnValues(job, design, make);
+  checkEveryPoint(job, design, make, opt.threads);
   const std::string line = settingsLine(reference);
   calibration::SampleSettings verdict = fos;
   verdict.measure = model::ProbabilityMeasure::Verdict;
@@ -251,13 +301,27 @@ int activeLearningStudy(const io::ProbabilityJob& job, const SceneMaker& make, c
                 "at a time\n", design.samples(), std::min(opt.threads, settings.batch));
     std::fflush(stdout);
   }
+  const auto log = startProgress("probability", opt.progress, opt.json);
+  settings.progress = [&](int searches, int verdicts, int unsure) {
+    if (!log->active()) return;
+    char text[96];
+    std::snprintf(text, sizeof text, "%d searches, %d verdicts; %d points unsure", searches, verdicts, unsure);
+    log->report({"searches", searches, settings.maxSearches, text, {{"unsure_points", unsure}}});
+  };
   const calibration::ActiveLearningResult r = calibration::learnFailureDomain(problem, settings);
-  std::optional<io::DesignPointReport> point;
-  if (const calibration::DesignPoint d = calibration::surrogateDesignPoint(problem, r); d.found) {
-    point = io::DesignPointReport{d, design.valuesAt(d.u), calibration::importanceVector(d.alpha, design.cholesky())};
+  log->finish(r.message.empty(), std::to_string(r.searches) + " searches, " + std::to_string(r.verdicts) + " verdicts");
+  if (!r.message.empty()) {
+    // Nothing to classify with: no Pf is written.
+    std::fprintf(stderr, "ddaslope: %s: active learning could not start: %s\n", job.file.c_str(), r.message.c_str());
+    return kExitNonConvergence;
   }
+  std::optional<io::DesignPointReport> point;
+  const calibration::DesignPoint surrogatePoint = calibration::surrogateDesignPoint(problem, r);
+  const std::string designMessage = surrogatePoint.message;
+  if (surrogatePoint.found)
+    point = io::DesignPointReport{surrogatePoint, design.valuesAt(surrogatePoint.u),
+                                  calibration::importanceVector(surrogatePoint.alpha, design.cholesky())};
   const io::DesignPointReport* pointReport = point ? &*point : nullptr;
-  fs::create_directories(opt.outDir);
   for (const char* name : {"samples.csv", "probability_settings.json", "summary.partial.json", "pf_convergence.png",
                            "fos_histogram.png", "sensitivities.png", "samples_plane.png"})
     fs::remove(opt.outDir + "/" + name);
@@ -278,17 +342,21 @@ int activeLearningStudy(const io::ProbabilityJob& job, const SceneMaker& make, c
       std::printf("  reliability index β = Φ⁻¹(1 − Pf) = %.4g (%.4g to %.4g)\n", p.beta, p.betaInterval.low,
                   p.betaInterval.high);
     else if (p.converged > 0)
-      std::printf("  reliability index β = Φ⁻¹(1 − Pf): %s (at least %.4g with 95 %% confidence)\n",
-                  p.pf == 0 ? "unbounded, no point fails" : "-∞, every point fails",
+      std::printf("  reliability index β = Φ⁻¹(1 − Pf): %s (%s %.4g with 95 %% confidence)\n",
+                  p.pf == 0 ? "unbounded, no point fails" : "-∞, every point fails", p.pf == 0 ? "at least" : "at most",
                   p.pf == 0 ? p.betaInterval.low : p.betaInterval.high);
     std::printf("  forward runs: %d in %d searches of F and %d verdicts; %d surrogate fits\n", r.searchRuns + r.verdicts,
                 r.searches, r.verdicts, r.rounds);
     std::printf("  verdicts: %d decided points the surrogate was unsure of (U < 2), %d confirmed points it was sure "
                 "of, %d of which contradicted it (and were searched)\n",
                 r.decidedByVerdict, r.verdicts - r.decidedByVerdict, r.disagreements);
-    if (r.learnt)
+    if (r.learnt && std::isfinite(r.minU))
       std::printf("  learnt: every point not run has U ≥ 2 (least %.3g), and the last verdicts agreed with the "
                   "surrogate\n", r.minU);
+    else if (r.learnt)
+      std::printf("  learnt: every point was run\n");
+    if (!point)
+      std::printf("  design point: none (%s), so no sensitivities\n", designMessage.c_str());
     if (point) {
       std::printf("  design point of the surrogate (its margin 0 nearest the medians, no forward run): β = %.4f, "
                   "Φ(−β) = %.4g\n", point->point.beta, calibration::normalCdf(-point->point.beta));
@@ -299,10 +367,6 @@ int activeLearningStudy(const io::ProbabilityJob& job, const SceneMaker& make, c
                 opt.outDir.c_str());
     for (const auto& f : files) std::printf(", %s", f.c_str());
     std::printf("\n");
-  }
-  if (!r.message.empty()) {
-    std::fprintf(stderr, "ddaslope: %s: active learning could not start: %s\n", job.file.c_str(), r.message.c_str());
-    return kExitNonConvergence;
   }
   if (!r.learnt)
     std::fprintf(stderr, "ddaslope: warning: %s: the learning stopped at its budget of searches with %d population "
@@ -361,8 +425,8 @@ void printSummary(const calibration::ProbabilitySummary& s) {
       std::printf("  reliability index β = Φ⁻¹(1 − Pf) = %.4g (%.4g to %.4g)\n", s.beta, s.betaInterval.low,
                   s.betaInterval.high);
     else
-      std::printf("  reliability index β = Φ⁻¹(1 − Pf): %s (at least %.4g with 95 %% confidence)\n",
-                  s.pf == 0 ? "unbounded, no sample fails" : "-∞, every sample fails",
+      std::printf("  reliability index β = Φ⁻¹(1 − Pf): %s (%s %.4g with 95 %% confidence)\n",
+                  s.pf == 0 ? "unbounded, no sample fails" : "-∞, every sample fails", s.pf == 0 ? "at least" : "at most",
                   s.pf == 0 ? s.betaInterval.low : s.betaInterval.high);
   }
   if (s.hasFactor && s.converged > 0)
@@ -439,6 +503,9 @@ int probabilityCommand(const std::string& path, const Overrides& o, const Probab
   if (processRank() == 0 && fs::exists(opt.outDir + "/samples.csv") && !opt.resume && !opt.overwrite)
     throw InputError(opt.outDir + "/samples.csv", "", "holds the samples of a study already: --resume continues it, "
                                                       "--overwrite starts again");
+  if (processRank() == 0 && fs::exists(opt.outDir + "/learning.csv") && !opt.overwrite)
+    throw InputError(opt.outDir + "/learning.csv", "", "holds the runs of an active-learning study: --overwrite "
+                                                       "starts again");
   std::optional<io::DesignPointReport> form;
   if (spec.method == model::ProbabilityMethod::ImportanceSampling) {
     // Every process finds the same design point (its runs depend on the study only), so the

@@ -542,9 +542,11 @@ void readExpectations(const Reader& r, const json& doc, model::Scene& s) {
 
 }  // namespace
 
-model::Scene parseCase(const std::string& text, const std::string& file) {
+namespace {
+
+/// The scene of a parsed case document.
+model::Scene readCaseDocument(const json& doc, const std::string& file) {
   const Reader r(file);
-  const json doc = parseJsonText(text, file);
   r.onlyKeys(doc, "", {"description", "gravity", "materials", "joints", "default_joint", "joint_pairs", "section",
                        "blocks", "monitors", "point_loads", "edge_loads", "supports", "fixed_points", "water", "seismic", "analysis", "expected",
                        "probability"});
@@ -577,6 +579,12 @@ model::Scene parseCase(const std::string& text, const std::string& file) {
   localiseOrigin(s);
   checkWorkload(s, file);
   return s;
+}
+
+}  // namespace
+
+model::Scene parseCase(const std::string& text, const std::string& file) {
+  return readCaseDocument(parseJsonText(text, file), file);
 }
 
 void checkWorkload(const model::Scene& s, const std::string& file) {
@@ -680,8 +688,28 @@ model::Scene readCase(const std::string& path, const std::vector<CaseOverride>& 
   return parseCase(readInputFile(path, kMaxJsonFileBytes), path, overrides);
 }
 
+namespace {
+model::Scene readWithOverrides(json doc, const std::string& path, const std::vector<CaseOverride>& overrides);
+}  // namespace
+
+struct ParsedCase::Document {
+  json doc;
+};
+
+ParsedCase::ParsedCase(const std::string& text, std::string file)
+    : document_(std::make_shared<const Document>(Document{parseJsonText(text, file)})), file_(std::move(file)) {}
+
+model::Scene ParsedCase::read(const std::vector<CaseOverride>& overrides) const {
+  return readWithOverrides(document_->doc, file_, overrides);
+}
+
 model::Scene parseCase(const std::string& text, const std::string& path, const std::vector<CaseOverride>& overrides) {
-  json doc = parseJsonText(text, path);
+  return readWithOverrides(parseJsonText(text, path), path, overrides);
+}
+
+namespace {
+
+model::Scene readWithOverrides(json doc, const std::string& path, const std::vector<CaseOverride>& overrides) {
   std::string origin;
   for (const CaseOverride& o : overrides) {
     const size_t star = o.jsonPath.find(".*.");
@@ -696,10 +724,12 @@ model::Scene parseCase(const std::string& text, const std::string& path, const s
     }
     if (o.jsonPath == "analysis.time_step" || o.jsonPath == "analysis.preset") origin = o.origin;
   }
-  model::Scene scene = parseCase(doc.dump(), path);
+  model::Scene scene = readCaseDocument(doc, path);
   if (!origin.empty()) scene.settings.timeStepOrigin = origin;
   return scene;
 }
+
+}  // namespace
 
 std::vector<CaseOverride> caseOverridesFor(const model::SettingsOverride& o) {
   std::vector<CaseOverride> out;

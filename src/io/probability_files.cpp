@@ -474,7 +474,7 @@ std::vector<std::string> writeActiveLearningFiles(const io::ProbabilityJob& job,
   {
     std::string csv = "order,sample,role";
     for (const auto& in : job.spec.inputs) csv += "," + in.path;
-    csv += ",outcome,factor_of_safety,forward_runs,predicted_margin,predicted_sd,agrees\n";
+    csv += ",outcome,factor_of_safety,forward_runs,predicted_margin,predicted_sd,surrogate_sure,agrees\n";
     int order = 0;
     for (const calibration::LearnedPoint& lp : r.points) {
       csv += std::to_string(order++) + "," + std::to_string(lp.index) + "," + calibration::name(lp.role);
@@ -490,6 +490,7 @@ std::vector<std::string> writeActiveLearningFiles(const io::ProbabilityJob& job,
       csv += "," + (confirmation || !lp.value.converged ? std::string() : exactText(1 + lp.value.margin));
       csv += "," + std::to_string(confirmation ? 1 : lp.value.runs);
       csv += "," + exactText(lp.predictedMean) + "," + exactText(lp.predictedSd);
+      csv += std::string(",") + (confirmation ? (lp.sure ? "yes" : "no") : "");
       csv += std::string(",") + (confirmation ? (lp.agrees ? "yes" : "no") : "") + "\n";
     }
     writeAtomically(dir + "/learning.csv", csv);
@@ -514,16 +515,21 @@ std::vector<std::string> writeActiveLearningFiles(const io::ProbabilityJob& job,
         fails.x.push_back(v[static_cast<size_t>(ax)]);
         fails.y.push_back(v[static_cast<size_t>(ay)]);
       }
-    io::PlotSeries searched{"searched (F)", {}, {}, true, false, 4.5};
-    io::PlotSeries confirmed{"judged by one forward run (verdict)", {}, {}, true, false, 3.5};
+    io::PlotSeries searchedStable{"searched (F), stable", {}, {}, true, false, 4.5};
+    io::PlotSeries searchedFails{"searched (F), failing", {}, {}, true, false, 4.5};
+    io::PlotSeries judgedStable{"judged by one run, stable", {}, {}, true, false, 3.5};
+    io::PlotSeries judgedFails{"judged by one run, failing", {}, {}, true, false, 3.5};
     for (const calibration::LearnedPoint& lp : r.points) {
       const std::vector<double> v = design.values(lp.index);
-      io::PlotSeries& s = lp.role == LearnedRole::Confirmation ? confirmed : searched;
+      const bool judged = lp.role == LearnedRole::Confirmation;
+      const bool fails = judged ? lp.verdict == PointVerdict::Fails : lp.value.converged && lp.value.fails;
+      io::PlotSeries& s = judged ? (fails ? judgedFails : judgedStable) : (fails ? searchedFails : searchedStable);
       s.x.push_back(v[static_cast<size_t>(ax)]);
       s.y.push_back(v[static_cast<size_t>(ay)]);
     }
     io::writePng({"Active learning, " + std::to_string(r.population) + " points: " + job.casePath, job.spec.inputs[static_cast<size_t>(ax)].path,
-                  job.spec.inputs[static_cast<size_t>(ay)].path, {stable, fails, searched, confirmed}},
+                  job.spec.inputs[static_cast<size_t>(ay)].path,
+                  {stable, fails, searchedStable, searchedFails, judgedStable, judgedFails}},
                  dir + "/samples_plane.png");
     written.push_back("samples_plane.png");
   }

@@ -245,9 +245,6 @@ model::ProbabilitySpec readSection(const SectionReader& r, const json& j) {
                                               : std::vector<model::InputCorrelation>{};
   // Read whatever the measure: `--measure fos` may choose it for a section that says "verdict".
   if (j.contains("fos")) readFos(r, j.at("fos"), s);
-  if (s.method == model::ProbabilityMethod::ActiveLearning && j.contains("measure"))
-    r.fail(p + ".measure", std::string("active learning searches F at the samples it learns from and judges its "
-                                       "confirmations by verdicts: expected no measure, found ") + j.at("measure").dump());
   if (s.method == model::ProbabilityMethod::ImportanceSampling && s.measure == model::ProbabilityMeasure::FactorOfSafety)
     r.fail(p + ".measure", "importance sampling judges each sample by one forward run's verdict: expected the "
                            "measure verdict, found fos (F's statistics over weighted samples are not computed)");

@@ -2,18 +2,18 @@
 // Probabilities of failure by active learning (AK-MCS: Echard, Gayton & Lemaire 2011, Structural
 // Safety 33, 145–154), docs/probability.md, *Active learning*.
 //
-// A Monte Carlo population of the study's inputs is classified, stable or failing, by a kriging
-// surrogate of the factor of safety (kriging.hpp) instead of a forward run each. The surrogate
-// learns from strength-reduction searches at the population points whose sign it is least sure
-// of: the learning function U = |mean|/sd is the distance of the predicted margin F − 1 from 0 in
-// predicted standard deviations, and learning stops when every point has U ≥ 2 (each sign wrong
-// with probability at most Φ(−2) = 2.3 % under the surrogate's own model), except for a handful
-// of points: those are judged by one forward run each, cheaper than the searches that would make
-// the surrogate sure of them (a point a hair from the limit state needs many). The classification
-// is then confirmed by forward runs: the points the surrogate is least sure of among the others
-// are judged too, and a verdict that contradicts a sure surrogate makes that point a search and
-// the learning goes on. Pf is the failing share of the population, with its Monte Carlo interval, and the
-// points still below U = 2 (when the search budget ran out) bound it.
+// A population of the study's inputs (its plain-sampling design, Monte Carlo or Latin
+// hypercube) is classified, stable or failing, by a kriging surrogate of the factor of safety
+// (kriging.hpp) instead of a forward run each. The surrogate learns from strength-reduction
+// searches at the population points whose sign it is least sure of. The learning function
+// U = |mean|/sd is the distance of the predicted margin F − 1 from 0 in standard deviations (the
+// surrogate's, combined with the searches' own resolution). Learning stops when few points have
+// U < 2, or when the surrogate knows every such point's F as well as a search could: each of them
+// is then judged by one forward run, cheaper than the searches that would make the surrogate sure
+// (a point a hair from the limit state needs many). The classification is then confirmed by
+// forward runs: the least sure of the other points are judged too, and a verdict that contradicts
+// a sure surrogate makes that point a search, and the learning goes on. Pf is the failing share of
+// the population, with its sampling interval; points left below U = 2 (a budget ran out) bound it.
 //
 // Every population point lies in all failure regions the inputs reach, so a slope that fails at
 // both low and high values of an input is classified right (importance sampling around one
@@ -49,8 +49,12 @@ struct ActiveLearningProblem {
   std::function<PointVerdict(int k)> judge;
 };
 
+/// The searches before the first fit, for d inputs: max(12, 2(d + 2)) (Echard et al. take 12;
+/// the trend and the length scales need a few points per input).
+int initialSearches(int dimensions);
+
 struct ActiveLearningSettings {
-  /// Points searched first: population points 0 … initial − 1 (0: max(12, 2(d + 2))).
+  /// Points searched first: population points 0 … initial − 1 (0: initialSearches(d)).
   int initial = 0;
   /// Points learnt per round: the least sure point, then the least sure one at least
   /// `separation` from it. Fixed, so that the answer does not depend on the thread count.
@@ -60,8 +64,9 @@ struct ActiveLearningSettings {
   double stopU = 2;
   /// Searches at most; past it the classification's unsure points bound Pf.
   int maxSearches = 200;
-  /// The standard deviation of a search's margin (its F is known to ± width/2): where the
-  /// surrogate's own sd is below it, another search cannot make the surrogate surer.
+  /// The standard deviation of a search's margin (its F is known to ± width/2). It is added to
+  /// the surrogate's own in U, and where the surrogate's sd is below it, another search cannot
+  /// make the surrogate surer.
   double resolution = 0.005 / 4;
   /// Learning stops when at most this many unrun points have U < stopU, or when none of them has
   /// a predicted sd above the resolution. Each unsure point is then judged by one forward run
@@ -71,6 +76,8 @@ struct ActiveLearningSettings {
   int maxVerdicts = 2000;
   /// Searches or verdicts at once.
   int threads = 1;
+  /// Called before each round with the searches and verdicts so far and the unsure points.
+  std::function<void(int searches, int verdicts, int unsure)> progress;
 };
 
 enum class LearnedRole { Initial, Learning, Confirmation };
@@ -87,6 +94,7 @@ struct LearnedPoint {
   double predictedMean = std::numeric_limits<double>::quiet_NaN();
   double predictedSd = std::numeric_limits<double>::quiet_NaN();
   bool agrees = true;  ///< a confirmation: its verdict has the surrogate's sign
+  bool sure = false;   ///< a confirmation: the surrogate had U ≥ stopU there (a disagreement is a contradiction)
 };
 
 struct ActiveLearningResult {
@@ -120,8 +128,8 @@ struct LearnedProbability {
   double coefficientOfVariation = std::numeric_limits<double>::quiet_NaN();  ///< √((1 − Pf)/(Pf n))
   double beta = 0;
   Interval betaInterval;
-  /// Wilson's lower end with the unsure points called stable and the not-converged ones dropped,
-  /// to its upper end with both called failing (as wide as the interval when learning finished).
+  /// Wilson's lower end with the unsure points and the not-converged ones called stable, to its
+  /// upper end with both called failing (as wide as the interval when learning finished).
   Interval bounds;
 };
 LearnedProbability probabilityOf(const ActiveLearningResult& r);

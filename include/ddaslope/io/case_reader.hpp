@@ -1,5 +1,6 @@
 #pragma once
 // Reads a case file (JSON, docs/case-format.md) into a Scene. Only this layer sees JSON.
+#include <memory>
 #include <optional>
 #include <string>
 #include <utility>
@@ -63,6 +64,19 @@ struct CaseOverride {
 std::vector<CaseOverride> caseOverridesFor(const model::SettingsOverride& o);
 /// parseCase with overrides applied, in order, to its JSON before it is read (readCase's rules).
 model::Scene parseCase(const std::string& text, const std::string& file, const std::vector<CaseOverride>& overrides);
+
+/// A case's JSON parsed once and read many times with different overrides (a probability study's
+/// samples): read(o) gives what parseCase(text, file, o) gives, without parsing the text again.
+class ParsedCase {
+ public:
+  ParsedCase(const std::string& text, std::string file);
+  model::Scene read(const std::vector<CaseOverride>& overrides) const;
+
+ private:
+  struct Document;
+  std::shared_ptr<const Document> document_;
+  std::string file_;
+};
 /// Reads the case with overrides applied, in order, to its JSON before it is read, so that every
 /// value is checked, and the workload judged, once; a path that does not lead to a value of the
 /// override's kind (or to a key the case may add) is an InputError.
