@@ -795,8 +795,14 @@ TEST(Probability, SmallPfByActiveLearning) {
               "(%d within 0.002 of FS = 1)\n",
               pf, exact, s["interval_95"][0].get<double>(), s["interval_95"][1].get<double>(),
               s["forward_runs"].get<int>(), s["failing"].get<int>(), closedForm, nearOne);
-  clitest::captureCli("probability " + job + args + one + " --threads 1", &err);
+  clitest::captureCli("probability " + job + args + one + " --threads 1 --log-json " + one + ".log", &err);
   EXPECT_EQ(slurp(one + "/summary.json"), slurp(two + "/summary.json"));
+  EXPECT_EQ(slurp(one + "/learning.csv"), slurp(two + "/learning.csv"));
+  // What the result depends on is kept with it, as sampling keeps it.
+  EXPECT_NE(slurp(two + "/probability_settings.json").find("case_digest"), std::string::npos);
+  // --log-json reports each round of the learning.
+  EXPECT_NE(slurp(one + ".log").find("\"stage\": \"searches\""), std::string::npos);
+  fs::remove(one + ".log");
   EXPECT_TRUE(fs::exists(two + "/learning.csv"));
   EXPECT_TRUE(fs::exists(two + "/samples_plane.png"));
   EXPECT_TRUE(fs::exists(two + "/sensitivities.png"));
@@ -843,6 +849,32 @@ TEST(Probability, ActiveLearningAgreesWithTheVerdictsOfItsPopulation) {
   fs::remove_all(sampled);
 }
 
+// A slope that fails at its inputs' medians (c 5 ± 1 kPa, φ 20 ± 3°: Hoek & Bray's FS 0.58 there)
+// has no nearest failing point, so no design point and no sensitivities: the summary says why,
+// Pf is 1 and β is given in words, never as NaN.
+TEST(Probability, ActiveLearningOnASlopeFailingAtItsMediansHasNoDesignPoint) {
+  const std::string job = studyWith([&](json& d) {
+    d["probability"] = json::parse(slurp(kSource + "/calibration/planar_failure/probability_small.json"))["probability"];
+    d["probability"]["inputs"][0]["mean"] = 5000;
+    d["probability"]["inputs"][0]["sd"] = 1000;
+    d["probability"]["inputs"][1]["mean"] = 20;
+  }, "al_weak.json");
+  const std::string dir = tempDir("al_weak");
+  std::string err;
+  const std::string out = clitest::captureCli("probability " + job + " --method active_learning --samples 2000 --out " + dir, &err);
+  const json s = json::parse(slurp(dir + "/summary.json"));
+  EXPECT_EQ(s["probability_of_failure"], 1.0);
+  EXPECT_FALSE(s["design_point"]["found"].get<bool>());
+  EXPECT_NE(s["design_point"]["reason"].get<std::string>().find("fails at the inputs' medians"), std::string::npos);
+  EXPECT_FALSE(fs::exists(dir + "/sensitivities.png"));
+  EXPECT_EQ(out.find("nan"), std::string::npos) << out;
+  EXPECT_NE(out.find("every point fails (at most"), std::string::npos) << out;
+  const std::string report = clitest::captureCli("report " + dir, &err);
+  EXPECT_EQ(report.find("nan"), std::string::npos) << report;
+  fs::remove(job);
+  fs::remove_all(dir);
+}
+
 // Active learning chooses each search from those before it: it runs in one go, and the measure is
 // its own (searches and verdicts). Refused with the option named, before any run: --resume, a
 // --measure, a population no larger than the first searches, a folder holding another study's
@@ -872,6 +904,21 @@ TEST(Probability, ActiveLearningRefusesWhatItCannotDo) {
   EXPECT_FALSE(fs::exists(dir + "/summary.json"));
   fs::remove(file);
   fs::remove_all(sampled);
+  // A combination the case refuses anywhere in the population is named before any run, though
+  // the learning would never run that point: the residual friction angle drawn above the peak.
+  const std::string refused = studyWith([&](json& d) {
+    d["probability"] = json::parse(slurp(job))["probability"];
+    d["probability"]["inputs"][1] = json::parse(
+        R"({"path": "joints.sliding_plane.friction_angle", "distribution": "truncated_normal", "mean": 33, "sd": 3,
+            "min": 29.5, "max": 40})");
+    d["probability"]["inputs"].push_back(json::parse(
+        R"({"path": "joints.sliding_plane.residual_friction_angle", "distribution": "uniform", "min": 20, "max": 29.9})"));
+  }, "al_refused.json");
+  EXPECT_EQ(clitest::runCli("probability " + refused + " --method active_learning --samples 100000 --out " + dir, &err), 2);
+  EXPECT_NE(err.find("a combination the case refuses"), std::string::npos) << err;
+  EXPECT_NE(err.find("residual_friction_angle"), std::string::npos) << err;
+  EXPECT_FALSE(fs::exists(dir + "/learning.csv"));
+  fs::remove(refused);
   fs::remove_all(dir);
 }
 

@@ -47,26 +47,40 @@ class Learner {
         if (u(k) < s_.stopU) ++unsureCount, learnable += sd_[k] > s_.resolution;
       if (s_.progress) s_.progress(r_.searches, r_.verdicts, unsureCount);
       if (learnable > 0 && unsureCount > s_.confirmations) {
-        if (r_.searches >= s_.maxSearches) break;
+        if (r_.searches >= s_.maxSearches) {
+          r_.stoppedBy = "searches";
+          break;
+        }
         std::vector<int> next = batch(leastSure(64, true));
         next.resize(std::min(next.size(), static_cast<size_t>(s_.maxSearches - r_.searches)));
         search(next, LearnedRole::Learning);
         continue;
       }
       // The unsure points are judged by one forward run each (a search would cost ten), which
-      // decides them, and so are as many of the least sure of the others, which confirms the
-      // surrogate where it claims to know.
-      const int decide = std::min(unsureCount, s_.maxVerdicts);
-      const std::vector<int> check = leastSure(static_cast<size_t>(decide + s_.confirmations), false);
+      // decides them; so are `confirmations` of the least sure of the others, which confirms the
+      // surrogate where it claims to know. The verdict budget is for the whole learning.
+      const int verdictRoom = std::max(0, s_.maxVerdicts - r_.verdicts);
+      const int decide = std::min(unsureCount, verdictRoom);
+      const std::vector<int> ordered = leastSure(static_cast<size_t>(unsureCount + s_.confirmations), false);
+      std::vector<int> check(ordered.begin(), ordered.begin() + decide);
+      const int sureChecks = std::min(s_.confirmations, verdictRoom - decide);
+      for (size_t i = static_cast<size_t>(unsureCount); i < ordered.size() && static_cast<int>(check.size()) < decide + sureChecks; ++i)
+        check.push_back(ordered[i]);
       const std::vector<int> wrong = confirm(check);
-      if (decide < unsureCount) break;  // the rest stay unsure, and bound Pf
+      if (decide < unsureCount) {  // the rest stay unsure, and bound Pf
+        r_.stoppedBy = "verdicts";
+        break;
+      }
       if (wrong.empty()) {
         r_.learnt = true;
         break;
       }
-      if (r_.searches >= s_.maxSearches) break;
-      const size_t room = static_cast<size_t>(s_.maxSearches - r_.searches);
-      search(std::vector<int>(wrong.begin(), wrong.begin() + std::min(room, wrong.size())), LearnedRole::Learning);
+      if (r_.searches >= s_.maxSearches) {
+        r_.stoppedBy = "searches";
+        break;
+      }
+      const size_t searchRoom = static_cast<size_t>(s_.maxSearches - r_.searches);
+      search(std::vector<int>(wrong.begin(), wrong.begin() + std::min(searchRoom, wrong.size())), LearnedRole::Learning);
     }
     finish();
     return std::move(r_);
@@ -123,7 +137,8 @@ class Learner {
       ++r_.searches;
       r_.searchRuns += values[i].runs;
       if (!values[i].converged) {
-        known_[static_cast<size_t>(k)] = Known::NotConverged;
+        // A point a verdict decided keeps it: only its margin stays unknown.
+        if (known_[static_cast<size_t>(k)] == Known::No) known_[static_cast<size_t>(k)] = Known::NotConverged;
         continue;
       }
       known_[static_cast<size_t>(k)] = values[i].fails ? Known::Fails : Known::Stable;

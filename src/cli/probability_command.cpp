@@ -151,6 +151,14 @@ void checkEveryPoint(const io::ProbabilityJob& job, const calibration::SampleDes
     }
 }
 
+/// The --out folder, made before any run so that no run's work is lost to an unusable path.
+void makeOutputFolder(const std::string& dir) {
+  std::error_code made;
+  fs::create_directories(dir, made);
+  if (made || !fs::is_directory(dir))
+    throw InputError("--out", dir, "cannot create the folder" + (made ? ": " + made.message() : std::string()));
+}
+
 /// The study's folder: a study there is continued (--resume), replaced (--overwrite) or kept (an
 /// error, so that no sample is ever lost). Returns the samples it holds (resumed).
 std::vector<SampleResult> prepareFolder(const ProbabilityOptions& opt, SampleTable& table,
@@ -163,7 +171,7 @@ std::vector<SampleResult> prepareFolder(const ProbabilityOptions& opt, SampleTab
   if (opt.overwrite)
     for (const char* name : {"samples.csv", "probability_settings.json", "summary.json", "summary.partial.json",
                              "pf_convergence.png", "samples_plane.png", "fos_histogram.png", "sensitivities.png",
-                             "learning.csv"})
+                             "learning.csv", "report.html"})
       fs::remove(opt.outDir + "/" + name);
   std::vector<SampleResult> done;
   if (opt.resume && fs::exists(table.path())) {
@@ -240,7 +248,7 @@ void printStudy(const io::ProbabilityJob& job);
 /// points classified by a surrogate of F learnt from searches, confirmed by forward runs.
 int activeLearningStudy(const io::ProbabilityJob& job, const SceneMaker& make, const calibration::SampleSettings& fos,
                         const model::Scene& reference, const ProbabilityOptions& opt,
-                        std::chrono::steady_clock::time_point t0) {
+                        const std::vector<std::string>& caseSettings, std::chrono::steady_clock::time_point t0) {
   const model::ProbabilitySpec& spec = job.spec;
   const calibration::SampleDesign design(spec);
   const int initial = calibration::initialSearches(design.inputs());
@@ -254,12 +262,9 @@ int activeLearningStudy(const io::ProbabilityJob& job, const SceneMaker& make, c
   for (const char* held : {"learning.csv", "samples.csv"})
     if (fs::exists(opt.outDir + "/" + held) && !opt.overwrite)
       throw InputError(opt.outDir + "/" + held, "", "holds the runs of a study already: --overwrite starts again");
-  std::error_code made;
-  fs::create_directories(opt.outDir, made);
-  if (made || !fs::is_directory(opt.outDir))
-    throw InputError("--out", opt.outDir, "cannot create the folder" + (made ? ": " + made.message() : std::string()));
   checkDrawnValues(job, design, make);
   checkEveryPoint(job, design, make, opt.threads);
+  makeOutputFolder(opt.outDir);
   const std::string line = settingsLine(reference);
   calibration::SampleSettings verdict = fos;
   verdict.measure = model::ProbabilityMeasure::Verdict;
@@ -298,14 +303,14 @@ int activeLearningStudy(const io::ProbabilityJob& job, const SceneMaker& make, c
     printStudy(job);
     std::printf("  forward runs at %s\n", line.c_str());
     std::printf("  learning F on %d population points: searches at the points the surrogate is least sure of, %d "
-                "at a time\n", design.samples(), std::min(opt.threads, settings.batch));
+                "per round\n", design.samples(), settings.batch);
     std::fflush(stdout);
   }
   const auto log = startProgress("probability", opt.progress, opt.json);
   settings.progress = [&](int searches, int verdicts, int unsure) {
     if (!log->active()) return;
     char text[96];
-    std::snprintf(text, sizeof text, "%d searches, %d verdicts; %d points unsure", searches, verdicts, unsure);
+    std::snprintf(text, sizeof text, "%d verdicts; %d points unsure", verdicts, unsure);
     log->report({"searches", searches, settings.maxSearches, text, {{"unsure_points", unsure}}});
   };
   const calibration::ActiveLearningResult r = calibration::learnFailureDomain(problem, settings);
@@ -322,10 +327,13 @@ int activeLearningStudy(const io::ProbabilityJob& job, const SceneMaker& make, c
     point = io::DesignPointReport{surrogatePoint, design.valuesAt(surrogatePoint.u),
                                   calibration::importanceVector(surrogatePoint.alpha, design.cholesky())};
   const io::DesignPointReport* pointReport = point ? &*point : nullptr;
-  for (const char* name : {"samples.csv", "probability_settings.json", "summary.partial.json", "pf_convergence.png",
-                           "fos_histogram.png", "sensitivities.png", "samples_plane.png"})
+  for (const char* name : {"samples.csv", "summary.partial.json", "pf_convergence.png", "fos_histogram.png",
+                           "sensitivities.png", "samples_plane.png", "report.html"})
     fs::remove(opt.outDir + "/" + name);
-  const std::string json = io::activeLearningSummaryJson(job, r, line, pointReport);
+  // What the result depends on (the case's digest, --set, the forward runs' settings), as a
+  // sampling study records it.
+  writeAtomically(opt.outDir + "/probability_settings.json", settingsFingerprint(job, caseSettings, line));
+  const std::string json = io::activeLearningSummaryJson(job, r, line, pointReport, designMessage);
   const std::vector<std::string> files = io::writeActiveLearningFiles(job, design, r, opt.outDir, pointReport);
   writeAtomically(opt.outDir + "/summary.json", json);
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -369,9 +377,10 @@ int activeLearningStudy(const io::ProbabilityJob& job, const SceneMaker& make, c
     std::printf("\n");
   }
   if (!r.learnt)
-    std::fprintf(stderr, "ddaslope: warning: %s: the learning stopped at its budget of searches with %d population "
-                         "points still unsure (U < 2, least %.3g): Pf lies within the bounds %.4g-%.4g of the summary\n",
-                 job.file.c_str(), r.unsureFailing + r.unsureStable, r.minU, p.bounds.low, p.bounds.high);
+    std::fprintf(stderr, "ddaslope: warning: %s: the learning stopped at its budget of %s with %d population points "
+                         "still unsure (U < 2, least %.3g): Pf lies within the bounds %.4g-%.4g of the summary\n",
+                 job.file.c_str(), r.stoppedBy == "verdicts" ? "2000 verdicts" : "200 searches",
+                 r.unsureFailing + r.unsureStable, r.minU, p.bounds.low, p.bounds.high);
   if (r.notConverged > 0)
     std::fprintf(stderr, "ddaslope: warning: %s: %d runs did not converge: counted apart (learning.csv), Pf's bounds "
                          "with them are in the summary\n",
@@ -381,10 +390,14 @@ int activeLearningStudy(const io::ProbabilityJob& job, const SceneMaker& make, c
     std::fprintf(stderr, "ddaslope: warning: %s: no point of the population fails: Pf < %.3g (95 %%); a larger "
                          "population (--samples) or importance_sampling resolves a smaller Pf\n",
                  job.file.c_str(), p.interval.high);
-  else if (p.coefficientOfVariation > 0.1)
+  else if (p.coefficientOfVariation > 0.1 && (1 - p.pf) / (p.pf * 0.01) <= 1e6)
     std::fprintf(stderr, "ddaslope: warning: %s: Pf's coefficient of variation is %.2f with %d population points; "
-                         "about %.0f give 0.1 (--samples, at most 1000000)\n",
+                         "about %.0f give 0.1 (--samples)\n",
                  job.file.c_str(), p.coefficientOfVariation, p.converged, std::ceil((1 - p.pf) / (p.pf * 0.01)));
+  else if (p.coefficientOfVariation > 0.1)
+    std::fprintf(stderr, "ddaslope: warning: %s: Pf's coefficient of variation is %.2f with %d population points; a "
+                         "coefficient of 0.1 needs more than the 1000000 points allowed: use importance_sampling\n",
+                 job.file.c_str(), p.coefficientOfVariation, p.converged);
   return kExitOk;
 }
 
@@ -495,7 +508,7 @@ int probabilityCommand(const std::string& path, const Overrides& o, const Probab
   for (const auto& name : spec.fosJoints) settings.fosJoints.push_back(jointIndex(reference, name, job.casePath));
   if (spec.method == model::ProbabilityMethod::ActiveLearning) {
     if (processRank() != 0) return kExitOk;
-    return activeLearningStudy(job, make, settings, reference, opt, t0);
+    return activeLearningStudy(job, make, settings, reference, opt, o.settings, t0);
   }
   calibration::SampleDesign design(spec);
   // A folder holding a study is refused before anything runs (the design point's runs included).
@@ -506,6 +519,7 @@ int probabilityCommand(const std::string& path, const Overrides& o, const Probab
   if (processRank() == 0 && fs::exists(opt.outDir + "/learning.csv") && !opt.overwrite)
     throw InputError(opt.outDir + "/learning.csv", "", "holds the runs of an active-learning study: --overwrite "
                                                        "starts again");
+  if (processRank() == 0) makeOutputFolder(opt.outDir);
   std::optional<io::DesignPointReport> form;
   if (spec.method == model::ProbabilityMethod::ImportanceSampling) {
     // Every process finds the same design point (its runs depend on the study only), so the

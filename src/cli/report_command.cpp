@@ -149,10 +149,18 @@ Analysis identify(const fs::path& dir) {
     json r = readJson(dir / "summary.json");
     if (r.contains("probability_of_failure")) {
       a = {"Probability of failure (probability)", "summary.json", r, ""};
-      std::snprintf(text, sizeof text, "Pf = %.4g, 95 %% interval %.4g to %.4g (%s); reliability index %.4g",
-                    number(r, "probability_of_failure"), r["interval_95"][0].is_number() ? r["interval_95"][0].get<double>() : NAN,
-                    r["interval_95"][1].is_number() ? r["interval_95"][1].get<double>() : NAN,
-                    r.value("interval_method", "").c_str(), number(r, "reliability_index"));
+      // A bound or β the summary leaves null (no failing sample; Pf of 0 or 1) is said in words.
+      const auto shown = [](const json& v, const char* none) {
+        if (!v.is_number()) return std::string(none);
+        char n[32];
+        std::snprintf(n, sizeof n, "%.4g", v.get<double>());
+        return std::string(n);
+      };
+      const double pf = number(r, "probability_of_failure");
+      std::snprintf(text, sizeof text, "Pf = %.4g, 95 %% interval %s to %s (%s); reliability index %s", pf,
+                    shown(r["interval_95"][0], "none").c_str(), shown(r["interval_95"][1], "none").c_str(),
+                    r.value("interval_method", "").c_str(),
+                    shown(r.value("reliability_index", json()), pf == 0 ? "unbounded (no sample fails)" : "-∞ (every sample fails)").c_str());
       a.answer = text;
     } else if (r.contains("steps")) {
       a = {"Forward run (run)", "summary.json", r, ""};

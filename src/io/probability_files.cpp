@@ -418,7 +418,8 @@ std::vector<std::string> writePictures(const io::ProbabilityJob& job, const cali
 }
 
 std::string activeLearningSummaryJson(const io::ProbabilityJob& job, const calibration::ActiveLearningResult& r,
-                                      const std::string& settingsLine, const DesignPointReport* design) {
+                                      const std::string& settingsLine, const DesignPointReport* design,
+                                      const std::string& noDesignPoint) {
   const model::ProbabilitySpec& spec = job.spec;
   const calibration::LearnedProbability p = calibration::probabilityOf(r);
   const auto finite = [](double v) { return std::isfinite(v) ? v : std::numeric_limits<double>::quiet_NaN(); };
@@ -439,6 +440,7 @@ std::string activeLearningSummaryJson(const io::ProbabilityJob& job, const calib
   j.set("forward_runs", r.searchRuns + r.verdicts);
   io::JsonRecord l;
   l.set("learnt", r.learnt).set("searches", r.searches).set("search_runs", r.searchRuns);
+  if (!r.learnt) l.set("stopped_by_budget_of", r.stoppedBy);
   l.set("verdict_runs", r.verdicts).set("unsure_decided_by_verdict", r.decidedByVerdict);
   l.set("sure_contradicted_by_verdict", r.disagreements);
   l.set("surrogate_fits", r.rounds).set("min_u", finite(r.minU)).set("stop_u", 2.0);
@@ -459,6 +461,10 @@ std::string activeLearningSummaryJson(const io::ProbabilityJob& job, const calib
       in.set("importance_gamma", design->importance[i]).set("importance_share", design->importance[i] * design->importance[i]);
       dp.append("inputs", in);
     }
+    j.set("design_point", dp);
+  } else {
+    io::JsonRecord dp;
+    dp.set("found", false).set("reason", noDesignPoint);
     j.set("design_point", dp);
   }
   j.set("settings", settingsLine);

@@ -72,7 +72,7 @@ struct ActiveLearningSettings {
   /// a predicted sd above the resolution. Each unsure point is then judged by one forward run
   /// instead of a search, and so are `confirmations` of the least sure of the others.
   int confirmations = 20;
-  /// Unsure points judged by verdicts at most; past it the rest stay unsure and bound Pf.
+  /// Verdicts at most over the whole learning; past it the unsure points left bound Pf.
   int maxVerdicts = 2000;
   /// Searches or verdicts at once.
   int threads = 1;
@@ -102,10 +102,11 @@ struct ActiveLearningResult {
   int population = 0;
   int failing = 0;       ///< population points classified failing (a run point by its run)
   int notConverged = 0;  ///< run points whose search or verdict did not converge: counted apart
-  /// Unrun points classified with U < stopU (the search budget ran out), by predicted sign.
+  /// Unrun points classified with U < stopU (a budget ran out), by predicted sign.
   int unsureFailing = 0, unsureStable = 0;
   double minU = 0;       ///< the least U of the unrun points at the end
   bool learnt = false;   ///< every unrun point reached U ≥ stopU and the last confirmation agreed
+  std::string stoppedBy;  ///< when not learnt: "searches" or "verdicts", the budget that ran out
   int rounds = 0;        ///< surrogate fits
   int searches = 0, searchRuns = 0, verdicts = 0;
   /// Confirmations of points the surrogate was sure of (U ≥ stopU) that contradicted it.

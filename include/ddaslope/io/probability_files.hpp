@@ -82,7 +82,8 @@ std::vector<std::string> writePictures(const ProbabilityJob& job, const calibrat
 /// with its interval and bounds, β, the forward runs (searches' and confirmations'), and how the
 /// learning ended. No run times: equal runs give equal bytes.
 std::string activeLearningSummaryJson(const ProbabilityJob& job, const calibration::ActiveLearningResult& r,
-                                      const std::string& settingsLine, const DesignPointReport* design = nullptr);
+                                      const std::string& settingsLine, const DesignPointReport* design = nullptr,
+                                      const std::string& noDesignPoint = "");
 
 /// Active learning's other files, each written whole through a temporary file: learning.csv (the
 /// points run, in the order run: role, the inputs, outcome, F, forward runs, the surrogate's
