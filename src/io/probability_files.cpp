@@ -507,15 +507,21 @@ std::vector<std::string> writeActiveLearningFiles(const io::ProbabilityJob& job,
     // At most 20 000 population points drawn (the first, in index order): enough to see the
     // classified regions without a picture of solid colour.
     const int shown = std::min(r.population, 20000);
+    // A small Pf leaves few failing points among the first 20 000: then every failing point is
+    // drawn, so that the failure region shows; a large one is drawn from the first 20 000 alone,
+    // so that the two classes keep their proportions.
+    const bool allFailing = r.failing <= 5000;
     io::PlotSeries stable{"population (first " + std::to_string(shown) + "), classified stable", {}, {}, true, false, 1.2};
-    io::PlotSeries fails{"population (all), classified failing", {}, {}, true, false, 1.8};
+    io::PlotSeries fails{std::string("population (") + (allFailing ? "all" : "first " + std::to_string(shown)) +
+                             "), classified failing",
+                         {}, {}, true, false, 1.8};
     for (int k = 0; k < shown; ++k) {
       const std::vector<double> v = design.values(k);
       io::PlotSeries& s = r.fails[static_cast<size_t>(k)] ? fails : stable;
       s.x.push_back(v[static_cast<size_t>(ax)]);
       s.y.push_back(v[static_cast<size_t>(ay)]);
     }
-    for (int k = shown; k < r.population; ++k)
+    for (int k = shown; allFailing && k < r.population; ++k)
       if (r.fails[static_cast<size_t>(k)]) {
         const std::vector<double> v = design.values(k);
         fails.x.push_back(v[static_cast<size_t>(ax)]);
