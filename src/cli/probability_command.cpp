@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <atomic>
 #include <charconv>
 #include <chrono>
 #include <cmath>
@@ -122,13 +123,15 @@ void checkDrawnValues(const io::ProbabilityJob& job, const calibration::SampleDe
 /// counted silently. Every point is read before any run; the lowest refused index is named,
 /// whatever the thread count.
 void checkEveryPoint(const io::ProbabilityJob& job, const calibration::SampleDesign& design, const SceneMaker& make,
-                     int threads) {
+                     int threads, io::ProgressLog& log) {
   constexpr int kChunk = 1024;
   const int chunks = (design.samples() + kChunk - 1) / kChunk;
   std::vector<int> refused(static_cast<size_t>(chunks), -1);
   std::vector<std::string> why(static_cast<size_t>(chunks));
+  std::atomic<int> read{0}, chunksRead{0};
   runOnThreads(chunks, threads, [&](int c) {
-    for (int k = c * kChunk; k < std::min(design.samples(), (c + 1) * kChunk); ++k) {
+    const int end = std::min(design.samples(), (c + 1) * kChunk);
+    for (int k = c * kChunk; k < end; ++k) {
       try {
         make(design.values(k));
       } catch (const InputError& e) {
@@ -137,6 +140,10 @@ void checkEveryPoint(const io::ProbabilityJob& job, const calibration::SampleDes
         return;
       }
     }
+    const int done = read += end - c * kChunk;
+    // Every 16 chunks: a million points make a thousand chunks.
+    if (const int n = ++chunksRead; log.active() && (n % 16 == 0 || n == chunks))
+      log.report({"reading points", done, design.samples(), "each point's values read by the case", {}});
   });
   for (int c = 0; c < chunks; ++c)
     if (refused[static_cast<size_t>(c)] >= 0) {
@@ -263,7 +270,8 @@ int activeLearningStudy(const io::ProbabilityJob& job, const SceneMaker& make, c
     if (fs::exists(opt.outDir + "/" + held) && !opt.overwrite)
       throw InputError(opt.outDir + "/" + held, "", "holds the runs of a study already: --overwrite starts again");
   checkDrawnValues(job, design, make);
-  checkEveryPoint(job, design, make, opt.threads);
+  const auto log = startProgress("probability", opt.progress, opt.json);
+  checkEveryPoint(job, design, make, opt.threads, *log);
   makeOutputFolder(opt.outDir);
   const std::string line = settingsLine(reference);
   calibration::SampleSettings verdict = fos;
@@ -306,7 +314,6 @@ int activeLearningStudy(const io::ProbabilityJob& job, const SceneMaker& make, c
                 "per round\n", design.samples(), settings.batch);
     std::fflush(stdout);
   }
-  const auto log = startProgress("probability", opt.progress, opt.json);
   settings.progress = [&](int searches, int verdicts, int unsure) {
     if (!log->active()) return;
     char text[96];
