@@ -227,7 +227,7 @@ class Learner {
       }
       r_.failing += r_.fails[static_cast<size_t>(k)];
     }
-    if (predicted) r_.lengthScales = model_.lengthScales(), r_.surrogate = model_;
+    if (predicted) r_.surrogate = model_;
   }
 
   const ActiveLearningProblem& p_;

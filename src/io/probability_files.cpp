@@ -99,6 +99,25 @@ void appendStudy(io::JsonRecord& j, const model::ProbabilitySpec& spec) {
   }
 }
 
+/// A design point's reliability index, FORM's Pf and u, as both importance sampling's and active
+/// learning's summaries begin it.
+void setDesignPointHead(io::JsonRecord& dp, const DesignPointReport& design) {
+  const calibration::DesignPoint& d = design.point;
+  dp.set("reliability_index_form", d.beta).set("probability_of_failure_form", calibration::normalCdf(-d.beta));
+  dp.set("u", d.u);
+}
+
+/// Each input at the design point: its value, α, γ and γ².
+void appendDesignInputs(io::JsonRecord& dp, const model::ProbabilitySpec& spec, const DesignPointReport& design) {
+  for (size_t i = 0; i < spec.inputs.size(); ++i) {
+    const double g = design.importance[i];
+    io::JsonRecord in;
+    in.set("path", spec.inputs[i].path).set("value", design.values[i]).set("alpha", design.point.alpha[i]);
+    in.set("importance_gamma", g).set("importance_share", g * g);
+    dp.append("inputs", in);
+  }
+}
+
 }  // namespace
 
 std::string exactText(double v) {
@@ -293,15 +312,10 @@ std::string summaryJson(const io::ProbabilityJob& job, const calibration::Probab
     const calibration::DesignPoint& d = design->point;
     j.set("forward_runs", d.runs + s.finished);
     io::JsonRecord dp;
-    dp.set("reliability_index_form", d.beta).set("probability_of_failure_form", calibration::normalCdf(-d.beta));
-    dp.set("u", d.u).set("runs", d.runs).set("rays", d.rays).set("secant_steps", d.steps);
+    setDesignPointHead(dp, *design);
+    dp.set("runs", d.runs).set("rays", d.rays).set("secant_steps", d.steps);
     dp.set("converged", d.converged).set("other_failure_regions", static_cast<int>(d.otherRegions.size()));
-    for (size_t i = 0; i < spec.inputs.size(); ++i) {
-      io::JsonRecord in;
-      in.set("path", spec.inputs[i].path).set("value", design->values[i]).set("alpha", d.alpha[i]);
-      in.set("importance_gamma", design->importance[i]).set("importance_share", design->importance[i] * design->importance[i]);
-      dp.append("inputs", in);
-    }
+    appendDesignInputs(dp, spec, *design);
     j.set("design_point", dp);
   }
   j.set("not_converged_as_stable", s.pfNotConvergedStable).set("not_converged_as_failing", s.pfNotConvergedFailing);
@@ -445,22 +459,16 @@ std::string activeLearningSummaryJson(const io::ProbabilityJob& job, const calib
   l.set("sure_contradicted_by_verdict", r.disagreements);
   l.set("surrogate_fits", r.rounds).set("min_u", finite(r.minU)).set("stop_u", 2.0);
   l.set("unsure_failing", r.unsureFailing).set("unsure_stable", r.unsureStable);
-  std::vector<double> scales(r.lengthScales.data(), r.lengthScales.data() + r.lengthScales.size());
+  const Eigen::VectorXd& fitted = r.surrogate.lengthScales();  // empty when nothing was fitted
+  std::vector<double> scales(fitted.data(), fitted.data() + fitted.size());
   l.set("length_scales", scales);
   if (!r.message.empty()) l.set("message", r.message);
   j.set("active_learning", l);
   if (design) {
-    const calibration::DesignPoint& d = design->point;
     io::JsonRecord dp;
+    setDesignPointHead(dp, *design);
     dp.set("source", "the surrogate's margin 0 nearest the medians (no forward run)");
-    dp.set("reliability_index_form", d.beta).set("probability_of_failure_form", calibration::normalCdf(-d.beta));
-    dp.set("u", d.u);
-    for (size_t i = 0; i < spec.inputs.size(); ++i) {
-      io::JsonRecord in;
-      in.set("path", spec.inputs[i].path).set("value", design->values[i]).set("alpha", d.alpha[i]);
-      in.set("importance_gamma", design->importance[i]).set("importance_share", design->importance[i] * design->importance[i]);
-      dp.append("inputs", in);
-    }
+    appendDesignInputs(dp, spec, *design);
     j.set("design_point", dp);
   } else {
     io::JsonRecord dp;

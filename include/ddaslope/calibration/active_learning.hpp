@@ -113,7 +113,6 @@ struct ActiveLearningResult {
   int disagreements = 0;
   /// Unsure points (U < stopU) decided by their own forward run at the end of the learning.
   int decidedByVerdict = 0;
-  Eigen::VectorXd lengthScales;
   std::vector<char> fails;  ///< each population point's final class
   Kriging surrogate;        ///< the last fit (none when rounds = 0)
   std::string message;      ///< why the learning could not start (too few points converged)
