@@ -59,6 +59,21 @@ for f in summary.json pf_convergence.png samples_plane.png; do
 done
 echo "same: the study's summary.json and pictures, straight and resumed under mpirun"
 
+# Active learning: the root learns and deals each round's searches and verdicts to the ranks. The
+# same population classified, straight under mpirun, and stopped and resumed under mpirun, as by
+# one process (planar failure, small Pf, 20 000 points).
+small=$src/calibration/planar_failure/probability_small.json
+al=(probability "$small" --method active_learning --samples 20000 --threads 1)
+"$cli" "${al[@]}" --out "$work/al1" > /dev/null 2>&1
+"${mpi[@]}" "$cli" "${al[@]}" --out "$work/al3" > /dev/null 2>&1
+"${mpi[@]}" "$cli" "${al[@]}" --stop-after 30 --out "$work/alr" > /dev/null 2>&1
+"${mpi[@]}" "$cli" "${al[@]}" --resume --out "$work/alr" > /dev/null 2>&1
+for f in summary.json learning.csv samples_plane.png; do
+  cmp "$work/al1/$f" "$work/al3/$f" || { echo "FAIL: active learning's $f differs under mpirun"; exit 1; }
+  cmp "$work/al1/$f" "$work/alr/$f" || { echo "FAIL: active learning's $f differs after a resume under mpirun"; exit 1; }
+done
+echo "same: active learning's summary.json, learning.csv and picture, straight and resumed under mpirun"
+
 # An error in a task on any rank reaches the root and ends every rank with exit 2 (no hang),
 # reported once. Every rank rethrows it and finalises MPI: MPI_Abort here raced with the other
 # ranks' finalisation in Open MPI 4.1's mpirun, which crashed (exit 139) or hung now and then

@@ -808,9 +808,54 @@ TEST(Probability, SmallPfByActiveLearning) {
   EXPECT_TRUE(fs::exists(two + "/sensitivities.png"));
   // A folder that holds a learning is kept unless --overwrite.
   EXPECT_EQ(clitest::runCli("probability " + job + args + one, &err), 2);
-  EXPECT_NE(err.find("holds the runs of a study already"), std::string::npos) << err;
+  EXPECT_NE(err.find("holds the runs of an active-learning study already: --resume continues it"), std::string::npos)
+      << err;
   fs::remove_all(one);
   fs::remove_all(two);
+}
+
+// An active-learning study stopped (--stop-after) or killed, then resumed, ends exactly as one
+// run straight through: the learning is a function of its runs' results, and learning_runs.csv
+// gives them back to the last bit. Stopped twice, then cut in the middle of a row as a kill
+// leaves it, resumed on another thread count: the same summary.json, learning.csv and pictures.
+// A resume of another study (another population) is refused, and so is a damaged row.
+TEST(Probability, ActiveLearningResumesWhereItStopped) {
+  const std::string job = kSource + "/calibration/planar_failure/probability_small.json";
+  const std::string straight = tempDir("al_straight"), resumed = tempDir("al_resumed");
+  const std::string args = "probability " + job + " --method active_learning --samples 20000 --out ";
+  std::string err;
+  ASSERT_EQ(clitest::runCli(args + straight + " --threads 2", &err), 0) << err;
+  const std::string out = clitest::captureCli(args + resumed + " --threads 2 --stop-after 7", &err);
+  EXPECT_NE(out.find("incomplete: 7 searches and verdicts made now"), std::string::npos) << out;
+  EXPECT_FALSE(fs::exists(resumed + "/summary.json"));
+  EXPECT_FALSE(fs::exists(resumed + "/learning.csv"));
+  // Without --resume the runs are kept: the folder is refused.
+  EXPECT_EQ(clitest::runCli(args + resumed, &err), 2);
+  EXPECT_NE(err.find("learning_runs.csv: holds the runs of an active-learning study already"), std::string::npos) << err;
+  ASSERT_EQ(clitest::runCli(args + resumed + " --resume --stop-after 20 --threads 1", &err), 0) << err;
+  // A kill in the middle of a row: the cut row is dropped, and its run made again.
+  const std::string journal = resumed + "/learning_runs.csv";
+  std::string text = slurp(journal);
+  ASSERT_GT(std::count(text.begin(), text.end(), '\n'), 27);
+  text.resize(text.size() - 4);
+  std::ofstream(journal, std::ios::binary) << text;
+  // Another population is another study.
+  EXPECT_EQ(clitest::runCli("probability " + job + " --method active_learning --samples 30000 --resume --out " + resumed,
+                            &err), 2);
+  EXPECT_NE(err.find("probability_settings.json: line"), std::string::npos) << err;
+  EXPECT_NE(err.find("belong to another study"), std::string::npos) << err;
+  const std::string resumedOut = clitest::captureCli(args + resumed + " --resume --threads 1", &err);
+  EXPECT_NE(resumedOut.find("resumed: 26 searches and verdicts"), std::string::npos) << resumedOut;
+  for (const char* f : {"summary.json", "learning.csv", "samples_plane.png", "sensitivities.png"})
+    EXPECT_EQ(slurp(straight + "/" + f), slurp(resumed + "/" + f)) << f;
+  // A damaged row is named by its line.
+  std::string damaged = slurp(journal);
+  damaged.replace(damaged.find("search,"), 7, "searc1,");
+  std::ofstream(journal, std::ios::binary) << damaged;
+  EXPECT_EQ(clitest::runCli(args + resumed + " --resume", &err), 2);
+  EXPECT_NE(err.find("learning_runs.csv: line 2: expected the kind search or verdict"), std::string::npos) << err;
+  fs::remove_all(straight);
+  fs::remove_all(resumed);
 }
 
 // Active learning against its referee, the verdicts of the very population it classifies: Hoek &
@@ -883,8 +928,6 @@ TEST(Probability, ActiveLearningRefusesWhatItCannotDo) {
   const std::string job = kSource + "/calibration/planar_failure/probability_small.json";
   const std::string dir = tempDir("al_refused");
   std::string err;
-  EXPECT_EQ(clitest::runCli("probability " + job + " --method active_learning --resume --out " + dir, &err), 2);
-  EXPECT_NE(err.find("--resume: active learning chooses each search"), std::string::npos) << err;
   EXPECT_EQ(clitest::runCli("probability " + job + " --method active_learning --measure fos --out " + dir, &err), 2);
   EXPECT_NE(err.find("--measure: fos: active learning searches F"), std::string::npos) << err;
   // Too small a population to learn from: refused before any run.
@@ -895,7 +938,9 @@ TEST(Probability, ActiveLearningRefusesWhatItCannotDo) {
   const std::string sampled = tempDir("al_sampled");
   clitest::captureCli("probability " + kJob + " --samples 20 --out " + sampled, &err);
   EXPECT_EQ(clitest::runCli("probability " + job + " --method active_learning --out " + sampled, &err), 2);
-  EXPECT_NE(err.find("samples.csv: holds the runs of a study already"), std::string::npos) << err;
+  EXPECT_NE(err.find("samples.csv: holds the samples of a sampling study"), std::string::npos) << err;
+  EXPECT_EQ(clitest::runCli("probability " + job + " --method active_learning --resume --out " + sampled, &err), 2);
+  EXPECT_NE(err.find("samples.csv: holds the samples of a sampling study"), std::string::npos) << err;
   EXPECT_TRUE(fs::exists(sampled + "/samples.csv"));
   // An --out that cannot be a folder is refused before the runs.
   const std::string file = clitest::writeTemp("al_not_a_folder", "x");

@@ -8,6 +8,7 @@
 #include <nlopt.hpp>
 
 #include "ddaslope/calibration/kriging.hpp"
+#include "ddaslope/core/errors.hpp"
 #include "ddaslope/core/task_farm.hpp"
 
 namespace ddaslope::calibration {
@@ -124,8 +125,12 @@ class Learner {
 
   void search(const std::vector<int>& points, LearnedRole role) {
     std::vector<PerformanceValue> values(points.size());
-    runOnThreads(static_cast<int>(points.size()), s_.threads,
-                 [&](int i) { values[static_cast<size_t>(i)] = p_.evaluate(points[static_cast<size_t>(i)]); });
+    if (p_.evaluateAll)
+      values = p_.evaluateAll(points);
+    else
+      runOnThreads(static_cast<int>(points.size()), s_.threads,
+                   [&](int i) { values[static_cast<size_t>(i)] = p_.evaluate(points[static_cast<size_t>(i)]); });
+    DDASLOPE_ASSERT(values.size() == points.size(), "a search per point");
     for (size_t i = 0; i < points.size(); ++i) {
       const int k = points[i];
       LearnedPoint lp;
@@ -150,8 +155,12 @@ class Learner {
   /// Judges `points` by one forward run each; returns those whose verdict contradicts the surrogate.
   std::vector<int> confirm(const std::vector<int>& points) {
     std::vector<PointVerdict> verdicts(points.size());
-    runOnThreads(static_cast<int>(points.size()), s_.threads,
-                 [&](int i) { verdicts[static_cast<size_t>(i)] = p_.judge(points[static_cast<size_t>(i)]); });
+    if (p_.judgeAll)
+      verdicts = p_.judgeAll(points);
+    else
+      runOnThreads(static_cast<int>(points.size()), s_.threads,
+                   [&](int i) { verdicts[static_cast<size_t>(i)] = p_.judge(points[static_cast<size_t>(i)]); });
+    DDASLOPE_ASSERT(verdicts.size() == points.size(), "a verdict per point");
     std::vector<int> wrong;
     for (size_t i = 0; i < points.size(); ++i) {
       const int k = points[i];

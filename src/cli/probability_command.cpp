@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <map>
 #include <optional>
 #include <set>
 
@@ -49,10 +50,6 @@ io::ProbabilityJob readStudy(const std::string& path, const ProbabilityOptions& 
   if (s.method == model::ProbabilityMethod::ActiveLearning && !opt.measure.empty())
     throw InputError("--measure", opt.measure, "active learning searches F at the samples it learns from and judges "
                                                "its confirmations by verdicts: --measure does not apply");
-  if (s.method == model::ProbabilityMethod::ActiveLearning && (opt.resume || opt.stopAfter > 0))
-    throw InputError(opt.resume ? "--resume" : "--stop-after", "",
-                     "active learning chooses each search from the ones before it and runs in one go: it cannot be "
-                     "stopped and resumed");
   if (s.method == model::ProbabilityMethod::ImportanceSampling && s.measure == model::ProbabilityMeasure::FactorOfSafety)
     throw InputError(opt.measure.empty() ? job.file : "--measure", opt.measure.empty() ? "probability.measure" : "fos",
                      "importance sampling judges each sample by one forward run's verdict: expected the measure "
@@ -178,7 +175,7 @@ std::vector<SampleResult> prepareFolder(const ProbabilityOptions& opt, SampleTab
   if (opt.overwrite)
     for (const char* name : {"samples.csv", "probability_settings.json", "summary.json", "summary.partial.json",
                              "pf_convergence.png", "samples_plane.png", "fos_histogram.png", "sensitivities.png",
-                             "learning.csv", "report.html"})
+                             "learning.csv", "learning_runs.csv", "report.html"})
       fs::remove(opt.outDir + "/" + name);
   std::vector<SampleResult> done;
   if (opt.resume && fs::exists(table.path())) {
@@ -251,8 +248,101 @@ void printDesignPoint(const io::ProbabilityJob& job, const io::DesignPointReport
 
 void printStudy(const io::ProbabilityJob& job);
 
+/// A study's runs, stopped by --stop-after: the learning ends here, and --resume replays them.
+struct StopAfterReached {};
+
+/// Active learning's runs (searches and verdicts) as the learning asks for them: each one a
+/// journal holds (a resumed study) is replayed, the others run on the task farm (threads, or MPI
+/// ranks) and are journalled as they finish; --stop-after ends the learning past its count.
+class LearningRuns {
+ public:
+  LearningRuns(TaskFarm& farm, io::LearningJournal* journal, const calibration::ActiveLearningProblem& problem,
+               int stopAfter)
+      : farm_(farm), journal_(journal), problem_(problem), stopAfter_(stopAfter) {}
+
+  /// The task of a run: index 2k is the search at population point k, 2k + 1 its verdict.
+  TaskResult run(int task) const {
+    const int k = task / 2;
+    if (task % 2 == 0) {
+      const calibration::PerformanceValue v = problem_.evaluate(k);
+      return std::string(1, v.converged ? 'c' : 'n') + (v.fails ? 'f' : 's') + std::to_string(v.runs) + "," +
+             exactText(v.margin);
+    }
+    const calibration::PointVerdict v = problem_.judge(k);
+    return std::string(1, v == calibration::PointVerdict::Stable ? 's' : v == calibration::PointVerdict::Fails ? 'f' : 'n');
+  }
+
+  void replay(const std::vector<io::LearningRun>& runs) {
+    for (const io::LearningRun& r : runs) (r.search ? searched_ : judged_)[r.index] = r;
+  }
+  int replayed() const { return replayed_; }
+  int ranNow() const { return ranNow_; }
+  /// Called as each run finishes: its kind, and how many of this batch's runs are done.
+  std::function<void(bool search, int done, int of)> onFinished;
+
+  std::vector<calibration::PerformanceValue> searches(const std::vector<int>& points) {
+    std::vector<calibration::PerformanceValue> out;
+    for (const io::LearningRun& r : batch(points, true)) out.push_back(r.value);
+    return out;
+  }
+  std::vector<calibration::PointVerdict> verdicts(const std::vector<int>& points) {
+    std::vector<calibration::PointVerdict> out;
+    for (const io::LearningRun& r : batch(points, false)) out.push_back(r.verdict);
+    return out;
+  }
+
+ private:
+  std::vector<io::LearningRun> batch(const std::vector<int>& points, bool search) {
+    std::map<int, io::LearningRun>& known = search ? searched_ : judged_;
+    std::vector<int> tasks;
+    for (int k : points)
+      if (known.count(k))
+        ++replayed_;
+      else
+        tasks.push_back(2 * k + (search ? 0 : 1));
+    const bool stopping = stopAfter_ > 0 && ranNow_ + static_cast<int>(tasks.size()) > stopAfter_;
+    if (stopping) tasks.resize(static_cast<size_t>(std::max(0, stopAfter_ - ranNow_)));
+    int done = 0;
+    if (!tasks.empty()) {
+      farm_.another(true);
+      farm_.run(tasks, [this](int t) { return run(t); }, [&](int t, const TaskResult& bytes) {
+        io::LearningRun r;
+        r.search = t % 2 == 0;
+        r.index = t / 2;
+        if (r.search) {
+          r.value.converged = bytes[0] == 'c';
+          r.value.fails = bytes[1] == 'f';
+          const size_t comma = bytes.find(',');
+          std::from_chars(bytes.data() + 2, bytes.data() + comma, r.value.runs);
+          std::from_chars(bytes.data() + comma + 1, bytes.data() + bytes.size(), r.value.margin);
+        } else {
+          r.verdict = bytes[0] == 's'   ? calibration::PointVerdict::Stable
+                      : bytes[0] == 'f' ? calibration::PointVerdict::Fails
+                                        : calibration::PointVerdict::NotConverged;
+        }
+        if (journal_) journal_->append(r);
+        known[r.index] = r;
+        ++ranNow_;
+        if (onFinished) onFinished(r.search, ++done, static_cast<int>(tasks.size()));
+      });
+    }
+    if (stopping) throw StopAfterReached{};
+    std::vector<io::LearningRun> out;
+    for (int k : points) out.push_back(known.at(k));
+    return out;
+  }
+
+  TaskFarm& farm_;
+  io::LearningJournal* journal_;
+  const calibration::ActiveLearningProblem& problem_;
+  int stopAfter_;
+  std::map<int, io::LearningRun> searched_, judged_;
+  int replayed_ = 0, ranNow_ = 0;
+};
+
 /// The study by active learning (calibration/active_learning.hpp): a population of `samples`
-/// points classified by a surrogate of F learnt from searches, confirmed by forward runs.
+/// points classified by a surrogate of F learnt from searches, confirmed by forward runs. Every
+/// process builds the same population; the root learns and deals the runs, the others run them.
 int activeLearningStudy(const io::ProbabilityJob& job, const SceneMaker& make, const calibration::SampleSettings& fos,
                         const model::Scene& reference, const ProbabilityOptions& opt,
                         const std::vector<std::string>& caseSettings, std::chrono::steady_clock::time_point t0) {
@@ -264,15 +354,19 @@ int activeLearningStudy(const io::ProbabilityJob& job, const SceneMaker& make, c
                      "active learning classifies a population larger than its " + std::to_string(initial) +
                          " first searches: expected more than " + std::to_string(initial) + " points, found " +
                          std::to_string(spec.samples) + " (for so few, sampling runs every one)");
-  // Nothing is lost: a folder that holds any study's runs is kept unless --overwrite, and the
-  // folder must be writable before the runs begin.
-  for (const char* held : {"learning.csv", "samples.csv"})
-    if (fs::exists(opt.outDir + "/" + held) && !opt.overwrite)
-      throw InputError(opt.outDir + "/" + held, "", "holds the runs of a study already: --overwrite starts again");
+  const bool root = processRank() == 0;
+  const std::string journalPath = opt.outDir + "/learning_runs.csv";
+  // Nothing is lost: a folder that holds any study's runs is kept unless --overwrite (or, for an
+  // active-learning study, --resume), and the folder must be writable before the runs begin.
+  if (root && fs::exists(opt.outDir + "/samples.csv") && !opt.overwrite)
+    throw InputError(opt.outDir + "/samples.csv", "", "holds the samples of a sampling study: --overwrite starts again");
+  for (const char* held : {"learning.csv", "learning_runs.csv"})
+    if (root && fs::exists(opt.outDir + "/" + held) && !opt.overwrite && !opt.resume)
+      throw InputError(opt.outDir + "/" + held, "", "holds the runs of an active-learning study already: --resume "
+                                                    "continues it, --overwrite starts again");
   checkDrawnValues(job, design, make);
   const auto log = startProgress("probability", opt.progress, opt.json);
-  checkEveryPoint(job, design, make, opt.threads, *log);
-  makeOutputFolder(opt.outDir);
+  if (root) checkEveryPoint(job, design, make, opt.threads, *log);
   const std::string line = settingsLine(reference);
   calibration::SampleSettings verdict = fos;
   verdict.measure = model::ProbabilityMeasure::Verdict;
@@ -304,23 +398,74 @@ int activeLearningStudy(const io::ProbabilityJob& job, const SceneMaker& make, c
            : r.outcome == calibration::SampleOutcome::Fails ? calibration::PointVerdict::Fails
                                                             : calibration::PointVerdict::NotConverged;
   };
+  const std::unique_ptr<TaskFarm> farm = makeTaskFarm(opt.threads);
+  if (!farm->isRoot()) {
+    LearningRuns runs(*farm, nullptr, problem, 0);
+    while (farm->another(false)) farm->run({}, [&](int t) { return runs.run(t); }, {});
+    return kExitOk;
+  }
+
+  makeOutputFolder(opt.outDir);
+  if (opt.overwrite)
+    for (const char* name : {"learning.csv", "learning_runs.csv", "probability_settings.json"})
+      fs::remove(opt.outDir + "/" + name);
+  // What the result depends on (the case's digest, --set, the forward runs' settings, the
+  // population): a resumed study must match it.
+  const std::string fingerprint = settingsFingerprint(job, caseSettings, line);
+  const std::string fingerprintPath = opt.outDir + "/probability_settings.json";
+  io::LearningJournal journal(journalPath);
+  std::vector<io::LearningRun> earlier;
+  if (opt.resume && fs::exists(journalPath)) {
+    checkFingerprint(fingerprintPath, fingerprint);
+    earlier = journal.read(design.samples());
+  }
+  writeAtomically(fingerprintPath, fingerprint);
+  journal.open();
+  LearningRuns runs(*farm, &journal, problem, opt.stopAfter);
+  runs.replay(earlier);
+  problem.evaluateAll = [&](const std::vector<int>& points) { return runs.searches(points); };
+  problem.judgeAll = [&](const std::vector<int>& points) { return runs.verdicts(points); };
+
   calibration::ActiveLearningSettings settings;
   settings.threads = opt.threads;
   settings.resolution = spec.fosWidth / 4;
   if (!opt.json) {
     printStudy(job);
-    std::printf("  forward runs at %s\n", line.c_str());
+    std::printf("  forward runs at %s, on %s\n", line.c_str(), farm->describe().c_str());
     std::printf("  learning F on %d population points: searches at the points the surrogate is least sure of, %d "
                 "per round\n", design.samples(), settings.batch);
+    if (opt.resume)
+      std::printf("  resumed: %zu searches and verdicts in %s, replayed\n", earlier.size(), journalPath.c_str());
     std::fflush(stdout);
   }
+  int searchesSoFar = 0, verdictsSoFar = 0;
   settings.progress = [&](int searches, int verdicts, int unsure) {
+    searchesSoFar = searches, verdictsSoFar = verdicts;
     if (!log->active()) return;
     char text[96];
     std::snprintf(text, sizeof text, "%d verdicts; %d points unsure", verdicts, unsure);
     log->report({"searches", searches, settings.maxSearches, text, {{"unsure_points", unsure}}});
   };
-  const calibration::ActiveLearningResult r = calibration::learnFailureDomain(problem, settings);
+  // The verdicts that decide the unsure points come in one batch of up to a few hundred runs.
+  runs.onFinished = [&](bool search, int done, int of) {
+    if (search || !log->active()) return;
+    char text[96];
+    std::snprintf(text, sizeof text, "%d searches; verdicts of the unsure points and confirmations", searchesSoFar);
+    log->report({"verdicts", verdictsSoFar + done, verdictsSoFar + of, text, {}});
+  };
+  calibration::ActiveLearningResult r;
+  try {
+    r = calibration::learnFailureDomain(problem, settings);
+  } catch (const StopAfterReached&) {
+    farm->another(false);
+    log->finish(false, std::to_string(runs.ranNow()) + " searches and verdicts made now");
+    if (!opt.json)
+      std::printf("  incomplete: %d searches and verdicts made now (--stop-after %d), %d replayed; wrote %s; --resume "
+                  "continues\n",
+                  runs.ranNow(), opt.stopAfter, runs.replayed(), journalPath.c_str());
+    return kExitOk;
+  }
+  farm->another(false);
   log->finish(r.message.empty(), std::to_string(r.searches) + " searches, " + std::to_string(r.verdicts) + " verdicts");
   if (!r.message.empty()) {
     // Nothing to classify with: no Pf is written.
@@ -337,9 +482,6 @@ int activeLearningStudy(const io::ProbabilityJob& job, const SceneMaker& make, c
   for (const char* name : {"samples.csv", "summary.partial.json", "pf_convergence.png", "fos_histogram.png",
                            "sensitivities.png", "samples_plane.png", "report.html"})
     fs::remove(opt.outDir + "/" + name);
-  // What the result depends on (the case's digest, --set, the forward runs' settings), as a
-  // sampling study records it.
-  writeAtomically(opt.outDir + "/probability_settings.json", settingsFingerprint(job, caseSettings, line));
   const std::string json = io::activeLearningSummaryJson(job, r, line, pointReport, designMessage);
   const std::vector<std::string> files = io::writeActiveLearningFiles(job, design, r, opt.outDir, pointReport);
   writeAtomically(opt.outDir + "/summary.json", json);
@@ -378,8 +520,8 @@ int activeLearningStudy(const io::ProbabilityJob& job, const SceneMaker& make, c
       printSensitivities(job, *point);
     }
     std::printf("  not converged: %d\n", r.notConverged);
-    std::printf("  %.2f s wall on %d thread%s; wrote %s/summary.json", wall, opt.threads, opt.threads == 1 ? "" : "s",
-                opt.outDir.c_str());
+    std::printf("  %.2f s wall on %s (%d searches and verdicts made now, %d replayed); wrote %s/summary.json", wall,
+                farm->describe().c_str(), runs.ranNow(), runs.replayed(), opt.outDir.c_str());
     for (const auto& f : files) std::printf(", %s", f.c_str());
     std::printf("\n");
   }
@@ -492,9 +634,9 @@ void addProbabilityOptions(CLI::App* cmd, std::string& path, ProbabilityOptions&
   cmd->add_option("--threads", opt.threads, "samples run at once (the result does not depend on it)")
       ->capture_default_str()
       ->check(CLI::Range(1, 256));
-  cmd->add_flag("--resume", opt.resume, "continue the study in --out: run only the samples samples.csv lacks");
+  cmd->add_flag("--resume", opt.resume, "continue the study in --out: run only the samples samples.csv lacks (active learning: the runs learning_runs.csv lacks)");
   cmd->add_flag("--overwrite", opt.overwrite, "start again in an --out that holds a study (its samples are lost)");
-  cmd->add_option("--stop-after", opt.stopAfter, "run at most this many samples now; --resume continues")
+  cmd->add_option("--stop-after", opt.stopAfter, "run at most this many samples (active learning: searches and verdicts) now; --resume continues")
       ->check(CLI::Range(1, 1000000));
   cmd->add_flag("--json", opt.json, "print the summary as JSON");
   addProgressOptions(cmd, opt.progress);
@@ -513,18 +655,17 @@ int probabilityCommand(const std::string& path, const Overrides& o, const Probab
                                                                             : spec.measure;
   settings.fosWidth = spec.fosWidth;
   for (const auto& name : spec.fosJoints) settings.fosJoints.push_back(jointIndex(reference, name, job.casePath));
-  if (spec.method == model::ProbabilityMethod::ActiveLearning) {
-    if (processRank() != 0) return kExitOk;
+  if (spec.method == model::ProbabilityMethod::ActiveLearning)
     return activeLearningStudy(job, make, settings, reference, opt, o.settings, t0);
-  }
   calibration::SampleDesign design(spec);
   // A folder holding a study is refused before anything runs (the design point's runs included).
   // The root alone keeps the folder: under mpirun the others would see the file it has just begun.
   if (processRank() == 0 && fs::exists(opt.outDir + "/samples.csv") && !opt.resume && !opt.overwrite)
     throw InputError(opt.outDir + "/samples.csv", "", "holds the samples of a study already: --resume continues it, "
                                                       "--overwrite starts again");
-  if (processRank() == 0 && fs::exists(opt.outDir + "/learning.csv") && !opt.overwrite)
-    throw InputError(opt.outDir + "/learning.csv", "", "holds the runs of an active-learning study: --overwrite "
+  for (const char* held : {"learning.csv", "learning_runs.csv"})
+    if (processRank() == 0 && fs::exists(opt.outDir + "/" + held) && !opt.overwrite)
+      throw InputError(opt.outDir + "/" + held, "", "holds the runs of an active-learning study: --overwrite "
                                                        "starts again");
   if (processRank() == 0) makeOutputFolder(opt.outDir);
   std::optional<io::DesignPointReport> form;

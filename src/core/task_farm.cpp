@@ -22,6 +22,7 @@ class ThreadFarm final : public TaskFarm {
     });
   }
   bool isRoot() const override { return true; }
+  bool another(bool more) override { return more; }
   int slots() const override { return threads_; }
   std::string describe() const override { return std::to_string(threads_) + (threads_ == 1 ? " thread" : " threads"); }
 

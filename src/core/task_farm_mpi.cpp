@@ -176,6 +176,11 @@ class MpiFarm final : public TaskFarm {
       runWorker(task);
   }
   bool isRoot() const override { return worldRank == 0; }
+  bool another(bool more) override {
+    int flag = worldRank == 0 && more ? 1 : 0;
+    MPI_Bcast(&flag, 1, MPI_INT, 0, MPI_COMM_WORLD);
+    return flag != 0;
+  }
   int slots() const override { return threads_ * worldSize; }
   std::string describe() const override {
     return std::to_string(worldSize) + " ranks × " + std::to_string(threads_) + (threads_ == 1 ? " thread" : " threads");

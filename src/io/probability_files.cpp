@@ -236,6 +236,94 @@ void SampleTable::append(const SampleResult& r) {
     throw InputError(path_, "", "cannot write the file (disk full?)");
 }
 
+namespace {
+constexpr const char* kLearningHeader = "kind,sample,outcome,margin,forward_runs";
+}  // namespace
+
+LearningJournal::~LearningJournal() {
+  if (file_) std::fclose(file_);
+}
+
+std::vector<LearningRun> LearningJournal::read(int population) {
+  using calibration::PointVerdict;
+  std::vector<LearningRun> out;
+  if (!fs::exists(path_)) return out;
+  std::ifstream in(path_, std::ios::binary);
+  const std::string text((std::istreambuf_iterator<char>(in)), {});
+  const size_t lastNewline = text.rfind('\n');
+  // A study killed while writing a row leaves it without its line end: that run is made again.
+  keepBytes_ = lastNewline == std::string::npos ? 0 : static_cast<long>(lastNewline + 1);
+  std::istringstream lines(text.substr(0, static_cast<size_t>(keepBytes_)));
+  std::string line;
+  if (!std::getline(lines, line)) return out;
+  if (line != kLearningHeader)
+    throw InputError(path_, "line 1", std::string("expected the header \"") + kLearningHeader + "\", found \"" + line + "\"");
+  std::set<std::pair<bool, int>> seen;
+  for (int number = 2; std::getline(lines, line); ++number) {
+    const std::string where = "line " + std::to_string(number);
+    const std::vector<std::string> f = splitFields(line);
+    if (f.size() != 5) throw InputError(path_, where, "expected 5 fields, found " + std::to_string(f.size()) + ": the file is damaged");
+    LearningRun r;
+    if (f[0] != "search" && f[0] != "verdict")
+      throw InputError(path_, where, "expected the kind search or verdict, found \"" + f[0] + "\"");
+    r.search = f[0] == "search";
+    const auto whole = [&](const std::string& t, int* v) {
+      const auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), *v);
+      return ec == std::errc() && end == t.data() + t.size() && *v >= 0;
+    };
+    if (!whole(f[1], &r.index) || r.index >= population)
+      throw InputError(path_, where, "expected a population point 0 to " + std::to_string(population - 1) +
+                                         ", found \"" + f[1] + "\": the runs of another study (other --samples?)");
+    if (!seen.insert({r.search, r.index}).second)
+      throw InputError(path_, where, "the " + f[0] + " of point " + f[1] + " is there twice");
+    const std::string& outcome = f[2];
+    if (outcome != "stable" && outcome != "fails" && outcome != "not_converged")
+      throw InputError(path_, where, "expected stable, fails or not_converged, found \"" + outcome + "\"");
+    int runs = 0;
+    if (!whole(f[4], &runs)) throw InputError(path_, where, "expected a count of forward runs, found \"" + f[4] + "\"");
+    if (r.search) {
+      r.value.runs = runs;
+      r.value.converged = outcome != "not_converged";
+      r.value.fails = outcome == "fails";
+      double margin = 0;
+      if (r.value.converged && (!parseNumber(f[3], &margin) || f[3].empty()))
+        throw InputError(path_, where, "expected F − 1 of a converged search, found \"" + f[3] + "\"");
+      r.value.margin = r.value.converged ? margin : 0;
+    } else {
+      r.verdict = outcome == "stable" ? PointVerdict::Stable : outcome == "fails" ? PointVerdict::Fails
+                                                                                  : PointVerdict::NotConverged;
+    }
+    out.push_back(r);
+  }
+  return out;
+}
+
+void LearningJournal::open() {
+  if (file_) return;
+  if (keepBytes_ > 0) fs::resize_file(path_, static_cast<std::uintmax_t>(keepBytes_));
+  const bool fresh = keepBytes_ <= 0;
+  file_ = std::fopen(path_.c_str(), fresh ? "w" : "a");
+  if (!file_) throw InputError(path_, "", "cannot write the file");
+  if (fresh && (std::fprintf(file_, "%s\n", kLearningHeader) < 0 || std::fflush(file_) != 0))
+    throw InputError(path_, "", "cannot write the file");
+}
+
+void LearningJournal::append(const LearningRun& r) {
+  using calibration::PointVerdict;
+  DDASLOPE_ASSERT(file_, "learning_runs.csv appended before it was opened");
+  std::string row = std::string(r.search ? "search" : "verdict") + "," + std::to_string(r.index) + ",";
+  if (r.search) {
+    row += !r.value.converged ? "not_converged" : r.value.fails ? "fails" : "stable";
+    row += "," + (r.value.converged ? exactText(r.value.margin) : std::string()) + "," + std::to_string(r.value.runs);
+  } else {
+    row += r.verdict == PointVerdict::Stable ? "stable" : r.verdict == PointVerdict::Fails ? "fails" : "not_converged";
+    row += ",,1";
+  }
+  row += "\n";
+  if (std::fputs(row.c_str(), file_) < 0 || std::fflush(file_) != 0)
+    throw InputError(path_, "", "cannot write the file (disk full?)");
+}
+
 std::string settingsFingerprint(const io::ProbabilityJob& job, const std::vector<std::string>& caseSettings,
                                 const std::string& settingsLine, const std::vector<double>& centre) {
   const model::ProbabilitySpec& s = job.spec;
@@ -251,9 +339,12 @@ std::string settingsFingerprint(const io::ProbabilityJob& job, const std::vector
   }
   // Monte Carlo samples do not depend on N (more may be added by resuming with a larger --samples);
   // a Latin hypercube's strata do.
-  if (s.sampling == model::Sampling::LatinHypercube) j.set("samples", s.samples);
+  // Active learning chooses its runs from the whole population: every point counts.
+  const bool learning = s.method == model::ProbabilityMethod::ActiveLearning;
+  if (learning) j.set("method", calibration::name(s.method));
+  if (s.sampling == model::Sampling::LatinHypercube || learning) j.set("samples", s.samples);
   appendStudy(j, s);
-  if (factorMeasure(s)) j.set("fos_joints", s.fosJoints).set("fos_width", s.fosWidth);
+  if (factorMeasure(s) || learning) j.set("fos_joints", s.fosJoints).set("fos_width", s.fosWidth);
   j.set("set", caseSettings).set("forward_runs", settingsLine);
   return j.dump() + "\n";
 }
@@ -492,7 +583,7 @@ std::vector<std::string> writeActiveLearningFiles(const io::ProbabilityJob& job,
     int order = 0;
     for (const calibration::LearnedPoint& lp : r.points) {
       csv += std::to_string(order++) + "," + std::to_string(lp.index) + "," + calibration::name(lp.role);
-      for (double v : design.values(lp.index)) csv += "," + exactText(v);
+      for (double v : design.values(lp.index)) csv.append(1, ',').append(exactText(v));
       const bool confirmation = lp.role == LearnedRole::Confirmation;
       const char* outcome = confirmation ? (lp.verdict == PointVerdict::Stable  ? "stable"
                                             : lp.verdict == PointVerdict::Fails ? "fails"

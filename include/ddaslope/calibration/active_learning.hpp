@@ -47,6 +47,12 @@ struct ActiveLearningProblem {
   /// One forward run's verdict at population point k (the confirmation). Called from several
   /// threads at once.
   std::function<PointVerdict(int k)> judge;
+  /// Optional: the searches (verdicts) of several points at once, returned in the points' order.
+  /// When set they replace evaluate (judge) on `threads` threads: for a caller that replays runs
+  /// made before, records each as it finishes, or spreads them over processes. They may throw to
+  /// end the learning (what they ran is theirs to keep).
+  std::function<std::vector<PerformanceValue>(const std::vector<int>& points)> evaluateAll;
+  std::function<std::vector<PointVerdict>(const std::vector<int>& points)> judgeAll;
 };
 
 /// The searches before the first fit, for d inputs: max(12, 2(d + 2)) (Echard et al. take 12;

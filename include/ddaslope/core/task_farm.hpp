@@ -32,6 +32,12 @@ class TaskFarm {
   virtual void run(const std::vector<int>& indices, const Task& task, const Sink& sink) = 0;
   /// True on the process that writes results: always without MPI, rank 0 under mpirun.
   virtual bool isRoot() const = 0;
+  /// For a study whose runs depend on the results before them (active learning): the root
+  /// decides each run of the farm as it goes, and the other processes serve runs until it says
+  /// none follows. Returns the root's `more` on every process (the others' argument is ignored):
+  ///   root:   while (...) { farm.another(true); farm.run(indices, task, sink); } farm.another(false);
+  ///   others: while (farm.another(false)) farm.run({}, task, {});
+  virtual bool another(bool more) = 0;
   /// Tasks that can run at once: threads per process × processes.
   virtual int slots() const = 0;
   /// "2 threads", "3 ranks × 2 threads": for reports.

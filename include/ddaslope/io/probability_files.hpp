@@ -46,6 +46,41 @@ class SampleTable {
   long keepBytes_ = -1;  ///< the file's length up to its last whole row (-1: all of it)
 };
 
+/// One forward run of an active-learning study: a search of F or one run's verdict.
+struct LearningRun {
+  bool search = true;  ///< a search of F (otherwise a verdict)
+  int index = 0;       ///< population point
+  calibration::PerformanceValue value;                                    ///< a search's
+  calibration::PointVerdict verdict = calibration::PointVerdict::Stable;  ///< a verdict's
+};
+
+/// learning_runs.csv: every run of an active-learning study, a row as each finishes (kind,
+/// sample, outcome, F − 1 to the last bit, forward runs). --resume replays them: the learning
+/// is a function of its runs' results, so a resumed study chooses, and writes, exactly what an
+/// uninterrupted one would have.
+class LearningJournal {
+ public:
+  explicit LearningJournal(std::string path) : path_(std::move(path)) {}
+  ~LearningJournal();
+  LearningJournal(const LearningJournal&) = delete;
+  LearningJournal& operator=(const LearningJournal&) = delete;
+
+  const std::string& path() const { return path_; }
+  /// The runs already in the file, checked: the header, each kind, sample within
+  /// [0, population), outcome and margin, and no run given twice. A last line cut short by a kill
+  /// is dropped (that run is made again); a damaged line elsewhere is an InputError.
+  std::vector<LearningRun> read(int population);
+  /// Opens the file for appending (a new one gets its header).
+  void open();
+  /// Appends one row, flushed at once: a killed study keeps every run it finished.
+  void append(const LearningRun& r);
+
+ private:
+  std::string path_;
+  std::FILE* file_ = nullptr;
+  long keepBytes_ = -1;
+};
+
 /// Importance sampling's design point, as the summary and the pictures report it.
 struct DesignPointReport {
   calibration::DesignPoint point;
