@@ -4,7 +4,9 @@
 // on the stable side of a stable one) and says so when it cannot resolve them.
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cmath>
+#include <condition_variable>
 #include <mutex>
 #include <set>
 
@@ -214,4 +216,29 @@ TEST(SearchReview, MonotoneTrialsNeedNoReRuns) {
   ASSERT_TRUE(r.found);
   EXPECT_EQ(r.review.reruns, 0);
   EXPECT_NEAR(r.factor, 1.0, 0.005);
+}
+
+// With two threads the search's first trials, F = 1 and 1.5, run side by side: a search one trial
+// at a time runs them one after the other on every slope that stands at F = 1. The trial at 1
+// waits (10 s at most) for the one at 1.5 to begin. A slope failing at F = 1 spends the trial at
+// 1.5 and searches downwards to the same F as before.
+TEST(SearchReview, FirstTwoTrialsRunSideBySide) {
+  for (const double critical : {1.2, 0.8}) {
+    std::mutex m;
+    std::condition_variable begun;
+    bool atOneAndAHalf = false, overlapped = false;
+    FakeVerdict v;
+    v.critical = critical;
+    v.special = [&](double f, double, TrialResult&) {
+      std::unique_lock<std::mutex> lock(m);
+      if (f == 1.5) atOneAndAHalf = true, begun.notify_all();
+      if (f == 1.0) overlapped = begun.wait_for(lock, std::chrono::seconds(10), [&] { return atOneAndAHalf; });
+      return true;
+    };
+    const auto r = calibration::factorOfSafetyOf(v, 0.005, twoAtOnce());
+    ASSERT_TRUE(r.found) << r.message;
+    EXPECT_TRUE(overlapped) << "F = 1 and 1.5 ran one after the other (critical " << critical << ")";
+    EXPECT_NEAR(r.factor, critical, 0.005);
+    EXPECT_EQ(r.review.reruns, 0);
+  }
 }

@@ -528,18 +528,18 @@ FactorOfSafetyResult factorOfSafety(const model::Scene& scene, const std::vector
   if (reduced.empty())
     for (size_t j = 0; j < scene.joints.size(); ++j) reduced.push_back(static_cast<int>(j));
   const auto held = sharedEquilibrium(scene);
-  // The rest of the first trial, at F = 1 (factorOfSafetyOf runs it alone, before any other),
-  // once that trial stands: where the later trials start with TrialStart::Settled.
+  // The rest of the first trial, at F = 1 (factorOfSafetyOf runs it alone, before any other,
+  // when the trials start from it), once that trial stands: where the later trials start with
+  // TrialStart::Settled. Held trials run F = 1 beside 1.5 and never touch it.
   std::optional<solver::HeldEquilibrium> settled;
-  bool first = true;
+  std::atomic<bool> first{s.trialStart == TrialStart::Settled};
   FactorOfSafetyResult r = factorOfSafetyOf(
       [&](double f, double length) {
         model::Scene trial = scene;
         trial.settings.duration *= length;
         for (int j : reduced) trial.joints[j] = scene.joints[j].reducedBy(f);
-        if (first) {
-          first = false;
-          const bool keep = held && s.trialStart == TrialStart::Settled && f == 1 && length == 1;
+        if (first.exchange(false)) {
+          const bool keep = held && f == 1 && length == 1;
           TrialResult r = judgeStability(trial, s.verdict, held ? &*held : nullptr, endOf(s, f), keep ? &settled : nullptr);
           if (!r.stable) settled.reset();
           return r;
@@ -567,8 +567,26 @@ FactorOfSafetyResult factorOfSafetyOf(const std::function<TrialResult(double, do
   FactorOfSafetyResult r;
   // Bracket from F = 1 by factors of 1.5 (stable: raise F; failing: lower it).
   double stable = 0, failing = 0, f = 1;
-  const bool atOne = stableAt(f);
-  (atOne ? stable : failing) = f;
+  bool atOne = false;
+  if (s.threads >= 2 && s.trialStart == TrialStart::Held) {
+    // F = 1 and 1.5 at once: most slopes stand at F = 1, and then the trial at 1.5, which a
+    // search one trial at a time makes next, costs no wall time. (A slope failing at F = 1 spends
+    // it: that search goes down.) Trials that start from F = 1's rest must wait for it.
+    const std::vector<bool> first = evaluateAll(std::ref(stableAt), {1.0, 1.5}, 2);
+    atOne = first[0];
+    (atOne ? stable : failing) = 1;
+    if (atOne) f = 1.5, (first[1] ? stable : failing) = f;
+    // Undecided trials in a row, as one trial at a time would have counted them.
+    const auto undecidedAt = [&](double x) {
+      for (const TrialRecord& t : stableAt.trials)
+        if (t.value == x && !t.rerun) return t.result.undecided;
+      return false;
+    };
+    stableAt.undecidedInARow = atOne ? static_cast<int>(undecidedAt(1.5)) : static_cast<int>(undecidedAt(1.0));
+  } else {
+    atOne = stableAt(f);
+    (atOne ? stable : failing) = f;
+  }
   for (int k = 0; k < 40 && (stable == 0 || failing == 0) && stableAt.undecidedInARow < 2; ++k) {
     f = atOne ? f * 1.5 : f / 1.5;
     (stableAt(f) ? stable : failing) = f;
