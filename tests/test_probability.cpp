@@ -854,6 +854,22 @@ TEST(Probability, ActiveLearningResumesWhereItStopped) {
   std::ofstream(journal, std::ios::binary) << damaged;
   EXPECT_EQ(clitest::runCli(args + resumed + " --resume", &err), 2);
   EXPECT_NE(err.find("learning_runs.csv: line 2: expected the kind search or verdict"), std::string::npos) << err;
+  // A verdict is one forward run, with no F.
+  damaged = slurp(straight + "/learning_runs.csv");
+  const size_t verdictRow = damaged.find("\nverdict,");
+  ASSERT_NE(verdictRow, std::string::npos);
+  damaged.insert(damaged.find(",,", verdictRow) + 1, "0.5");
+  std::ofstream(journal, std::ios::binary) << damaged;
+  EXPECT_EQ(clitest::runCli(args + resumed + " --resume", &err), 2);
+  EXPECT_NE(err.find("expected a verdict's empty F − 1 and 1 forward run"), std::string::npos) << err;
+  // --overwrite leaves nothing of the study it replaces; a stopped study's --json says it is not
+  // complete.
+  const json stopped =
+      json::parse(clitest::captureCli(args + straight + " --seed 7 --overwrite --stop-after 3 --json", &err));
+  EXPECT_FALSE(stopped["complete"].get<bool>());
+  EXPECT_EQ(stopped["runs_made_now"], 3);
+  for (const char* f : {"summary.json", "learning.csv", "samples_plane.png", "sensitivities.png"})
+    EXPECT_FALSE(fs::exists(straight + "/" + f)) << f;
   fs::remove_all(straight);
   fs::remove_all(resumed);
 }

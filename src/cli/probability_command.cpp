@@ -18,6 +18,7 @@
 #include "ddaslope/core/errors.hpp"
 #include "ddaslope/core/task_farm.hpp"
 #include "ddaslope/io/probability_reader.hpp"
+#include "ddaslope/io/json_record.hpp"
 #include "ddaslope/io/probability_files.hpp"
 
 namespace ddaslope::cli {
@@ -163,6 +164,15 @@ void makeOutputFolder(const std::string& dir) {
     throw InputError("--out", dir, "cannot create the folder" + (made ? ": " + made.message() : std::string()));
 }
 
+/// Every file a study of any method writes in its folder: what --overwrite removes, so that no
+/// result of the study replaced is left beside the new one's.
+void removeStudyFiles(const std::string& dir) {
+  for (const char* name : {"samples.csv", "probability_settings.json", "summary.json", "summary.partial.json",
+                           "pf_convergence.png", "samples_plane.png", "fos_histogram.png", "sensitivities.png",
+                           "learning.csv", "learning_runs.csv", "report.html"})
+    fs::remove(dir + "/" + name);
+}
+
 /// The study's folder: a study there is continued (--resume), replaced (--overwrite) or kept (an
 /// error, so that no sample is ever lost). Returns the samples it holds (resumed).
 std::vector<SampleResult> prepareFolder(const ProbabilityOptions& opt, SampleTable& table,
@@ -172,11 +182,7 @@ std::vector<SampleResult> prepareFolder(const ProbabilityOptions& opt, SampleTab
   if (fs::exists(table.path()) && !opt.resume && !opt.overwrite)
     throw InputError(table.path(), "", "holds the samples of a study already: --resume continues it, --overwrite "
                                        "starts again");
-  if (opt.overwrite)
-    for (const char* name : {"samples.csv", "probability_settings.json", "summary.json", "summary.partial.json",
-                             "pf_convergence.png", "samples_plane.png", "fos_histogram.png", "sensitivities.png",
-                             "learning.csv", "learning_runs.csv", "report.html"})
-      fs::remove(opt.outDir + "/" + name);
+  if (opt.overwrite) removeStudyFiles(opt.outDir);
   std::vector<SampleResult> done;
   if (opt.resume && fs::exists(table.path())) {
     checkFingerprint(fingerprintPath, fingerprint);
@@ -295,11 +301,13 @@ class LearningRuns {
   std::vector<io::LearningRun> batch(const std::vector<int>& points, bool search) {
     std::map<int, io::LearningRun>& known = search ? searched_ : judged_;
     std::vector<int> tasks;
+    int replayedHere = 0;
     for (int k : points)
       if (known.count(k))
-        ++replayed_;
+        ++replayedHere;
       else
         tasks.push_back(2 * k + (search ? 0 : 1));
+    replayed_ += replayedHere;
     const bool stopping = stopAfter_ > 0 && ranNow_ + static_cast<int>(tasks.size()) > stopAfter_;
     if (stopping) tasks.resize(static_cast<size_t>(std::max(0, stopAfter_ - ranNow_)));
     int done = 0;
@@ -323,7 +331,7 @@ class LearningRuns {
         if (journal_) journal_->append(r);
         known[r.index] = r;
         ++ranNow_;
-        if (onFinished) onFinished(r.search, ++done, static_cast<int>(tasks.size()));
+        if (onFinished) onFinished(r.search, replayedHere + ++done, static_cast<int>(points.size()));
       });
     }
     if (stopping) throw StopAfterReached{};
@@ -406,17 +414,16 @@ int activeLearningStudy(const io::ProbabilityJob& job, const SceneMaker& make, c
   }
 
   makeOutputFolder(opt.outDir);
-  if (opt.overwrite)
-    for (const char* name : {"learning.csv", "learning_runs.csv", "probability_settings.json"})
-      fs::remove(opt.outDir + "/" + name);
+  if (opt.overwrite) removeStudyFiles(opt.outDir);
   // What the result depends on (the case's digest, --set, the forward runs' settings, the
   // population): a resumed study must match it.
   const std::string fingerprint = settingsFingerprint(job, caseSettings, line);
   const std::string fingerprintPath = opt.outDir + "/probability_settings.json";
   io::LearningJournal journal(journalPath);
   std::vector<io::LearningRun> earlier;
-  if (opt.resume && fs::exists(journalPath)) {
-    checkFingerprint(fingerprintPath, fingerprint);
+  const bool resuming = opt.resume && fs::exists(journalPath);
+  if (resuming) {
+    checkFingerprint(fingerprintPath, fingerprint, "runs");
     earlier = journal.read(design.samples());
   }
   writeAtomically(fingerprintPath, fingerprint);
@@ -434,8 +441,10 @@ int activeLearningStudy(const io::ProbabilityJob& job, const SceneMaker& make, c
     std::printf("  forward runs at %s, on %s\n", line.c_str(), farm->describe().c_str());
     std::printf("  learning F on %d population points: searches at the points the surrogate is least sure of, %d "
                 "per round\n", design.samples(), settings.batch);
-    if (opt.resume)
+    if (resuming)
       std::printf("  resumed: %zu searches and verdicts in %s, replayed\n", earlier.size(), journalPath.c_str());
+    else if (opt.resume)
+      std::printf("  resumed: no %s yet, so the study starts\n", journalPath.c_str());
     std::fflush(stdout);
   }
   int searchesSoFar = 0, verdictsSoFar = 0;
@@ -459,11 +468,22 @@ int activeLearningStudy(const io::ProbabilityJob& job, const SceneMaker& make, c
   } catch (const StopAfterReached&) {
     farm->another(false);
     log->finish(false, std::to_string(runs.ranNow()) + " searches and verdicts made now");
-    if (!opt.json)
+    if (opt.json) {
+      io::JsonRecord j;
+      j.set("method", "active_learning").set("complete", false).set("runs_made_now", runs.ranNow());
+      j.set("runs_replayed", runs.replayed()).set("journal", journalPath);
+      std::printf("%s\n", j.dump().c_str());
+    } else {
       std::printf("  incomplete: %d searches and verdicts made now (--stop-after %d), %d replayed; wrote %s; --resume "
                   "continues\n",
                   runs.ranNow(), opt.stopAfter, runs.replayed(), journalPath.c_str());
+    }
     return kExitOk;
+  } catch (...) {
+    // The other ranks wait for the next round: they are told there is none, unless the error
+    // came from a run and they met it already (an error's exit code ends them, or MPI_Abort).
+    if (!errorSharedByAllProcesses()) farm->another(false);
+    throw;
   }
   farm->another(false);
   log->finish(r.message.empty(), std::to_string(r.searches) + " searches, " + std::to_string(r.verdicts) + " verdicts");

@@ -256,10 +256,12 @@ std::vector<LearningRun> LearningJournal::read(int population) {
   std::istringstream lines(text.substr(0, static_cast<size_t>(keepBytes_)));
   std::string line;
   if (!std::getline(lines, line)) return out;
+  if (!line.empty() && line.back() == '\r') line.pop_back();
   if (line != kLearningHeader)
     throw InputError(path_, "line 1", std::string("expected the header \"") + kLearningHeader + "\", found \"" + line + "\"");
   std::set<std::pair<bool, int>> seen;
   for (int number = 2; std::getline(lines, line); ++number) {
+    if (!line.empty() && line.back() == '\r') line.pop_back();  // edited on Windows
     const std::string where = "line " + std::to_string(number);
     const std::vector<std::string> f = splitFields(line);
     if (f.size() != 5) throw InputError(path_, where, "expected 5 fields, found " + std::to_string(f.size()) + ": the file is damaged");
@@ -286,10 +288,17 @@ std::vector<LearningRun> LearningJournal::read(int population) {
       r.value.converged = outcome != "not_converged";
       r.value.fails = outcome == "fails";
       double margin = 0;
-      if (r.value.converged && (!parseNumber(f[3], &margin) || f[3].empty()))
-        throw InputError(path_, where, "expected F − 1 of a converged search, found \"" + f[3] + "\"");
+      // F lies where a search can bracket it: above 0, below 1.5^40 (calibration::factorOfSafetyOf).
+      if (r.value.converged && (!parseNumber(f[3], &margin) || f[3].empty() || !(margin > -1) || margin > 1e7))
+        throw InputError(path_, where, "expected F − 1 of a converged search, above -1 and at most 1e7, found \"" +
+                                           f[3] + "\"");
+      if (!r.value.converged && !f[3].empty())
+        throw InputError(path_, where, "expected no F − 1 for a search that did not converge, found \"" + f[3] + "\"");
       r.value.margin = r.value.converged ? margin : 0;
     } else {
+      if (!f[3].empty() || runs != 1)
+        throw InputError(path_, where, "expected a verdict's empty F − 1 and 1 forward run, found \"" + f[3] + "\" and \"" +
+                                           f[4] + "\"");
       r.verdict = outcome == "stable" ? PointVerdict::Stable : outcome == "fails" ? PointVerdict::Fails
                                                                                   : PointVerdict::NotConverged;
     }
@@ -349,9 +358,9 @@ std::string settingsFingerprint(const io::ProbabilityJob& job, const std::vector
   return j.dump() + "\n";
 }
 
-void checkFingerprint(const std::string& path, const std::string& expected) {
+void checkFingerprint(const std::string& path, const std::string& expected, const std::string& held) {
   if (!fs::exists(path))
-    throw InputError(path, "", "is missing, so the samples beside it cannot be checked against this study: start "
+    throw InputError(path, "", "is missing, so the " + held + " beside it cannot be checked against this study: start "
                                "again (--overwrite) or in another --out");
   std::ifstream in(path, std::ios::binary);
   const std::string found((std::istreambuf_iterator<char>(in)), {});
@@ -370,7 +379,7 @@ void checkFingerprint(const std::string& path, const std::string& expected) {
       return t;
     };
     throw InputError(path, "line " + std::to_string(line),
-                     "the samples in this folder belong to another study: it had " + bare(was) + ", this one has " +
+                     "the " + held + " in this folder belong to another study: it had " + bare(was) + ", this one has " +
                          bare(now) + ". Resume with the same case, section and options, or start in another --out");
   }
 }

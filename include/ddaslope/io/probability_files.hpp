@@ -97,7 +97,8 @@ std::string settingsFingerprint(const ProbabilityJob& job, const std::vector<std
 
 /// Refuses (InputError) a resumed study whose probability_settings.json differs from `expected`,
 /// naming the first line that differs.
-void checkFingerprint(const std::string& path, const std::string& expected);
+/// `held`: what the folder holds, for the message ("samples", or an active-learning study's "runs").
+void checkFingerprint(const std::string& path, const std::string& expected, const std::string& held = "samples");
 
 /// Writes `text` to `path` through a temporary file and a rename: a reader never sees half of it.
 void writeAtomically(const std::string& path, const std::string& text);
