@@ -843,7 +843,12 @@ TEST(Probability, ActiveLearningResumesWhereItStopped) {
   EXPECT_EQ(clitest::runCli("probability " + job + " --method active_learning --samples 30000 --resume --out " + resumed,
                             &err), 2);
   EXPECT_NE(err.find("probability_settings.json: line"), std::string::npos) << err;
-  EXPECT_NE(err.find("belong to another study"), std::string::npos) << err;
+  EXPECT_NE(err.find("the runs in this folder belong to another study: it had \"samples\": 20000, this one has "
+                     "\"samples\": 30000"), std::string::npos) << err;
+  // So is another --set, named whole (not by the line that opens its list).
+  EXPECT_EQ(clitest::runCli(args + resumed + " --resume --set analysis.time_step=0.0005", &err), 2);
+  EXPECT_NE(err.find("it had \"set\": [], this one has \"set\": [\"analysis.time_step=0.0005\"]"), std::string::npos)
+      << err;
   const std::string resumedOut = clitest::captureCli(args + resumed + " --resume --threads 1", &err);
   EXPECT_NE(resumedOut.find("resumed: 26 searches and verdicts"), std::string::npos) << resumedOut;
   for (const char* f : {"summary.json", "learning.csv", "samples_plane.png", "sensitivities.png"})

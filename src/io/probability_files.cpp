@@ -11,6 +11,8 @@
 #include <set>
 #include <sstream>
 
+#include <nlohmann/json.hpp>
+
 #include "ddaslope/calibration/verdict.hpp"
 #include "ddaslope/core/errors.hpp"
 #include "ddaslope/io/json_record.hpp"
@@ -378,9 +380,25 @@ void checkFingerprint(const std::string& path, const std::string& expected, cons
       if (!t.empty() && t.back() == ',') t.pop_back();
       return t;
     };
+    std::string had = bare(was), has = bare(now);
+    // A line that opens a list or an object (`"set": [`) says nothing of what differs in it: the
+    // whole value of the first setting that differs is named instead.
+    const auto opens = [](const std::string& t) { return !t.empty() && (t.back() == '[' || t.back() == '{'); };
+    if (opens(had) || opens(has)) {
+      const nlohmann::json o = nlohmann::json::parse(found, nullptr, false), n = nlohmann::json::parse(expected, nullptr, false);
+      const std::string& line = opens(has) ? has : had;  // `"set": [`
+      const size_t close = line.find('"', 1);
+      const std::string key = line.size() > 1 && line[0] == '"' && close != std::string::npos ? line.substr(1, close - 1) : "";
+      const auto shown = [&key](const nlohmann::json& doc) {
+        std::string t = "\"";
+        t.append(key).append("\": ").append(doc.contains(key) ? doc[key].dump() : std::string("(none)"));
+        return t;
+      };
+      if (o.is_object() && n.is_object() && !key.empty()) had = shown(o), has = shown(n);
+    }
     throw InputError(path, "line " + std::to_string(line),
-                     "the " + held + " in this folder belong to another study: it had " + bare(was) + ", this one has " +
-                         bare(now) + ". Resume with the same case, section and options, or start in another --out");
+                     "the " + held + " in this folder belong to another study: it had " + had + ", this one has " +
+                         has + ". Resume with the same case, section and options, or start in another --out");
   }
 }
 
@@ -600,12 +618,16 @@ std::vector<std::string> writeActiveLearningFiles(const io::ProbabilityJob& job,
                             : !lp.value.converged ? "not_converged"
                             : lp.value.fails      ? "fails"
                                                   : "stable";
-      csv += std::string(",") + outcome;
-      csv += "," + (confirmation || !lp.value.converged ? std::string() : exactText(1 + lp.value.margin));
-      csv += "," + std::to_string(confirmation ? 1 : lp.value.runs);
-      csv += "," + exactText(lp.predictedMean) + "," + exactText(lp.predictedSd);
-      csv += std::string(",") + (confirmation ? (lp.sure ? "yes" : "no") : "");
-      csv += std::string(",") + (confirmation ? (lp.agrees ? "yes" : "no") : "") + "\n";
+      // Field by field with append: GCC 12 warns (-Wrestrict, wrongly) of "," + a temporary string.
+      const auto field = [&csv](const std::string& text) { csv.append(1, ',').append(text); };
+      field(outcome);
+      field(confirmation || !lp.value.converged ? std::string() : exactText(1 + lp.value.margin));
+      field(std::to_string(confirmation ? 1 : lp.value.runs));
+      field(exactText(lp.predictedMean));
+      field(exactText(lp.predictedSd));
+      field(confirmation ? (lp.sure ? "yes" : "no") : "");
+      field(confirmation ? (lp.agrees ? "yes" : "no") : "");
+      csv.append(1, '\n');
     }
     writeAtomically(dir + "/learning.csv", csv);
     written.push_back("learning.csv");
