@@ -72,3 +72,19 @@ TEST(JointStiffness, BadValuesAreRefusedWithTheirPath) {
     clitest::expectInputError([&] { io::parseCase(doc.dump(), "bad.json"); }, "bad.json", "joints.j." + key, "");
   }
 }
+
+// `check` warns of joint springs far stiffer than the penalty, where docs/contact-model.md
+// ("Joint stiffness") measured the drift: on the planar wedge's 24.4 m plane kn = 1e12 Pa/m gives
+// kn·L/2 = 1.22e13 N/m, 31 times its penalty of 4e11 N/m (F 0.8 % off the closed form); 1e11, 3
+// times, gave F within 0.2 %, and is not warned of.
+TEST(JointStiffness, CheckWarnsOfSpringsFarStifferThanThePenalty) {
+  const std::string wedge = std::string(DDASLOPE_SOURCE_DIR) + "/cases/planar_failure.json";
+  std::string err;
+  const std::string stiff =
+      clitest::captureCli("check " + wedge + " --set joints.sliding_plane.normal_stiffness=1e12", &err);
+  EXPECT_NE(stiff.find("warning: joint sliding_plane: kn·L/2 = 1.22077e+13 N/m"), std::string::npos) << stiff;
+  EXPECT_NE(stiff.find("is 31 times the penalty 4e+11 N/m"), std::string::npos) << stiff;
+  const std::string fine =
+      clitest::captureCli("check " + wedge + " --set joints.sliding_plane.normal_stiffness=1e11", &err);
+  EXPECT_EQ(fine.find("kn·L/2"), std::string::npos) << fine;
+}

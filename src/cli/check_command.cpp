@@ -1,5 +1,6 @@
 #include "check_command.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -16,6 +17,11 @@
 #include "scene_notes.hpp"
 
 namespace ddaslope::cli {
+
+namespace {
+/// kn·L/2 above this many penalties: `check` warns (docs/contact-model.md, "Joint stiffness").
+constexpr double kStiffJointSpring = 10;
+}  // namespace
 
 int checkCommand(const std::string& casePath, const Overrides& o) {
   ddaslope::model::Scene scene = loadCase(casePath, o);
@@ -59,6 +65,22 @@ int checkCommand(const std::string& casePath, const Overrides& o) {
                   j.name.c_str(), stiffness(j.normalStiffness, "the penalty").c_str(),
                   stiffness(j.shearStiffness, "the penalty's share").c_str(), scene.normalPenalty());
     }
+  // A joint spring far stiffer than the penalty: the open-close tolerances and the step limit are
+  // set from the penalty, and such a spring turns a step's round-off into contact force
+  // (docs/contact-model.md, "Joint stiffness": the planar wedge's F drifts 0.8 % at 30 times).
+  for (size_t j = 0; j < scene.joints.size(); ++j) {
+    const double kn = scene.joints[j].normalStiffness;
+    double longest = 0;
+    for (const auto& c : sim.contacts().contacts())
+      if (c.joint == static_cast<int>(j)) longest = std::max(longest, c.geometry.overlap);
+    const double spring = kn * 0.5 * longest;
+    if (kn > 0 && spring > kStiffJointSpring * scene.normalPenalty())
+      std::printf("  warning: joint %s: kn·L/2 = %g N/m on its longest edge-to-edge contact at t = 0 (L = %g m) is "
+                  "%.0f times the penalty %g N/m; beyond about %.0f times the results drift (docs/contact-model.md, "
+                  "\"Joint stiffness\"): lower kn or raise analysis.penalty with it\n",
+                  scene.joints[j].name.c_str(), spring, longest, spring / scene.normalPenalty(), scene.normalPenalty(),
+                  kStiffJointSpring);
+  }
   if (scene.water.grid)
     std::printf("  pore pressure: a grid of %zu points, interpolated by a thin-plate spline (exact at the points, an "
                 "affine field exactly; suction taken as 0), on every block face\n",
