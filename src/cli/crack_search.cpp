@@ -58,6 +58,17 @@ CrackSearch searchCrackPosition(const std::string& casePath, const Overrides& o,
   return out;
 }
 
+std::optional<CrackSearch> placeCrack(const std::string& casePath, const Overrides& o, model::Scene& scene, int threads,
+                                      bool maximise, double precision, const std::string& quantity,
+                                      const ProgressOptions& progress, bool json,
+                                      const std::function<CrackValue(const model::Scene&)>& valueAt) {
+  if (!scene.crackSearch) return std::nullopt;
+  CrackSearch crack = searchCrackPosition(casePath, o, scene, threads, maximise, precision, quantity, progress, valueAt);
+  scene = loadCase(casePath, o, crackAt(crack.result.best));
+  if (!json) printCrackSearch(crack, scene, quantity);
+  return crack;
+}
+
 void printCrackSearch(const CrackSearch& s, const model::Scene& scene, const std::string& quantity) {
   const auto& r = s.result;
   std::printf("tension crack position searched in x = [%g, %g] m (%zu positions, %d forward runs, %.2f s wall):\n",

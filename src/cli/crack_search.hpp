@@ -2,6 +2,7 @@
 // A tension crack's least safe position (section.tension_crack.search), for fos and critical:
 // the case's search at each position tried, run at once on the threads or ranks.
 #include <functional>
+#include <optional>
 #include <string>
 
 #include "cli_common.hpp"
@@ -32,6 +33,14 @@ std::vector<io::CaseOverride> crackAt(double x);
 CrackSearch searchCrackPosition(const std::string& casePath, const Overrides& o, const model::Scene& scene, int threads,
                                 bool maximise, double precision, const std::string& quantity, const ProgressOptions& progress,
                                 const std::function<CrackValue(const model::Scene&)>& valueAt);
+
+/// A case that searches its crack (section.tension_crack.search): the least safe position for
+/// `quantity` is found, `scene` is read again with the crack there, and the positions tried are
+/// printed (unless `json`). None, and `scene` untouched, when the case places its crack itself.
+std::optional<CrackSearch> placeCrack(const std::string& casePath, const Overrides& o, model::Scene& scene, int threads,
+                                      bool maximise, double precision, const std::string& quantity,
+                                      const ProgressOptions& progress, bool json,
+                                      const std::function<CrackValue(const model::Scene&)>& valueAt);
 
 /// The positions tried and the least safe one, for the text output.
 void printCrackSearch(const CrackSearch& s, const model::Scene& scene, const std::string& quantity);

@@ -22,6 +22,13 @@
 namespace ddaslope::cli {
 namespace {
 
+/// A search on one thread: each crack position's own, run side by side with the others.
+ddaslope::calibration::SearchSettings oneThread() {
+  ddaslope::calibration::SearchSettings s;
+  s.threads = 1;
+  return s;
+}
+
 int curveCommand(const std::string& casePath, const ddaslope::model::Scene& scene, int joint, const CriticalOptions& opt) {
   const std::optional<ValueRange> range = parseValueRange(opt.curve, 200);
   if (!range || range->lo < 0 || range->hi >= 90 || range->lo >= range->hi)
@@ -75,16 +82,25 @@ int curveCommand(const std::string& casePath, const ddaslope::model::Scene& scen
 }
 
 /// The JRC at which a Barton–Bandis joint just holds the slope (critical --solve jrc).
-int jrcCommand(const std::string& casePath, const ddaslope::model::Scene& scene, int joint, const CriticalOptions& opt) {
+int jrcCommand(const std::string& casePath, const Overrides& o, ddaslope::model::Scene scene, int joint,
+               const CriticalOptions& opt) {
   if (!scene.joints[joint].bartonBandis)
     throw ddaslope::InputError("--solve", "jrc", "joint '" + opt.joint + "' is a Mohr–Coulomb joint: JRC belongs to "
                                                  "Barton–Bandis joints (\"law\": \"barton_bandis\")");
+  const double width = opt.width > 0 ? opt.width : 0.01;
+  // The least safe crack needs the greatest JRC.
+  const std::optional<CrackSearch> crack =
+      placeCrack(casePath, o, scene, opt.threads, true, width / 10, "critical jrc", opt.progress, opt.json,
+                 [&](const ddaslope::model::Scene& at) {
+                   const auto x = ddaslope::calibration::criticalJrc(at, joint, width / 10, oneThread());
+                   return CrackValue{x.found, x.critical, x.runs, x.message};
+                 });
   const auto log = startProgress("critical --solve jrc", opt.progress, opt.json);
   ddaslope::calibration::SearchSettings s;
   s.threads = opt.threads;
   s.progress = ddaslope::io::sinkOf(log.get());
   recordTrialStates(s, opt.vtkDir, scene);
-  const auto r = ddaslope::calibration::criticalJrc(scene, joint, opt.width > 0 ? opt.width : 0.01, s);
+  const auto r = ddaslope::calibration::criticalJrc(scene, joint, width, s);
   log->finish(r.found, r.found ? "critical JRC " + std::to_string(r.critical) : r.message);
   if (opt.json) {
     ddaslope::io::JsonRecord j;
@@ -95,6 +111,7 @@ int jrcCommand(const std::string& casePath, const ddaslope::model::Scene& scene,
     j.set("settings", settingsLine(scene));
     ddaslope::calibration::appendReview(j, r.review);
     ddaslope::calibration::appendTrials(j, r.trials, "jrc");
+    if (crack) appendCrackSearch(j, *crack, scene);
     std::printf("%s\n", j.dump().c_str());
   } else if (r.found) {
     std::printf("critical JRC of joint '%s' at φr = %g°, JCS = %g MPa: %.4g (failing at %.4g, stable at %.4g)%s%s\n",
@@ -111,7 +128,7 @@ int jrcCommand(const std::string& casePath, const ddaslope::model::Scene& scene,
 
 /// The yield seismic coefficient k_y (critical --solve seismic-coefficient): along the direction
 /// asked, or along both (auto), the smaller being the slope's.
-int seismicCoefficientCommand(const std::string& casePath, const ddaslope::model::Scene& scene,
+int seismicCoefficientCommand(const std::string& casePath, const Overrides& o, ddaslope::model::Scene scene,
                               const CriticalOptions& opt) {
   // Options of the strength searches mean nothing here: refuse them rather than ignore them.
   for (const auto& [given, name] : {std::pair{!opt.joint.empty(), "--joint"}, std::pair{opt.friction >= 0, "--friction"},
@@ -124,6 +141,26 @@ int seismicCoefficientCommand(const std::string& casePath, const ddaslope::model
                                "the search sets k_h itself; remove it from the case or the command (--kh)");
   if (scene.seismic.ground.active() && !opt.json)
     std::fprintf(stderr, "ddaslope: note: %s: the ground-motion record is not used: k_y belongs to the slope\n", casePath.c_str());
+  const auto directions = [&opt] {
+    std::vector<const char*> d;
+    for (const char* x : {"+x", "-x"})
+      if (opt.direction == "auto" || opt.direction == x) d.push_back(x);
+    return d;
+  }();
+  // The least safe crack has the least k_y (along the directions asked, the smaller).
+  const std::optional<CrackSearch> crack =
+      placeCrack(casePath, o, scene, opt.threads, false, 1e-4, "critical seismic-coefficient (g)", opt.progress, opt.json,
+                 [&](const ddaslope::model::Scene& at) {
+                   CrackValue v;
+                   for (const char* d : directions) {
+                     const auto x = ddaslope::calibration::criticalSeismicCoefficient(at, d[0] == '-' ? -1 : 1, opt.width,
+                                                                                      oneThread());
+                     v.runs += x.runs;
+                     if (x.found && (!v.found || x.critical < v.value)) v.found = true, v.value = x.critical;
+                     if (!x.found && v.message.empty()) v.message = x.message;
+                   }
+                   return v;
+                 });
   ddaslope::model::Scene searched = scene;  // what the trials run: no record, k_h their own
   searched.seismic.ground = {};
   const auto log = startProgress("critical --solve seismic-coefficient", opt.progress, opt.json);
@@ -132,9 +169,8 @@ int seismicCoefficientCommand(const std::string& casePath, const ddaslope::model
   s.progress = ddaslope::io::sinkOf(log.get());
   recordTrialStates(s, opt.vtkDir, scene);
   std::vector<std::pair<std::string, ddaslope::calibration::CriticalResult>> results;
-  for (const char* d : {"+x", "-x"})
-    if (opt.direction == "auto" || opt.direction == d)
-      results.emplace_back(d, ddaslope::calibration::criticalSeismicCoefficient(scene, d[0] == '-' ? -1 : 1, opt.width, s));
+  for (const char* d : directions)
+    results.emplace_back(d, ddaslope::calibration::criticalSeismicCoefficient(scene, d[0] == '-' ? -1 : 1, opt.width, s));
   log->finish(true, std::to_string(results.size()) + " directions searched");
   // The slope's yield coefficient: the smaller of those found.
   size_t best = 0;
@@ -154,6 +190,7 @@ int seismicCoefficientCommand(const std::string& casePath, const ddaslope::model
     j.set("settings", settingsLine(searched));
     ddaslope::calibration::appendReview(j, r.review);
     ddaslope::calibration::appendTrials(j, r.trials, "k_h");
+    if (crack) appendCrackSearch(j, *crack, scene);
     if (!opt.vtkDir.empty()) j.set("vtk", opt.vtkDir);
     std::printf("%s\n", j.dump().c_str());
   } else {
@@ -189,8 +226,8 @@ int criticalCommand(const std::string& casePath, const Overrides& o, const Criti
   if (strengthSearch && opt.joint.empty() && scene.joints.size() == 1) opt.joint = scene.joints[0].name;
   if (!opt.vtkDir.empty() && !opt.curve.empty())
     throw ddaslope::InputError("--vtk", opt.vtkDir, "writes the trials of one search, not of a curve's searches (drop --curve)");
-  if (opt.solve == "seismic-coefficient") return seismicCoefficientCommand(casePath, scene, opt);
-  if (opt.solve == "support") return supportCommand(casePath, scene, opt);
+  if (opt.solve == "seismic-coefficient") return seismicCoefficientCommand(casePath, o, scene, opt);
+  if (opt.solve == "support") return supportCommand(casePath, o, scene, opt);
   if (!opt.support.empty()) throw ddaslope::InputError("--support", opt.support, "used only with --solve support");
   if (opt.joint.empty())
     throw ddaslope::InputError("--joint", "missing", "expected the joint to search (--joint NAME): the case has several");
@@ -202,7 +239,7 @@ int criticalCommand(const std::string& casePath, const Overrides& o, const Criti
   s.progress = ddaslope::io::sinkOf(log.get());
   recordTrialStates(s, opt.vtkDir, scene);
   const ddaslope::model::JointProperties jp = scene.joints[joint];  // a copy: a crack search reloads the scene
-  if (opt.solve == "jrc") return jrcCommand(casePath, scene, joint, opt);
+  if (opt.solve == "jrc") return jrcCommand(casePath, o, scene, joint, opt);
   if (jp.bartonBandis && opt.solve == "cohesion")
     throw ddaslope::InputError("--solve", "cohesion", "joint '" + opt.joint + "' is a Barton–Bandis joint, without "
                                                       "cohesion: search its jrc or its residual friction (friction)");
@@ -216,24 +253,15 @@ int criticalCommand(const std::string& casePath, const Overrides& o, const Criti
                     : ddaslope::calibration::criticalFriction(at, joint, c, width, settings);
   };
   // A tension crack searched: the strength its least safe position needs, the table printed first.
-  std::optional<CrackSearch> crack;
-  if (scene.crackSearch) {
-    // Positions searched ten times finer than the answer (F is flat near the least safe one).
-    ddaslope::calibration::SearchSettings single;
-    single.threads = 1;
-    const auto solveFine = [&](const ddaslope::model::Scene& at) {
-      return cohesion ? ddaslope::calibration::criticalCohesion(at, joint, phi, width / 10, single)
-                      : ddaslope::calibration::criticalFriction(at, joint, c, width / 10, single);
-    };
-    crack = searchCrackPosition(casePath, o, scene, opt.threads, true, width / 10, "critical " + opt.solve, opt.progress,
-                                [&](const ddaslope::model::Scene& at) {
-                                  const auto x = solveFine(at);
-                                  return CrackValue{x.found, x.critical, x.runs, x.message};
-                                });
-    scene = loadCase(casePath, o, crackAt(crack->result.best));
-    if (!opt.json) printCrackSearch(*crack, scene, "critical " + opt.solve);
-    recordTrialStates(s, opt.vtkDir, scene);
-  }
+  // Positions searched ten times finer than the answer (F is flat near the least safe one).
+  const std::optional<CrackSearch> crack =
+      placeCrack(casePath, o, scene, opt.threads, true, width / 10, "critical " + opt.solve, opt.progress, opt.json,
+                 [&](const ddaslope::model::Scene& at) {
+                   const auto x = cohesion ? ddaslope::calibration::criticalCohesion(at, joint, phi, width / 10, oneThread())
+                                           : ddaslope::calibration::criticalFriction(at, joint, c, width / 10, oneThread());
+                   return CrackValue{x.found, x.critical, x.runs, x.message};
+                 });
+  if (crack) recordTrialStates(s, opt.vtkDir, scene);
   const MechanismPictures pictures(s, scene);
   // Said before the search, whose trials at such a Δt take long, and kept in critical.json.
   const std::string dtWarning = timeStepWarning(scene);

@@ -31,7 +31,7 @@ struct CriticalOptions {
 void addCriticalOptions(CLI::App* cmd, std::string& casePath, Overrides& overrides, CriticalOptions& opt);
 
 /// critical --solve support (critical_support.cpp).
-int supportCommand(const std::string& casePath, const ddaslope::model::Scene& scene, const CriticalOptions& opt);
+int supportCommand(const std::string& casePath, const Overrides& o, ddaslope::model::Scene scene, const CriticalOptions& opt);
 
 int criticalCommand(const std::string& casePath, const Overrides& o, const CriticalOptions& opt);
 

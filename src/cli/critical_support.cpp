@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "crack_search.hpp"
 #include "critical_command.hpp"
 #include "ddaslope/calibration/strength_search.hpp"
 #include "ddaslope/calibration/trial_report.hpp"
@@ -93,13 +94,36 @@ int supportCurve(const std::string& casePath, const ddaslope::model::Scene& scen
 
 }  // namespace
 
-int supportCommand(const std::string& casePath, const ddaslope::model::Scene& scene, const CriticalOptions& opt) {
+int supportCommand(const std::string& casePath, const Overrides& o, ddaslope::model::Scene scene, const CriticalOptions& opt) {
   if (!opt.joint.empty() || opt.friction >= 0 || opt.cohesion >= 0)
     throw ddaslope::InputError(!opt.joint.empty() ? "--joint" : opt.friction >= 0 ? "--friction" : "--cohesion", "",
                                "not used by --solve support: every joint is reduced by --target-fos (set strengths "
                                "with --set, e.g. joints.NAME.friction_angle=30)");
   const SupportQuantity q = namedSupport(casePath, scene, opt.support);
   if (!opt.curve.empty()) return supportCurve(casePath, scene, opt, q);
+  // The least safe crack needs the greatest anchor force or bolt capacity. A load may steady the
+  // slope (a toe berm) or burden it (a surcharge), so which crack is least safe for it is not one
+  // rule: the case places that crack.
+  if (scene.crackSearch && q.kind == SupportQuantity::Kind::Load)
+    throw ddaslope::InputError(casePath, "section.tension_crack.search",
+                               "sizing a load ('" + opt.support + "') with the crack's position searched: a load may steady "
+                               "or burden the slope, so no one position is least safe for it; give the crack's x "
+                               "(section.tension_crack.x) or size an anchor or a bolt");
+  cal::SearchSettings one;
+  one.threads = 1;
+  // Positions searched ten times finer than the answer: --width, or without it a tenth of the
+  // 1e-3 of the force (at the case's own crack) that the search narrows to.
+  double fine = opt.width > 0 ? opt.width / 10 : 0;
+  if (scene.crackSearch && fine <= 0) {
+    const cal::CriticalResult scale = cal::criticalSupport(scene, opt.support, opt.targetFactor, 0, one);
+    fine = scale.found && scale.critical > 0 ? 1e-4 * scale.critical : 0;
+  }
+  const std::optional<CrackSearch> crack =
+      placeCrack(casePath, o, scene, opt.threads, true, fine, "critical support (N/m)", opt.progress, opt.json,
+                 [&](const ddaslope::model::Scene& at) {
+                   const cal::CriticalResult x = cal::criticalSupport(at, opt.support, opt.targetFactor, fine, one);
+                   return CrackValue{x.found, x.critical, x.runs, x.message};
+                 });
   const auto log = startProgress("critical --solve support", opt.progress, opt.json);
   cal::SearchSettings s;
   s.threads = opt.threads;
@@ -118,6 +142,7 @@ int supportCommand(const std::string& casePath, const ddaslope::model::Scene& sc
     j.set("settings", settingsLine(scene));
     cal::appendReview(j, r.review);
     cal::appendTrials(j, r.trials, "value_n_per_m");
+    if (crack) appendCrackSearch(j, *crack, scene);
     if (!opt.vtkDir.empty()) j.set("vtk", opt.vtkDir);
     std::printf("%s\n", j.dump().c_str());
   } else if (r.found && r.largestThatHolds) {
