@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <functional>
+#include <unistd.h>
+#include <filesystem>
 
 #include <cmath>
 #include <fstream>
@@ -221,6 +223,44 @@ TEST(TensionCrack, CriticalJrcAtTheLeastSafeCrack) {
   ASSERT_TRUE(r["found"].get<bool>()) << err;
   EXPECT_NEAR(r["critical"].get<double>(), jrc(bMax), 0.01 * jrc(bMax));
   EXPECT_TRUE(r.contains("tension_crack"));
+}
+
+// A sweep and a curve put each of their points' crack at its own least safe position: Hoek &
+// Bray's dry slope has its critical crack at b = 18.161 m whatever c and φ (its b/H does not
+// depend on them), F = 1.1110 at c = 25 kPa, and the critical cohesion greatest there:
+// (W sin ψp − W cos ψp tan φ)/A = 29 157 Pa at φ = 25°, 15 315 Pa at 30°. Each within 0.5 %,
+// each crack within 2 %; the case's own crack (x = −20 m) would give F 1.1152 and 28 920 Pa.
+TEST(TensionCrack, SweepsAndCurvesSearchTheirPointsCracks) {
+  const std::string path = std::string(DDASLOPE_SOURCE_DIR) + "/cases/planar_failure_crack.json";
+  const std::string out = std::filesystem::temp_directory_path() / ("crack_curves_" + std::to_string(::getpid()));
+  std::string err;
+  const auto rows = [](const std::string& csv) {
+    std::ifstream in(csv);
+    std::vector<std::vector<std::string>> table;
+    for (std::string line; std::getline(in, line);) {
+      std::vector<std::string> fields;
+      std::stringstream text(line);
+      for (std::string f; std::getline(text, f, ',');) fields.push_back(f);
+      table.push_back(fields);
+    }
+    return table;
+  };
+  const double b = 18.161;
+  clitest::captureCli("fos " + path + " --sweep joints.sliding_plane.cohesion=25000:30000:2 --quiet --out " + out, &err);
+  const auto sweep = rows(out + "/fos_sweep.csv");
+  ASSERT_EQ(sweep.size(), 3u) << err;
+  EXPECT_EQ(sweep[0][6], "tension_crack_x");
+  EXPECT_NEAR(std::stod(sweep[1][1]), hoekBray(b, 0), 0.005 * hoekBray(b, 0));
+  EXPECT_NEAR(-std::stod(sweep[1][6]), b, 0.02 * b);
+  clitest::captureCli("critical " + path + " --curve 25:30:2 --quiet --out " + out, &err);
+  const auto curve = rows(out + "/critical_curve.csv");
+  ASSERT_EQ(curve.size(), 3u) << err;
+  EXPECT_EQ(curve[0][6], "tension_crack_x");
+  for (const auto& [row, expected] : {std::pair{1, 29157.4}, std::pair{2, 15315.1}}) {
+    EXPECT_NEAR(std::stod(curve[row][1]), expected, 0.005 * expected);
+    EXPECT_NEAR(-std::stod(curve[row][6]), b, 0.02 * b);
+  }
+  std::filesystem::remove_all(out);
 }
 
 // The position search alone, on a curve like the slope's (a minimum with a cubic lean, values

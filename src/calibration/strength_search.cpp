@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <mutex>
+#include <limits>
 #include <map>
 #include <optional>
 #include <set>
@@ -481,7 +482,8 @@ CriticalResult criticalSupport(const model::Scene& scene, const std::string& id,
 }
 
 std::vector<CurvePoint> criticalCurve(const model::Scene& scene, int joint, double phiMinDeg, double phiMaxDeg,
-                                      int n, double width, const SearchSettings& s, TaskFarm* farm) {
+                                      int n, double width, const SearchSettings& s, TaskFarm* farm,
+                                      const PointScene& sceneAt) {
   std::vector<CurvePoint> curve(std::max(2, n));
   std::vector<int> points(curve.size());
   for (size_t i = 0; i < curve.size(); ++i) {
@@ -498,9 +500,13 @@ std::vector<CurvePoint> criticalCurve(const model::Scene& scene, int joint, doub
   farm->run(
       points,
       [&](int i) {
-        const CriticalResult r = criticalCohesion(scene, joint, curve[i].frictionDeg, width, single);
+        double crackX = std::numeric_limits<double>::quiet_NaN();
+        int runs = 0;
+        const CriticalResult r = criticalCohesion(sceneAt ? sceneAt(curve[i].frictionDeg, crackX, runs) : scene, joint,
+                                                  curve[i].frictionDeg, width, single);
         BytePacker b;
-        b.put(r.found).put(r.critical).put(r.stableEnd).put(r.failingEnd).put(r.runs).put(r.wallTime).put(r.message);
+        b.put(r.found).put(r.critical).put(r.stableEnd).put(r.failingEnd).put(r.runs + runs).put(r.wallTime).put(r.message);
+        b.put(crackX);
         return b.bytes();
       },
       [&](int i, const TaskResult& bytes) {
@@ -513,6 +519,7 @@ std::vector<CurvePoint> criticalCurve(const model::Scene& scene, int joint, doub
         r.runs = b.get<int>();
         r.wallTime = b.get<double>();
         r.message = b.getString();
+        curve[i].crackX = b.get<double>();
         if (s.progress) {
           char text[96];
           std::snprintf(text, sizeof text, "c = %.6g Pa at φ = %.4g°", r.critical, curve[i].frictionDeg);

@@ -69,6 +69,23 @@ std::optional<CrackSearch> placeCrack(const std::string& casePath, const Overrid
   return crack;
 }
 
+double leastSafeCrackOnThisThread(const model::Scene& scene, bool maximise, double precision,
+                                  const std::function<model::Scene(double)>& read,
+                                  const std::function<CrackValue(const model::Scene&)>& valueAt, int& runs) {
+  return calibration::searchLeastSafePosition(
+             scene.crackSearch->first, scene.crackSearch->second, 9, maximise, precision,
+             [&](const std::vector<double>& xs) {
+               std::vector<calibration::PositionSample> samples;
+               for (double x : xs) {
+                 const CrackValue v = valueAt(read(x));
+                 runs += v.runs;
+                 samples.push_back({x, v.value, v.found, v.message});
+               }
+               return samples;
+             })
+      .best;
+}
+
 void printCrackSearch(const CrackSearch& s, const model::Scene& scene, const std::string& quantity) {
   const auto& r = s.result;
   std::printf("tension crack position searched in x = [%g, %g] m (%zu positions, %d forward runs, %.2f s wall):\n",

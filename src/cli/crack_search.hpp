@@ -42,6 +42,13 @@ std::optional<CrackSearch> placeCrack(const std::string& casePath, const Overrid
                                       const ProgressOptions& progress, bool json,
                                       const std::function<CrackValue(const model::Scene&)>& valueAt);
 
+/// The least safe crack of one task of a sweep or a curve, which run side by side: its positions
+/// one after another on this thread. `read(x)` is the task's scene with the crack at x. Returns
+/// the position; the positions' forward runs are added to `runs`.
+double leastSafeCrackOnThisThread(const model::Scene& scene, bool maximise, double precision,
+                                  const std::function<model::Scene(double)>& read,
+                                  const std::function<CrackValue(const model::Scene&)>& valueAt, int& runs);
+
 /// The positions tried and the least safe one, for the text output.
 void printCrackSearch(const CrackSearch& s, const model::Scene& scene, const std::string& quantity);
 /// The same in a command's JSON record (key "tension_crack").

@@ -29,7 +29,8 @@ ddaslope::calibration::SearchSettings oneThread() {
   return s;
 }
 
-int curveCommand(const std::string& casePath, const ddaslope::model::Scene& scene, int joint, const CriticalOptions& opt) {
+int curveCommand(const std::string& casePath, const Overrides& o, const ddaslope::model::Scene& scene, int joint,
+                 const CriticalOptions& opt) {
   const std::optional<ValueRange> range = parseValueRange(opt.curve, 200);
   if (!range || range->lo < 0 || range->hi >= 90 || range->lo >= range->hi)
     throw ddaslope::InputError("--curve", opt.curve, "expected φmin:φmax:n: finite angles 0 ≤ φmin < φmax < 90 (degrees) and a whole n, 2 ≤ n ≤ 200");
@@ -41,8 +42,19 @@ int curveCommand(const std::string& casePath, const ddaslope::model::Scene& scen
   s.progress = ddaslope::io::sinkOf(log.get());
   const auto t0 = std::chrono::steady_clock::now();
   const std::unique_ptr<ddaslope::TaskFarm> farm = ddaslope::makeTaskFarm(opt.threads);
-  const auto curve =
-      ddaslope::calibration::criticalCurve(scene, joint, lo, hi, n, opt.width > 0 ? opt.width : 10, s, farm.get());
+  const double width = opt.width > 0 ? opt.width : 10;
+  // A crack whose position the case searches: each point at its own least safe crack.
+  ddaslope::calibration::PointScene atCrack;
+  if (scene.crackSearch)
+    atCrack = [&](double phi, double& crackX, int& runs) {
+      const auto read = [&](double x) { return loadCase(casePath, o, crackAt(x)); };
+      crackX = leastSafeCrackOnThisThread(scene, true, width / 10, read, [&](const ddaslope::model::Scene& at) {
+        const auto x = ddaslope::calibration::criticalCohesion(at, joint, phi, width / 10, oneThread());
+        return CrackValue{x.found, x.critical, x.runs, x.message};
+      }, runs);
+      return read(crackX);
+    };
+  const auto curve = ddaslope::calibration::criticalCurve(scene, joint, lo, hi, n, width, s, farm.get(), atCrack);
   if (!farm->isRoot()) return kExitOk;  // the root writes
   log->finish(true, std::to_string(n) + " points");
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -50,13 +62,17 @@ int curveCommand(const std::string& casePath, const ddaslope::model::Scene& scen
   const std::string csv = opt.outDir + "/critical_curve.csv", png = opt.outDir + "/critical_curve.png";
   std::FILE* f = std::fopen((csv + ".tmp").c_str(), "w");
   if (!f) throw ddaslope::InputError(csv, "", "cannot write the file");
-  std::fprintf(f, "friction_angle_deg,critical_cohesion_pa,failing_pa,stable_pa,found,forward_runs\n");
+  std::fprintf(f, "friction_angle_deg,critical_cohesion_pa,failing_pa,stable_pa,found,forward_runs%s\n",
+               scene.crackSearch ? ",tension_crack_x" : "");
   ddaslope::io::PlotSeries series{"critical cohesion (" + opt.joint + ")", {}, {}, true};
   int runs = 0;
   bool all = true;
   for (const auto& p : curve) {
     const auto& r = p.cohesion;
-    std::fprintf(f, "%g,%.6g,%.6g,%.6g,%d,%d\n", p.frictionDeg, r.critical, r.failingEnd, r.stableEnd, r.found, r.runs);
+    std::fprintf(f, "%g,%.6g,%.6g,%.6g,%d,%d", p.frictionDeg, r.critical, r.failingEnd, r.stableEnd, r.found, r.runs);
+    // Stable without cohesion at every position: no position is least safe.
+    if (scene.crackSearch) std::fprintf(f, ",%s", r.critical > 0 ? std::to_string(p.crackX).c_str() : "");
+    std::fprintf(f, "\n");
     series.x.push_back(p.frictionDeg);
     series.y.push_back(r.found ? r.critical / 1e3 : NAN);
     runs += r.runs;
@@ -74,7 +90,8 @@ int curveCommand(const std::string& casePath, const ddaslope::model::Scene& scen
     std::printf("%s\n", j.dump().c_str());
   } else {
     for (const auto& p : curve)
-      std::printf("  φ = %6.2f°  c_cr = %10.1f Pa%s%s\n", p.frictionDeg, p.cohesion.critical,
+      std::printf("  φ = %6.2f°  c_cr = %10.1f Pa%s%s%s\n", p.frictionDeg, p.cohesion.critical,
+                  std::isfinite(p.crackX) && p.cohesion.critical > 0 ? ("  least safe crack at x = " + std::to_string(p.crackX) + " m").c_str() : "",
                   p.cohesion.message.empty() ? "" : "  ", p.cohesion.message.c_str());
     std::printf("%d forward runs, %.2f s wall; wrote %s and %s\n", runs, wall, csv.c_str(), png.c_str());
   }
@@ -232,7 +249,7 @@ int criticalCommand(const std::string& casePath, const Overrides& o, const Criti
   if (opt.joint.empty())
     throw ddaslope::InputError("--joint", "missing", "expected the joint to search (--joint NAME): the case has several");
   const int joint = jointIndex(scene, opt.joint, casePath);
-  if (!opt.curve.empty()) return curveCommand(casePath, scene, joint, opt);
+  if (!opt.curve.empty()) return curveCommand(casePath, o, scene, joint, opt);
   const auto log = startProgress("critical", opt.progress, opt.json);
   ddaslope::calibration::SearchSettings s;
   s.threads = opt.threads;

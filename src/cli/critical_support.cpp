@@ -41,8 +41,8 @@ SupportQuantity namedSupport(const std::string& casePath, const ddaslope::model:
 }
 
 /// F against the support's size: a factor-of-safety search at each of n sizes over [lo, hi].
-int supportCurve(const std::string& casePath, const ddaslope::model::Scene& scene, const CriticalOptions& opt,
-                 const SupportQuantity& q) {
+int supportCurve(const std::string& casePath, const Overrides& o, const ddaslope::model::Scene& scene,
+                 const CriticalOptions& opt, const SupportQuantity& q) {
   const std::optional<ValueRange> range = parseValueRange(opt.curve, 200);
   if (!range || range->lo < 0 || range->lo >= range->hi)
     throw ddaslope::InputError("--curve", opt.curve, "expected min:max:n: finite sizes 0 ≤ min < max (N/m) and a whole n, 2 ≤ n ≤ 200");
@@ -53,8 +53,9 @@ int supportCurve(const std::string& casePath, const ddaslope::model::Scene& scen
   const std::string csv = opt.outDir + "/support_curve.csv", png = opt.outDir + "/support_curve.png";
   std::FILE* f = std::fopen((csv + ".tmp").c_str(), "w");
   if (!f) throw ddaslope::InputError(csv, "", "cannot write the file");
-  std::fprintf(f, "%s_n_per_m,factor_of_safety,stable_at,failing_at,found,forward_runs\n",
-               q.kind == SupportQuantity::Kind::BoltCapacity ? "capacity" : "force");
+  std::fprintf(f, "%s_n_per_m,factor_of_safety,stable_at,failing_at,found,forward_runs%s\n",
+               q.kind == SupportQuantity::Kind::BoltCapacity ? "capacity" : "force",
+               scene.crackSearch ? ",tension_crack_x" : "");
   ddaslope::io::PlotSeries series{"F (" + opt.support + ")", {}, {}, true};
   cal::SearchSettings s;
   s.threads = opt.threads;
@@ -62,13 +63,34 @@ int supportCurve(const std::string& casePath, const ddaslope::model::Scene& scen
   bool all = true;
   for (int k = 0; k < n; ++k) {
     const double x = lo + (hi - lo) * k / (n - 1);
-    ddaslope::model::Scene trial = scene;
-    trial.setSupportQuantity(opt.support, x);
+    const auto withSupport = [&](ddaslope::model::Scene at) {
+      at.setSupportQuantity(opt.support, x);
+      return at;
+    };
+    // A crack whose position the case searches: F at its least safe position for this size.
+    double crackX = NAN;
+    int crackRuns = 0;
+    ddaslope::model::Scene trial = withSupport(scene);
+    if (scene.crackSearch) {
+      const auto read = [&](double at) { return withSupport(loadCase(casePath, o, crackAt(at))); };
+      crackX = leastSafeCrackOnThisThread(scene, false, 1e-4, read, [&](const ddaslope::model::Scene& at) {
+        cal::SearchSettings one;
+        one.threads = 1;
+        const cal::FactorOfSafetyResult r = cal::factorOfSafety(at, {}, 1e-4, one);
+        return CrackValue{r.found, r.factor, r.runs, r.message};
+      }, crackRuns);
+      trial = read(crackX);
+    }
     const cal::FactorOfSafetyResult r = cal::factorOfSafety(trial, {}, 1e-3, s);
-    std::fprintf(f, "%.6g,%.6g,%.6g,%.6g,%d,%d\n", x, r.found ? r.factor : NAN, r.stableEnd, r.failingEnd, r.found, r.runs);
+    std::fprintf(f, "%.6g,%.6g,%.6g,%.6g,%d,%d", x, r.found ? r.factor : NAN, r.stableEnd, r.failingEnd, r.found,
+                 r.runs + crackRuns);
+    if (scene.crackSearch) std::fprintf(f, ",%.6g", crackX);
+    std::fprintf(f, "\n");
     if (!opt.json)
-      std::printf("  %s %10.4g kN/m: F = %s\n", q.name.c_str(), x / 1e3,
-                  r.found ? std::to_string(r.factor).c_str() : ("none (" + r.message + ")").c_str());
+      std::printf("  %s %10.4g kN/m: F = %s%s\n", q.name.c_str(), x / 1e3,
+                  r.found ? std::to_string(r.factor).c_str() : ("none (" + r.message + ")").c_str(),
+                  scene.crackSearch ? (", least safe crack at x = " + std::to_string(crackX) + " m").c_str() : "");
+    runs += crackRuns;
     series.x.push_back(x / 1e3);
     series.y.push_back(r.found ? r.factor : NAN);
     runs += r.runs;
@@ -100,7 +122,7 @@ int supportCommand(const std::string& casePath, const Overrides& o, ddaslope::mo
                                "not used by --solve support: every joint is reduced by --target-fos (set strengths "
                                "with --set, e.g. joints.NAME.friction_angle=30)");
   const SupportQuantity q = namedSupport(casePath, scene, opt.support);
-  if (!opt.curve.empty()) return supportCurve(casePath, scene, opt, q);
+  if (!opt.curve.empty()) return supportCurve(casePath, o, scene, opt, q);
   // The least safe crack needs the greatest anchor force or bolt capacity. A load may steady the
   // slope (a toe berm) or burden it (a surcharge), so which crack is least safe for it is not one
   // rule: the case places that crack.

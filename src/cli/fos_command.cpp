@@ -53,6 +53,7 @@ int fosSweep(const std::string& casePath, const Overrides& o, const FosOptions& 
   // farm), spread over the threads, or the ranks under mpirun.
   struct Point {
     ddaslope::calibration::FactorOfSafetyResult fos;
+    double crackX = NAN;  ///< the least safe crack's position, when the case searches it
     bool done = false;
   };
   std::vector<Point> points(static_cast<size_t>(n));
@@ -68,9 +69,27 @@ int fosSweep(const std::string& casePath, const Overrides& o, const FosOptions& 
       indices,
       [&](int i) {
         ddaslope::model::Scene scene = loadCase(casePath, o, {{path, valueAt(i)}});
+        // A crack whose position the case searches: F at its least safe position for this value.
+        double crackX = NAN;
+        int crackRuns = 0;
+        if (scene.crackSearch) {
+          const auto read = [&](double x) {
+            std::vector<ddaslope::io::CaseOverride> extra{{path, valueAt(i)}};
+            for (auto& c : crackAt(x)) extra.push_back(std::move(c));
+            return loadCase(casePath, o, extra);
+          };
+          FosOptions fine = single;
+          fine.width = std::max(1e-4, opt.width / 10);
+          crackX = leastSafeCrackOnThisThread(scene, false, fine.width, read, [&](const ddaslope::model::Scene& at) {
+            const auto r = factorFor(at, casePath, fine);
+            return CrackValue{r.found, r.factor, r.runs, r.message};
+          }, crackRuns);
+          scene = read(crackX);
+        }
         const auto r = factorFor(scene, casePath, single);
         ddaslope::BytePacker b;
-        b.put(r.found).put(r.factor).put(r.stableEnd).put(r.failingEnd).put(r.runs).put(r.wallTime).put(r.message);
+        b.put(r.found).put(r.factor).put(r.stableEnd).put(r.failingEnd).put(r.runs + crackRuns).put(r.wallTime).put(r.message);
+        b.put(crackX);
         return b.bytes();
       },
       [&](int i, const ddaslope::TaskResult& bytes) {
@@ -83,6 +102,7 @@ int fosSweep(const std::string& casePath, const Overrides& o, const FosOptions& 
         r.runs = b.get<int>();
         r.wallTime = b.get<double>();
         r.message = b.getString();
+        points[i].crackX = b.get<double>();
         points[i].done = true;
         if (log->active())
           log->report({"points", ++finished, n,
@@ -93,19 +113,24 @@ int fosSweep(const std::string& casePath, const Overrides& o, const FosOptions& 
   log->finish(true, std::to_string(n) + " values");
   for (int i = 0; i < n; ++i) {
     const auto& r = points[i].fos;
-    std::printf("  %s = %-10g F = %s (%d forward runs, %.1f s)\n", path.c_str(), valueAt(i),
+    std::printf("  %s = %-10g F = %s (%d forward runs, %.1f s)", path.c_str(), valueAt(i),
                 r.found ? std::to_string(r.factor).c_str() : r.message.c_str(), r.runs, r.wallTime);
+    if (std::isfinite(points[i].crackX)) std::printf(", least safe crack at x = %.4g m", points[i].crackX);
+    std::printf("\n");
   }
+  const bool cracks = std::isfinite(points[0].crackX);
   std::filesystem::create_directories(opt.outDir);
   std::ofstream out(csv + ".tmp");
-  out << path << ",factor_of_safety,stable_at,failing_at,found,forward_runs,wall_time_s\n";
+  out << path << ",factor_of_safety,stable_at,failing_at,found,forward_runs," << (cracks ? "tension_crack_x," : "")
+      << "wall_time_s\n";
   ddaslope::io::PlotSeries series{"F", {}, {}, true};
   bool all = true;
   for (int i = 0; i < n; ++i) {
     const auto& r = points[i].fos;
     const double v = valueAt(i);
-    out << v << "," << r.factor << "," << r.stableEnd << "," << r.failingEnd << "," << r.found << "," << r.runs << ","
-        << r.wallTime << "\n";
+    out << v << "," << r.factor << "," << r.stableEnd << "," << r.failingEnd << "," << r.found << "," << r.runs << ",";
+    if (cracks) out << points[i].crackX << ",";
+    out << r.wallTime << "\n";
     series.x.push_back(v);
     series.y.push_back(r.found ? r.factor : NAN);
     all &= r.found;

@@ -2,6 +2,7 @@
 // The searches over joint strength: critical cohesion or friction angle of one joint by
 // bisection, and the strength-reduction factor of safety (benchmarks.md §G).
 #include <functional>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -110,7 +111,12 @@ CriticalResult criticalSupport(const model::Scene& scene, const std::string& id,
 struct CurvePoint {
   double frictionDeg = 0;
   CriticalResult cohesion;  ///< critical cohesion at this friction angle
+  double crackX = std::numeric_limits<double>::quiet_NaN();  ///< where a searched crack was put (PointScene)
 };
+
+/// The scene of one curve point, when it depends on the point (a tension crack at its least safe
+/// position for that friction angle): sets `crackX` and adds its own forward runs to `runs`.
+using PointScene = std::function<model::Scene(double frictionDeg, double& crackX, int& runs)>;
 
 /// The curve of critical (c, φ) pairs of `joint`: the critical cohesion at n friction angles
 /// evenly spaced over [phiMin, phiMax] (n ≥ 2). Points are independent searches (one thread
@@ -118,7 +124,8 @@ struct CurvePoint {
 /// curve is filled in (the search's record of trials stays empty: the points' results are
 /// what crosses between ranks).
 std::vector<CurvePoint> criticalCurve(const model::Scene& scene, int joint, double phiMinDeg, double phiMaxDeg,
-                                      int n, double width, const SearchSettings& s = {}, TaskFarm* farm = nullptr);
+                                      int n, double width, const SearchSettings& s = {}, TaskFarm* farm = nullptr,
+                                      const PointScene& sceneAt = {});
 
 struct FactorOfSafetyResult {
   bool found = false;
