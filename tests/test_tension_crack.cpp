@@ -263,6 +263,20 @@ TEST(TensionCrack, SweepsAndCurvesSearchTheirPointsCracks) {
   std::filesystem::remove_all(out);
 }
 
+// A probability study runs every sample with the crack where the case puts it (a search per
+// sample would cost 18 searches): it says so.
+TEST(TensionCrack, AStudySaysItsCrackStaysPut) {
+  const std::string study = clitest::writeTemp("crack_study.json", R"({"case": ")" + std::string(DDASLOPE_SOURCE_DIR) +
+      R"(/cases/planar_failure_crack.json", "probability": {"samples": 4, "seed": 1, "inputs": [
+      {"path": "joints.sliding_plane.cohesion", "distribution": "lognormal", "mean": 25000, "sd": 3000}]}})");
+  const std::string out = std::filesystem::temp_directory_path() / ("crack_study_" + std::to_string(::getpid()));
+  std::string err;
+  EXPECT_EQ(clitest::runCli("probability " + study + " --quiet --out " + out, &err), 0) << err;
+  EXPECT_NE(err.find("the tension crack stays at x = -20 m (section.tension_crack.x) in every run"), std::string::npos)
+      << err;
+  std::filesystem::remove_all(out);
+}
+
 // The position search alone, on a curve like the slope's (a minimum with a cubic lean, values
 // rounded to the searches' precision as bisection rounds them): the vertex within 1 % of the
 // range; at an end of the range when the curve falls all the way.

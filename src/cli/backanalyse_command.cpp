@@ -10,6 +10,7 @@
 #include "ddaslope/io/job_reader.hpp"
 #include "ddaslope/io/json_record.hpp"
 #include "ddaslope/io/line_plot.hpp"
+#include "scene_notes.hpp"
 
 namespace ddaslope::cli {
 namespace {
@@ -75,7 +76,9 @@ int backanalyseCommand(const std::string& jobPath, const std::string& outDir, bo
   j.set("estimate", estimate);
   j.set("misfit", r.misfit).set("evaluations", r.evaluations).set("forward_runs", r.forwardRuns);
   j.set("global_search", r.globalStatus).set("local_search", r.localStatus).set("wall_time_s", r.wallTime);
-  const std::string settings = settingsLine(ddaslope::calibration::sceneAt(job, r.estimate));
+  const ddaslope::model::Scene atEstimate = ddaslope::calibration::sceneAt(job, r.estimate);
+  const std::string settings = settingsLine(atEstimate);
+  warnAboutTrials(job.casePath, fixedCrackNote(atEstimate));
   j.set("settings", settings);
   if (!r.map.empty()) j.set("constrains_only_a_line", r.lineOnly).set("statement", r.statement);
   for (const auto& f : r.fit) {

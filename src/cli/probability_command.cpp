@@ -20,6 +20,7 @@
 #include "ddaslope/io/probability_reader.hpp"
 #include "ddaslope/io/json_record.hpp"
 #include "ddaslope/io/probability_files.hpp"
+#include "scene_notes.hpp"
 
 namespace ddaslope::cli {
 namespace {
@@ -670,6 +671,7 @@ int probabilityCommand(const std::string& path, const Overrides& o, const Probab
   refuseFixedInputs(job, o);
   const SceneMaker make{job, o};
   const model::Scene reference = loadCase(job.casePath, o, io::caseOverridesFor(job.model));
+  if (processRank() == 0) warnAboutTrials(job.casePath, fixedCrackNote(reference));
   calibration::SampleSettings settings;
   settings.measure = spec.method == model::ProbabilityMethod::ActiveLearning ? model::ProbabilityMeasure::FactorOfSafety
                                                                             : spec.measure;

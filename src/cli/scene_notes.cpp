@@ -241,6 +241,16 @@ void printSupportNotes(const ddaslope::model::Scene& scene) {
   }
 }
 
+std::string fixedCrackNote(const ddaslope::model::Scene& scene) {
+  if (!scene.crackSearch || !scene.tensionCrack) return "";
+  char text[256];
+  std::snprintf(text, sizeof text,
+                "the tension crack stays at x = %g m (section.tension_crack.x) in every run: only fos and critical "
+                "search its position over [%g, %g] m",
+                scene.tensionCrack->x, scene.crackSearch->first, scene.crackSearch->second);
+  return text;
+}
+
 void printWaterNotes(const ddaslope::model::Scene& scene) {
   const Vec2 o = scene.origin;
   if (const auto& c = scene.tensionCrack) {

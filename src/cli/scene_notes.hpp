@@ -32,6 +32,9 @@ void saySearchSize(const model::Scene& scene);
 /// free block below the water its resultant and greatest pressure, named by the block or joint it
 /// meets (the pressure on each joint), or as a free face.
 void printWaterNotes(const model::Scene& scene);
+/// For a command whose runs keep the case's crack where the case puts it (probability,
+/// backanalyse) although the case asks for its position to be searched: says so; empty otherwise.
+std::string fixedCrackNote(const model::Scene& scene);
 /// The seismic loading in force: the coefficients and the record's span and peaks.
 void printSeismicNote(const model::Scene& scene);
 
