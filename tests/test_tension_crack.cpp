@@ -252,6 +252,13 @@ TEST(TensionCrack, SweepsAndCurvesSearchTheirPointsCracks) {
   EXPECT_EQ(sweep[0][6], "tension_crack_x");
   EXPECT_NEAR(std::stod(sweep[1][1]), hoekBray(b, 0), 0.005 * hoekBray(b, 0));
   EXPECT_NEAR(-std::stod(sweep[1][6]), b, 0.02 * b);
+  // A sweep of the crack's own position keeps each position swept (Hoek & Bray: F 1.1309 at 24 m
+  // behind the toe, 1.1113 at 19 m).
+  clitest::captureCli("fos " + path + " --sweep section.tension_crack.x=-24:-19:2 --quiet --out " + out, &err);
+  const auto moved = rows(out + "/fos_sweep.csv");
+  ASSERT_EQ(moved.size(), 3u) << err;
+  EXPECT_NEAR(std::stod(moved[1][1]), hoekBray(24, 0), 0.005 * hoekBray(24, 0));
+  EXPECT_NEAR(std::stod(moved[2][1]), hoekBray(19, 0), 0.005 * hoekBray(19, 0));
   clitest::captureCli("critical " + path + " --curve 25:30:2 --quiet --out " + out, &err);
   const auto curve = rows(out + "/critical_curve.csv");
   ASSERT_EQ(curve.size(), 3u) << err;

@@ -73,7 +73,8 @@ int fosSweep(const std::string& casePath, const Overrides& o, const FosOptions& 
         // A crack whose position the case searches: F at its least safe position for this value.
         double crackX = NAN;
         int crackRuns = 0;
-        if (scene.crackSearch) {
+        // A sweep of the crack itself places it: no search may move it.
+        if (scene.crackSearch && path.rfind("section.tension_crack.", 0) != 0) {
           const auto read = [&](double x) {
             std::vector<ddaslope::io::CaseOverride> extra{{path, valueAt(i)}};
             for (auto& c : crackAt(x)) extra.push_back(std::move(c));

@@ -56,6 +56,16 @@ std::vector<std::string> splitFields(const std::string& line) {
   return out;
 }
 
+/// The rows of a file appended a row at a time, up to its last line end: a study killed while
+/// writing a row leaves it without one, and that row's run is made again. `keepBytes`: their length.
+std::string wholeRows(const std::string& path, long& keepBytes) {
+  std::ifstream in(path, std::ios::binary);
+  const std::string text((std::istreambuf_iterator<char>(in)), {});
+  const size_t lastNewline = text.rfind('\n');
+  keepBytes = lastNewline == std::string::npos ? 0 : static_cast<long>(lastNewline + 1);
+  return text.substr(0, static_cast<size_t>(keepBytes));
+}
+
 bool parseNumber(const std::string& text, double* v) {
   if (text.empty()) {
     *v = std::numeric_limits<double>::quiet_NaN();
@@ -147,12 +157,7 @@ std::string SampleTable::header() const {
 std::vector<SampleResult> SampleTable::read(const calibration::SampleDesign& design) {
   std::vector<SampleResult> out;
   if (!fs::exists(path_)) return out;
-  std::ifstream in(path_, std::ios::binary);
-  const std::string text((std::istreambuf_iterator<char>(in)), {});
-  const size_t lastNewline = text.rfind('\n');
-  // A study killed while writing a row leaves it without its line end: that sample runs again.
-  keepBytes_ = lastNewline == std::string::npos ? 0 : static_cast<long>(lastNewline + 1);
-  std::istringstream lines(text.substr(0, static_cast<size_t>(keepBytes_)));
+  std::istringstream lines(wholeRows(path_, keepBytes_));
   std::string line;
   if (!std::getline(lines, line)) return out;
   if (line != header())
@@ -250,12 +255,7 @@ std::vector<LearningRun> LearningJournal::read(int population) {
   using calibration::PointVerdict;
   std::vector<LearningRun> out;
   if (!fs::exists(path_)) return out;
-  std::ifstream in(path_, std::ios::binary);
-  const std::string text((std::istreambuf_iterator<char>(in)), {});
-  const size_t lastNewline = text.rfind('\n');
-  // A study killed while writing a row leaves it without its line end: that run is made again.
-  keepBytes_ = lastNewline == std::string::npos ? 0 : static_cast<long>(lastNewline + 1);
-  std::istringstream lines(text.substr(0, static_cast<size_t>(keepBytes_)));
+  std::istringstream lines(wholeRows(path_, keepBytes_));
   std::string line;
   if (!std::getline(lines, line)) return out;
   if (!line.empty() && line.back() == '\r') line.pop_back();
