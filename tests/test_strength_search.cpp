@@ -200,6 +200,55 @@ TEST(StrengthReduction, TopplingSlopeMatchesPublishedDistinctElementResult) {
   EXPECT_GT(r.stableEnd, 0.773);
 }
 
+// A6/A7 (benchmarks.md; Hoek & Bray's sliding and toppling chart): a block with b/h < tan α
+// topples about its toe whatever the strength of its base, so strength reduction has no F, and
+// says why rather than calling it a failure at some small F. b = 1, h = 2.5 on 30° (b/h 0.4 <
+// 0.577), φ = 40°. The critical cohesion search agrees: no cohesion holds it. The same block
+// lying down (b = 2, h = 1: b/h 2 > tan α) only slides, at F = tan 40°/tan 30° = 1.4533 (A5's
+// closed form); 0.008 is the bracket's width of 0.005 plus A5's 0.05° resolution of the critical
+// friction, 0.0026 in F.
+TEST(StrengthReduction, ABlockThatTopplesWhateverItsStrengthHasNoFactor) {
+  InclineSpec s;
+  s.phiDeg = 40;
+  s.b = 1;
+  s.h = 2.5;
+  const model::Scene toppling = scenes::makeIncline(s);
+  const calibration::FactorOfSafetyResult r = calibration::factorOfSafety(toppling, {}, 0.005);
+  EXPECT_FALSE(r.found);
+  EXPECT_NE(r.message.find("no strength of the reduced joints holds this scene"), std::string::npos) << r.message;
+  EXPECT_NE(r.message.find("topples"), std::string::npos) << r.message;
+  const calibration::CriticalResult c = calibration::criticalCohesion(toppling, 0, 40, 1000);
+  EXPECT_FALSE(c.found);
+  EXPECT_NE(c.message.find("strength cannot hold this scene"), std::string::npos) << c.message;
+
+  // The toppling block as a user writes it, a case file placed 1e5 m from the origin: `fos` exits
+  // with 3 (no answer) and says why.
+  const double a = M_PI / 6, x0 = 1e5, y0 = 1e5;
+  const auto on = [&](double along, double up) {
+    return nlohmann::json::array({x0 + along * std::cos(a) - up * std::sin(a), y0 + along * std::sin(a) + up * std::cos(a)});
+  };
+  nlohmann::json d = {
+      {"gravity", {0, -9.81}},
+      {"materials", {{"rock", {{"density", 2600}, {"young_modulus", 5e9}, {"poisson_ratio", 0.25}}}}},
+      {"joints", {{"base", {{"friction_angle", 40}, {"cohesion", 0}, {"tensile_strength", 0}}}}},
+      {"blocks",
+       {{{"id", "ramp"}, {"material", "rock"}, {"fixed", true}, {"vertices", {on(-2, -3), on(20, -3), on(20, 0), on(-2, 0)}}},
+        {{"id", "column"}, {"material", "rock"}, {"vertices", {on(10, 0), on(11, 0), on(11, 2.5), on(10, 2.5)}}}}},
+      {"monitors", {{{"id", "m"}, {"block", "column"}, {"point", on(10.5, 1.25)}}}},
+      {"analysis", {{"duration", 1.0}, {"time_step", 0.001}}}};
+  const std::string path = clitest::writeTemp("toppling_column.json", d.dump());
+  std::string err;
+  EXPECT_EQ(clitest::runCli("fos " + path + " --quiet --out " + path + ".out", &err), 3) << err;
+  EXPECT_NE(err.find("no strength of the reduced joints holds this scene"), std::string::npos) << err;
+  std::filesystem::remove_all(path + ".out");
+
+  s.b = 2;
+  s.h = 1;
+  const calibration::FactorOfSafetyResult lying = calibration::factorOfSafety(scenes::makeIncline(s), {}, 0.005);
+  ASSERT_TRUE(lying.found) << lying.message;
+  EXPECT_NEAR(lying.factor, std::tan(40 * M_PI / 180) / std::tan(30 * M_PI / 180), 0.008);
+}
+
 // D with the basal joint ending at the bench level: the columns can leave only by sliding on the
 // 30° basal joint itself, so the slope holds while the reduced friction exceeds the base's 30°:
 // F ≥ tan 31°/tan 30° = 1.0407 (closed form of a block on a plane; the verdict's resolution is
