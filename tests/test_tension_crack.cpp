@@ -1,4 +1,4 @@
-// Tension cracks as a section feature (issue #41) against Hoek & Bray's planar failure with a
+// Tension cracks as a section feature against Hoek & Bray's planar failure with a
 // tension crack (Hoek & Bray, Rock Slope Engineering, ch. 7; Wyllie & Mah 2004, §6.3): the
 // factor of safety dry, half-full and full, and the critical crack position of a dry slope.
 #include <gtest/gtest.h>
@@ -331,4 +331,16 @@ TEST(TensionCrack, BadValuesAreRefusedWithTheirPath) {
   refused({{"x", -20}, {"search", -12}}, "section.tension_crack.search", "expected [x_min, x_max]");
   refused({{"x", -20}, {"width", 1}}, "section.tension_crack.width", "");
   refused({{"x", -20}, {"water_fraction", 0.5}}, "water", "the tension crack's water", true);
+}
+
+// When no position gives a value, none is least safe: the search says so and does not pick one.
+TEST(TensionCrack, PositionSearchWithNoValueFindsNoPosition) {
+  const auto r = calibration::searchLeastSafePosition(12, 26, 9, false, 1e-4, [](const std::vector<double>& xs) {
+    std::vector<calibration::PositionSample> out;
+    for (double x : xs) out.push_back({x, 0, false, "fails at every strength tried"});
+    return out;
+  });
+  EXPECT_FALSE(r.found);
+  EXPECT_TRUE(std::isnan(r.best));
+  EXPECT_EQ(r.samples.size(), 9u);
 }
