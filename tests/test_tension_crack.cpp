@@ -559,3 +559,16 @@ TEST(TensionCrack, ForwardRunsAndWallTimeIncludeTheCrackSearch) {
   }
   std::filesystem::remove_all(out);
 }
+
+// Sizing a load with the crack searched is refused with what to do: remove the search.
+TEST(TensionCrack, SizingALoadWithTheCrackSearchedSaysWhatToDo) {
+  nlohmann::json doc = crackCase();
+  doc["point_loads"] = nlohmann::json::parse(R"([{"id": "berm", "block": "slide_1", "point": [-5, 8.660254038],
+      "force": [-1e5, 0]}])");
+  const std::string path = clitest::writeTemp("crack_load_todo.json", doc.dump());
+  std::string err;
+  EXPECT_EQ(clitest::runCli("critical " + path + " --solve support --support berm --quiet", &err), 2);
+  EXPECT_NE(err.find("remove section.tension_crack.search from the case and place the crack with section.tension_crack.x"),
+            std::string::npos)
+      << err;
+}

@@ -138,8 +138,9 @@ int supportCommand(const std::string& casePath, const Overrides& o, ddaslope::mo
   if (scene.crackSearch && q.kind == SupportQuantity::Kind::Load)
     throw ddaslope::InputError(casePath, "section.tension_crack.search",
                                "sizing a load ('" + opt.support + "') with the crack's position searched: a load may steady "
-                               "or burden the slope, so no one position is least safe for it; give the crack's x "
-                               "(section.tension_crack.x) or size an anchor or a bolt");
+                               "or burden the slope, so no one position is least safe for it; remove "
+                               "section.tension_crack.search from the case and place the crack with section.tension_crack.x, "
+                               "or size an anchor or a bolt");
   cal::SearchSettings one;
   one.threads = 1;
   // Positions searched ten times finer than the answer: --width, or without it a tenth of the
