@@ -572,3 +572,20 @@ TEST(TensionCrack, SizingALoadWithTheCrackSearchedSaysWhatToDo) {
             std::string::npos)
       << err;
 }
+
+// backanalyse says the crack stays put before its fit starts: a fit stopped after two seconds
+// (of a minute's work) has already said it.
+TEST(TensionCrack, BackanalyseSaysItsCrackStaysPutBeforeTheFit) {
+  const std::string job = clitest::writeTemp("crack_job.json", R"({"case": ")" + std::string(DDASLOPE_SOURCE_DIR) +
+      R"(/cases/planar_failure_crack.json", "parameters": [
+      {"name": "cohesion", "joint": "sliding_plane", "property": "cohesion", "min": 0, "max": 60000}],
+      "observations": [{"type": "factor_of_safety", "label": "F = 1", "target": 1.0, "sigma": 0.01}],
+      "optimiser": {"global": "GN_DIRECT_L", "local": "LN_BOBYQA", "global_evaluations": 5000,
+      "local_evaluations": 5000, "xtol_rel": 1e-12}})");
+  const std::string out = std::filesystem::temp_directory_path() / ("crack_fit_" + std::to_string(::getpid()));
+  std::string text, err;
+  EXPECT_EQ(clitest::runCliCapturing("backanalyse " + job + " --quiet --out " + out, &text, &err, "timeout 2"), 124) << err;
+  EXPECT_NE(err.find("the tension crack stays at x = -20 m (section.tension_crack.x) in every run"), std::string::npos)
+      << err;
+  std::filesystem::remove_all(out);
+}
