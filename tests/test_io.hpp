@@ -44,18 +44,29 @@ inline int runCli(const std::string& args, std::string* stderrText) {
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
-/// Runs the CLI, expects exit 0, and returns what it printed on stdout (stderr into *stderrText).
-inline std::string captureCli(const std::string& args, std::string* stderrText) {
+/// Runs the CLI with `args` and returns its exit code, what it printed on stdout into *stdoutText
+/// and on stderr into *stderrText: for a command whose exit code is not 0 (a search with no
+/// answer) but whose output is checked. `launcher` runs it (e.g. "timeout 2": stopped after 2 s).
+inline int runCliCapturing(const std::string& args, std::string* stdoutText, std::string* stderrText,
+                           const std::string& launcher = "") {
   const std::filesystem::path tmp = std::filesystem::temp_directory_path();
   const std::filesystem::path out = tmp / ("ddaslope_out_" + std::to_string(::getpid()));
   const std::filesystem::path err = tmp / ("ddaslope_err_" + std::to_string(::getpid()));
-  const std::string cmd = std::string(DDASLOPE_CLI) + " " + args + " >" + out.string() + " 2>" + err.string();
-  EXPECT_EQ(std::system(cmd.c_str()), 0) << cmd;
+  const std::string cmd =
+      (launcher.empty() ? "" : launcher + " ") + DDASLOPE_CLI + " " + args + " >" + out.string() + " 2>" + err.string();
+  const int status = std::system(cmd.c_str());
   std::ifstream e(err), o(out);
   stderrText->assign(std::istreambuf_iterator<char>(e), {});
-  std::string text((std::istreambuf_iterator<char>(o)), {});
+  stdoutText->assign(std::istreambuf_iterator<char>(o), {});
   std::filesystem::remove(out);
   std::filesystem::remove(err);
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+/// Runs the CLI, expects exit 0, and returns what it printed on stdout (stderr into *stderrText).
+inline std::string captureCli(const std::string& args, std::string* stderrText) {
+  std::string text;
+  EXPECT_EQ(runCliCapturing(args, &text, stderrText), 0) << args << ": " << *stderrText;
   return text;
 }
 

@@ -1,4 +1,4 @@
-// Tension cracks as a section feature (issue #41) against Hoek & Bray's planar failure with a
+// Tension cracks as a section feature against Hoek & Bray's planar failure with a
 // tension crack (Hoek & Bray, Rock Slope Engineering, ch. 7; Wyllie & Mah 2004, §6.3): the
 // factor of safety dry, half-full and full, and the critical crack position of a dry slope.
 #include <gtest/gtest.h>
@@ -331,4 +331,261 @@ TEST(TensionCrack, BadValuesAreRefusedWithTheirPath) {
   refused({{"x", -20}, {"search", -12}}, "section.tension_crack.search", "expected [x_min, x_max]");
   refused({{"x", -20}, {"width", 1}}, "section.tension_crack.width", "");
   refused({{"x", -20}, {"water_fraction", 0.5}}, "water", "the tension crack's water", true);
+}
+
+// When no position gives a value, none is least safe: the search says so and does not pick one.
+TEST(TensionCrack, PositionSearchWithNoValueFindsNoPosition) {
+  const auto r = calibration::searchLeastSafePosition(12, 26, 9, false, 1e-4, [](const std::vector<double>& xs) {
+    std::vector<calibration::PositionSample> out;
+    for (double x : xs) out.push_back({x, 0, false, "fails at every strength tried"});
+    return out;
+  });
+  EXPECT_FALSE(r.found);
+  EXPECT_TRUE(std::isnan(r.best));
+  EXPECT_EQ(r.samples.size(), 9u);
+}
+
+// Without cohesion the plane (φ 30° under ψp 35°) slides at every crack position without seismic
+// loading, so no position has a yield seismic coefficient: the crack stays at the case's
+// x = −20 m, the text says so, and the JSON says "position_found": false with a note.
+TEST(TensionCrack, NoPositionWithAnAnswerKeepsTheCasesCrack) {
+  const std::string args = std::string(DDASLOPE_SOURCE_DIR) + "/cases/planar_failure_crack.json --solve seismic-coefficient "
+                           "--direction +x --set joints.sliding_plane.cohesion=0 --quiet";
+  std::string out, err;
+  EXPECT_EQ(clitest::runCliCapturing("critical " + args + " --json", &out, &err), 3) << err;
+  const nlohmann::json r = nlohmann::json::parse(out);
+  EXPECT_FALSE(r["found"].get<bool>());
+  const nlohmann::json& crack = r["tension_crack"];
+  EXPECT_EQ(crack["x"].get<double>(), -20);
+  EXPECT_FALSE(crack["position_found"].get<bool>());
+  EXPECT_NE(crack["note"].get<std::string>().find("the crack stays at the case's x = -20 m"), std::string::npos)
+      << crack["note"];
+  EXPECT_EQ(crack["positions"].size(), 9u);
+  EXPECT_EQ(clitest::runCliCapturing("critical " + args, &out, &err), 3) << err;
+  EXPECT_NE(out.find("gave an answer (critical seismic-coefficient (g)), so none is least safe: the crack stays at the "
+                     "case's x = -20 m"),
+            std::string::npos)
+      << out;
+  EXPECT_EQ(out.find("least safe crack:"), std::string::npos) << out;
+}
+
+// The yield seismic coefficient's positions are searched a tenth as wide as the answer: 1e-4 of
+// k_y without --width (the answer's 1e-3), a tenth of --width with it; JSON's position_width
+// says so, as fos's does (a tenth of its --width).
+TEST(TensionCrack, SeismicCoefficientSearchesPositionsFinerThanItsAnswer) {
+  const std::string path = std::string(DDASLOPE_SOURCE_DIR) + "/cases/planar_failure_crack.json";
+  std::string err;
+  const nlohmann::json r = nlohmann::json::parse(
+      clitest::captureCli("critical " + path + " --solve seismic-coefficient --direction +x --quiet --json", &err));
+  ASSERT_TRUE(r["found"].get<bool>()) << err;
+  const double ky = r["critical"].get<double>();
+  EXPECT_NEAR(r["tension_crack"]["position_width"].get<double>(), 1e-4 * ky, 2e-6 * ky);
+  // The answer's own bracket: 1e-3 of its failing end, ten times the positions'.
+  EXPECT_LE(r["failing_at"].get<double>() - r["stable_at"].get<double>(), 1e-3 * r["failing_at"].get<double>() * (1 + 1e-9));
+  const nlohmann::json w = nlohmann::json::parse(clitest::captureCli(
+      "critical " + path + " --solve seismic-coefficient --direction +x --width 1e-3 --quiet --json", &err));
+  EXPECT_DOUBLE_EQ(w["tension_crack"]["position_width"].get<double>(), 1e-4);
+}
+
+// Every solve records a fixed crack (no search) by its position in JSON, as fos and critical
+// cohesion do: jrc, the seismic coefficient and an anchor's force.
+TEST(TensionCrack, EverySolveRecordsAFixedCrack) {
+  nlohmann::json doc = crackCase();
+  doc["section"]["tension_crack"].erase("search");
+  doc["supports"] = nlohmann::json::parse(R"([{"id": "a", "head": [-5, 8.660254038], "head_block": "slide_1",
+      "end": [-25, 8.660254038], "end_block": "base", "pretension": 1e5}])");
+  const std::string fixed = clitest::writeTemp("crack_fixed.json", doc.dump());
+  doc["joints"]["sliding_plane"] = nlohmann::json::parse(
+      R"({"law": "barton_bandis", "residual_friction_angle": 25, "jrc": 8, "jcs": 5e7, "tensile_strength": 0})");
+  const std::string bb = clitest::writeTemp("crack_fixed_bb.json", doc.dump());
+  for (const std::string& args : {bb + " --solve jrc", fixed + " --solve seismic-coefficient --direction +x",
+                                  fixed + " --solve support --support a --target-fos 1.3"}) {
+    std::string err;
+    const nlohmann::json r = nlohmann::json::parse(clitest::captureCli("critical " + args + " --quiet --json", &err));
+    ASSERT_TRUE(r.contains("tension_crack")) << args;
+    EXPECT_EQ(r["tension_crack"]["x"].get<double>(), -20) << args;
+    EXPECT_FALSE(r["tension_crack"].contains("positions")) << args;
+  }
+}
+
+// The support curve's JSON gives its sizes in N/m, as its name says, and each size's crack.
+TEST(TensionCrack, SupportCurveJsonInNewtonsPerMetreWithEachCrack) {
+  nlohmann::json doc = crackCase();
+  doc["supports"] = nlohmann::json::parse(R"([{"id": "a", "head": [-5, 8.660254038], "head_block": "slide_1",
+      "end": [-25, 8.660254038], "end_block": "base", "pretension": 1e5}])");
+  const std::string path = clitest::writeTemp("crack_curve_anchor.json", doc.dump());
+  const std::string out = std::filesystem::temp_directory_path() / ("crack_support_" + std::to_string(::getpid()));
+  std::string err;
+  const nlohmann::json r = nlohmann::json::parse(clitest::captureCli(
+      "critical " + path + " --solve support --support a --curve 0:400000:2 --quiet --json --out " + out, &err));
+  EXPECT_EQ(r["values_n_per_m"], nlohmann::json::parse("[0.0, 400000.0]"));
+  ASSERT_EQ(r["tension_crack_x"].size(), 2u);
+  // Without the anchor, Hoek & Bray's dry slope is least safe 18.161 m behind the toe.
+  EXPECT_NEAR(-r["tension_crack_x"][0].get<double>(), 18.161, 0.02 * 18.161);
+  EXPECT_NEAR(r["factor_of_safety"][0].get<double>(), hoekBray(18.161, 0), 0.005 * hoekBray(18.161, 0));
+  EXPECT_TRUE(r["no_answer"].empty());
+  std::filesystem::remove_all(out);
+}
+
+// A sweep and a curve with --json print one valid JSON document with each point's crack; the
+// same points as the CSV (Hoek & Bray's dry slope: b = 18.161 m whatever c and φ).
+TEST(TensionCrack, SweepAndCurveJsonCarryEachPointsCrack) {
+  const std::string path = std::string(DDASLOPE_SOURCE_DIR) + "/cases/planar_failure_crack.json";
+  const std::string out = std::filesystem::temp_directory_path() / ("crack_json_" + std::to_string(::getpid()));
+  const double b = 18.161;
+  std::string err;
+  const std::string sweepText =
+      clitest::captureCli("fos " + path + " --sweep joints.sliding_plane.cohesion=25000:30000:2 --quiet --json --out " + out, &err);
+  const std::string sweepFile = clitest::writeTemp("crack_sweep.json", sweepText);
+  EXPECT_EQ(std::system(("python3 -m json.tool " + sweepFile + " >/dev/null").c_str()), 0) << sweepText;
+  const nlohmann::json sweep = nlohmann::json::parse(sweepText);
+  ASSERT_EQ(sweep["tension_crack_x"].size(), 2u);
+  EXPECT_NEAR(sweep["factor_of_safety"][0].get<double>(), hoekBray(b, 0), 0.005 * hoekBray(b, 0));
+  for (const auto& x : sweep["tension_crack_x"]) EXPECT_NEAR(-x.get<double>(), b, 0.02 * b);
+  EXPECT_TRUE(sweep["points"][0]["crack_position_found"].get<bool>());
+  const nlohmann::json curve =
+      nlohmann::json::parse(clitest::captureCli("critical " + path + " --curve 25:30:2 --quiet --json --out " + out, &err));
+  ASSERT_EQ(curve["tension_crack_x"].size(), 2u);
+  for (const auto& x : curve["tension_crack_x"]) EXPECT_NEAR(-x.get<double>(), b, 0.02 * b);
+  EXPECT_NEAR(curve["critical_cohesion_pa"][0].get<double>(), 29157.4, 0.005 * 29157.4);
+  std::filesystem::remove_all(out);
+}
+
+namespace {
+
+/// A copy of the shipped case with its crack full of water and searched only just behind the
+/// crest, where the sliver in front of it topples at every strength (docs/case-format.md,
+/// "Tension crack"): no position there has an answer.
+std::string sliverSearchCase() {
+  nlohmann::json doc = crackCase();
+  doc["section"]["tension_crack"] = {{"x", -20}, {"water_fraction", 1}, {"search", {-12.3, -11.7}}};
+  return clitest::writeTemp("crack_sliver_search.json", doc.dump());
+}
+
+/// Hoek & Bray's critical cohesion with the crack b behind the toe (water as hoekBray's): F = 1,
+/// c = (W sin ψp + V cos ψp − (W cos ψp − U − V sin ψp) tan φ)/A.
+double criticalCohesionAt(double b, double fraction, double phiDeg) {
+  const double z = kH - b * std::tan(kPsiP), zw = fraction * z;
+  const auto [w, a] = wedgeAt(b);
+  const double u = kGammaWater * zw * a / 2, v = kGammaWater * zw * zw / 2;
+  return (w * std::sin(kPsiP) + v * std::cos(kPsiP) -
+          (w * std::cos(kPsiP) - u - v * std::sin(kPsiP)) * std::tan(degToRad(phiDeg))) / a;
+}
+
+}  // namespace
+
+// fos and critical cohesion with no position giving an answer keep the case's crack (x = −20 m,
+// full): F within 1 % of Hoek & Bray's 0.8327 there, which a crack moved to the middle of the
+// range (a toppling sliver) could not give; the text and the JSON say the crack stayed.
+TEST(TensionCrack, SearchesWithNoPositionKeepTheCasesCrack) {
+  const std::string path = sliverSearchCase();
+  const std::string out = std::filesystem::temp_directory_path() / ("crack_sliver_" + std::to_string(::getpid()));
+  std::string err;
+  const std::string text = clitest::captureCli("fos " + path + " --quiet --out " + out, &err);
+  EXPECT_NE(text.find("so none is least safe: the crack stays at the case's x = -20 m"), std::string::npos) << text;
+  std::ifstream in(out + "/fos.json");
+  const nlohmann::json fos = nlohmann::json::parse(in);
+  EXPECT_EQ(fos["tension_crack"]["x"].get<double>(), -20);
+  EXPECT_FALSE(fos["tension_crack"]["position_found"].get<bool>());
+  EXPECT_TRUE(fos["tension_crack"].contains("note"));
+  EXPECT_NEAR(fos["factor_of_safety"].get<double>(), hoekBray(20, 1), 0.01 * hoekBray(20, 1));
+  // The curve's points likewise: each keeps the case's crack.
+  const nlohmann::json curve =
+      nlohmann::json::parse(clitest::captureCli("critical " + path + " --curve 25:30:2 --quiet --json --out " + out, &err));
+  for (int k = 0; k < 2; ++k) {
+    EXPECT_EQ(curve["tension_crack_x"][k].get<double>(), -20);
+    const double c = criticalCohesionAt(20, 1, k == 0 ? 25 : 30);
+    EXPECT_NEAR(curve["critical_cohesion_pa"][k].get<double>(), c, 0.01 * c);
+  }
+  std::filesystem::remove_all(out);
+}
+
+// A sweep or a curve point without an answer is named in the text and null in the JSON (never 0),
+// listed in no_answer; the sweep's JSON is one valid document. A full crack 12 m behind the toe
+// leaves a sliver that topples at every strength; at 20 m F is Hoek & Bray's 0.8327 (1 %).
+TEST(TensionCrack, PointsWithoutAnAnswerAreNullAndNamed) {
+  const std::string path = std::string(DDASLOPE_SOURCE_DIR) + "/cases/planar_failure_crack.json";
+  const std::string out = std::filesystem::temp_directory_path() / ("crack_null_" + std::to_string(::getpid()));
+  const std::string sweep = "fos " + path + " --set section.tension_crack.water_fraction=1 --sweep "
+                            "section.tension_crack.x=-12:-20:2 --quiet --out " + out;
+  std::string text, err;
+  EXPECT_EQ(clitest::runCliCapturing(sweep + " --json", &text, &err), 3) << err;
+  const std::string file = clitest::writeTemp("crack_null_sweep.json", text);
+  EXPECT_EQ(std::system(("python3 -m json.tool " + file + " >/dev/null").c_str()), 0) << text;
+  const nlohmann::json s = nlohmann::json::parse(text);
+  EXPECT_TRUE(s["factor_of_safety"][0].is_null());
+  EXPECT_NEAR(s["factor_of_safety"][1].get<double>(), hoekBray(20, 1), 0.01 * hoekBray(20, 1));
+  EXPECT_EQ(s["no_answer"], nlohmann::json::parse("[-12.0]"));
+  EXPECT_TRUE(s["points"][0]["factor_of_safety"].is_null());
+  EXPECT_EQ(clitest::runCliCapturing(sweep, &text, &err), 3) << err;
+  EXPECT_NE(text.find("section.tension_crack.x = -12        no answer: fails at every reduction factor"), std::string::npos)
+      << text;
+
+  nlohmann::json doc = crackCase();
+  doc["section"]["tension_crack"] = {{"x", -12}, {"water_fraction", 1}};
+  const std::string sliver = clitest::writeTemp("crack_sliver.json", doc.dump());
+  EXPECT_EQ(clitest::runCliCapturing("critical " + sliver + " --curve 25:30:2 --quiet --json --out " + out, &text, &err), 3)
+      << err;
+  const nlohmann::json c = nlohmann::json::parse(text);
+  EXPECT_TRUE(c["critical_cohesion_pa"][0].is_null());
+  EXPECT_TRUE(c["critical_cohesion_pa"][1].is_null());
+  EXPECT_EQ(c["no_answer"], nlohmann::json::parse("[25.0, 30.0]"));
+  EXPECT_EQ(clitest::runCliCapturing("critical " + sliver + " --curve 25:30:2 --quiet --out " + out, &text, &err), 3);
+  EXPECT_NE(text.find("φ =  25.00°  no answer  fails even with a cohesion of 1e12 Pa"), std::string::npos) << text;
+  std::filesystem::remove_all(out);
+}
+
+// fos, critical cohesion and friction count the crack search in their forward runs and wall time:
+// the total is the answer's trials and the search's runs, and the text says how many searched.
+TEST(TensionCrack, ForwardRunsAndWallTimeIncludeTheCrackSearch) {
+  const std::string path = std::string(DDASLOPE_SOURCE_DIR) + "/cases/planar_failure_crack.json";
+  const std::string out = std::filesystem::temp_directory_path() / ("crack_runs_" + std::to_string(::getpid()));
+  for (const auto& [command, file] : {std::pair<std::string, std::string>{"fos", "fos.json"},
+                                      {"critical --solve cohesion", "critical.json"},
+                                      {"critical --solve friction", "critical.json"}}) {
+    std::string err;
+    const std::string text = clitest::captureCli(command + " " + path + " --quiet --out " + out, &err);
+    std::ifstream in(out + "/" + file);
+    const nlohmann::json r = nlohmann::json::parse(in);
+    const int crackRuns = r["tension_crack"]["forward_runs"].get<int>();
+    const int total = r["forward_runs"].get<int>();
+    EXPECT_GT(crackRuns, 0) << command;
+    EXPECT_EQ(total, crackRuns + static_cast<int>(r["trials"].size())) << command;
+    EXPECT_GE(r["wall_time_s"].get<double>(), r["tension_crack"]["wall_time_s"].get<double>()) << command;
+    EXPECT_NE(text.find(std::to_string(total) + " forward runs (" + std::to_string(crackRuns) +
+                        " of them searching the crack's position)"),
+              std::string::npos)
+        << command << ": " << text;
+  }
+  std::filesystem::remove_all(out);
+}
+
+// Sizing a load with the crack searched is refused with what to do: remove the search.
+TEST(TensionCrack, SizingALoadWithTheCrackSearchedSaysWhatToDo) {
+  nlohmann::json doc = crackCase();
+  doc["point_loads"] = nlohmann::json::parse(R"([{"id": "berm", "block": "slide_1", "point": [-5, 8.660254038],
+      "force": [-1e5, 0]}])");
+  const std::string path = clitest::writeTemp("crack_load_todo.json", doc.dump());
+  std::string err;
+  EXPECT_EQ(clitest::runCli("critical " + path + " --solve support --support berm --quiet", &err), 2);
+  EXPECT_NE(err.find("remove section.tension_crack.search from the case and place the crack with section.tension_crack.x"),
+            std::string::npos)
+      << err;
+}
+
+// backanalyse says the crack stays put before its fit starts: a fit stopped after two seconds
+// (of a minute's work) has already said it.
+TEST(TensionCrack, BackanalyseSaysItsCrackStaysPutBeforeTheFit) {
+  const std::string job = clitest::writeTemp("crack_job.json", R"({"case": ")" + std::string(DDASLOPE_SOURCE_DIR) +
+      R"(/cases/planar_failure_crack.json", "parameters": [
+      {"name": "cohesion", "joint": "sliding_plane", "property": "cohesion", "min": 0, "max": 60000}],
+      "observations": [{"type": "factor_of_safety", "label": "F = 1", "target": 1.0, "sigma": 0.01}],
+      "optimiser": {"global": "GN_DIRECT_L", "local": "LN_BOBYQA", "global_evaluations": 5000,
+      "local_evaluations": 5000, "xtol_rel": 1e-12}})");
+  const std::string out = std::filesystem::temp_directory_path() / ("crack_fit_" + std::to_string(::getpid()));
+  std::string text, err;
+  EXPECT_EQ(clitest::runCliCapturing("backanalyse " + job + " --quiet --out " + out, &text, &err, "timeout 2"), 124) << err;
+  EXPECT_NE(err.find("the tension crack stays at x = -20 m (section.tension_crack.x) in every run"), std::string::npos)
+      << err;
+  std::filesystem::remove_all(out);
 }

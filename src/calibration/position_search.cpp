@@ -28,10 +28,11 @@ PositionSearchResult searchLeastSafePosition(double lo, double hi, int points, b
   r.samples = evaluate(coarse);
   const int k = extremeSample(r.samples, sign);
   if (k < 0) {
-    r.best = 0.5 * (lo + hi);
-    r.flatLo = lo, r.flatHi = hi;
+    r.best = r.flatLo = r.flatHi = NAN;
+    r.precision = precision >= 0 ? precision : NAN;  // a fraction of no value
     return r;
   }
+  r.found = true;
   // The finer grid between the best point's neighbours.
   const double step = (hi - lo) / (points - 1);
   const double a = std::max(lo, coarse[k] - step), b = std::min(hi, coarse[k] + step);
@@ -67,6 +68,8 @@ PositionSearchResult searchLeastSafePosition(double lo, double hi, int points, b
       r.fitted = true;
     }
   }
+  r.precision = precision >= 0 ? precision : -precision * std::abs(r.samples[kBest].value);
+  precision = r.precision;
   // Within the precision of the extreme: by the parabola where it was fitted, else by the samples.
   if (r.fitted) {
     const double reach = half * std::sqrt(std::max(precision, 0.0) / c2);

@@ -374,7 +374,7 @@ CriticalResult criticalJrc(const model::Scene& scene, int joint, double width, c
 }
 
 CriticalResult criticalSeismicCoefficient(const model::Scene& scene, int direction, double width,
-                                          const SearchSettings& s) {
+                                          const SearchSettings& s, double relativeWidth) {
   const auto t0 = std::chrono::steady_clock::now();
   // The load enters each trial's own equilibrium (model/seismic.hpp): none is shared.
   CountedVerdict stableAt{[&](double k, double length) {
@@ -407,14 +407,14 @@ CriticalResult criticalSeismicCoefficient(const model::Scene& scene, int directi
       if (width > 0) {
         narrowInto(r, f, stable, k, width, s.threads);
       } else {
-        // To 1e-3 of k_y itself: narrow, and again while the bracket is wider than that of its
-        // new failing end (a small k_y is found in a bracket that began at 0.05).
+        // To a fraction of k_y itself: narrow, and again while the bracket is wider than that of
+        // its new failing end (a small k_y is found in a bracket that began at 0.05).
         double failing = k;
         do {
-          narrowInto(r, f, stable, failing, 1e-3 * failing, s.threads);
+          narrowInto(r, f, stable, failing, relativeWidth * failing, s.threads);
           stable = r.stableEnd;
           failing = r.failingEnd;
-        } while (r.found && failing - stable > 1e-3 * failing * (1 + 1e-9));
+        } while (r.found && failing - stable > relativeWidth * failing * (1 + 1e-9));
       }
     }
   }

@@ -62,6 +62,13 @@ int backanalyseCommand(const std::string& jobPath, const std::string& outDir, bo
   job.model.push_back(o.model);
   for (const auto& s : o.settings) job.caseOverrides.push_back(parseSetting(s));
   const std::unique_ptr<ddaslope::TaskFarm> farm = ddaslope::makeTaskFarm(job.threads);
+  // Said before the fit, which may run for hours with the crack where the user may not expect it
+  // (and again with the result).
+  if (farm->isRoot()) {
+    std::vector<double> start;
+    for (const auto& p : job.parameters) start.push_back(p.hasStart ? p.start : 0.5 * (p.min + p.max));
+    warnAboutTrials(job.casePath, fixedCrackNote(ddaslope::calibration::sceneAt(job, start)));
+  }
   const auto log = startProgress("backanalyse", progress, json);
   const ddaslope::calibration::BackanalysisResult r =
       ddaslope::calibration::runBackanalysis(job, farm.get(), ddaslope::io::sinkOf(log.get()));

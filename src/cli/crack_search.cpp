@@ -54,7 +54,8 @@ CrackSearch searchCrackPosition(const std::string& casePath, const Overrides& o,
   out.result = calibration::searchLeastSafePosition(scene.crackSearch->first, scene.crackSearch->second, 9, maximise,
                                                     precision, evaluate);
   out.wallTime = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  log->finish(true, "least safe crack at x = " + std::to_string(out.result.best));
+  log->finish(true, out.result.found ? "least safe crack at x = " + std::to_string(out.result.best)
+                                      : "no position gave " + quantity);
   return out;
 }
 
@@ -64,26 +65,46 @@ std::optional<CrackSearch> placeCrack(const std::string& casePath, const Overrid
                                       const std::function<CrackValue(const model::Scene&)>& valueAt) {
   if (!scene.crackSearch) return std::nullopt;
   CrackSearch crack = searchCrackPosition(casePath, o, scene, threads, maximise, precision, quantity, progress, valueAt);
-  scene = loadCase(casePath, o, crackAt(crack.result.best));
+  if (crack.result.found) scene = loadCase(casePath, o, crackAt(crack.result.best));
   if (!json) printCrackSearch(crack, scene, quantity);
   return crack;
 }
 
-double leastSafeCrackOnThisThread(const model::Scene& scene, bool maximise, double precision,
-                                  const std::function<model::Scene(double)>& read,
-                                  const std::function<CrackValue(const model::Scene&)>& valueAt, int& runs) {
-  return calibration::searchLeastSafePosition(
-             scene.crackSearch->first, scene.crackSearch->second, 9, maximise, precision,
-             [&](const std::vector<double>& xs) {
-               std::vector<calibration::PositionSample> samples;
-               for (double x : xs) {
-                 const CrackValue v = valueAt(read(x));
-                 runs += v.runs;
-                 samples.push_back({x, v.value, v.found, v.message});
-               }
-               return samples;
-             })
-      .best;
+PointCrack leastSafeCrackOnThisThread(const model::Scene& scene, bool maximise, double precision,
+                                      const std::function<model::Scene(double)>& read,
+                                      const std::function<CrackValue(const model::Scene&)>& valueAt, int& runs) {
+  const calibration::PositionSearchResult r = calibration::searchLeastSafePosition(
+      scene.crackSearch->first, scene.crackSearch->second, 9, maximise, precision, [&](const std::vector<double>& xs) {
+        std::vector<calibration::PositionSample> samples;
+        for (double x : xs) {
+          const CrackValue v = valueAt(read(x));
+          runs += v.runs;
+          samples.push_back({x, v.value, v.found, v.message});
+        }
+        return samples;
+      });
+  return r.found ? PointCrack{r.best, true} : PointCrack{scene.tensionCrack->x, false};
+}
+
+std::string noCrackPositionNote(const model::Scene& scene, const std::string& quantity) {
+  char text[320];
+  std::snprintf(text, sizeof text,
+                "no crack position in x = [%g, %g] m gave an answer (%s), so none is least safe: the crack stays at the case's "
+                "x = %g m (section.tension_crack.x)",
+                scene.crackSearch->first, scene.crackSearch->second, quantity.c_str(), scene.tensionCrack->x);
+  return text;
+}
+
+std::string forwardRunsText(int answerRuns, const std::optional<CrackSearch>& crack) {
+  if (!crack) return std::to_string(answerRuns) + " forward runs";
+  return std::to_string(answerRuns + crack->runs) + " forward runs (" + std::to_string(crack->runs) +
+         " of them searching the crack's position)";
+}
+
+int totalRuns(int answerRuns, const std::optional<CrackSearch>& crack) { return answerRuns + (crack ? crack->runs : 0); }
+
+double totalWallTime(double answerWallTime, const std::optional<CrackSearch>& crack) {
+  return answerWallTime + (crack ? crack->wallTime : 0);
 }
 
 void printCrackSearch(const CrackSearch& s, const model::Scene& scene, const std::string& quantity) {
@@ -96,6 +117,11 @@ void printCrackSearch(const CrackSearch& s, const model::Scene& scene, const std
     missing |= !p.found;
   }
   const model::CrackGeometry& c = *scene.tensionCrack;
+  if (!r.found) {
+    std::printf("%s, %.4g m deep, water %.4g m deep\n", noCrackPositionNote(scene, quantity).c_str(), c.depth(),
+                c.waterDepth());
+    return;
+  }
   std::printf("least safe crack: x = %.4g m, %.4g m deep, water %.4g m deep (%s); %s within the search's width for x "
               "in [%.4g, %.4g] m\n",
               c.x, c.depth(), c.waterDepth(), r.fitted ? "the vertex of a parabola through the nearest positions" : "the best position tried",
@@ -109,7 +135,7 @@ void printCrackSearch(const CrackSearch& s, const model::Scene& scene, const std
                 "look beyond it\n");
 }
 
-void appendCrackSearch(io::JsonRecord& j, const CrackSearch& s, const model::Scene& scene) {
+void appendCrackSearch(io::JsonRecord& j, const CrackSearch& s, const model::Scene& scene, const std::string& quantity) {
   const model::CrackGeometry& c = *scene.tensionCrack;
   io::JsonRecord t;
   t.set("x", c.x).set("depth", c.depth()).set("water_depth", c.waterDepth()).set("water_fraction", c.waterFraction);
@@ -119,7 +145,9 @@ void appendCrackSearch(io::JsonRecord& j, const CrackSearch& s, const model::Sce
     for (const auto& p : r.samples) xs.push_back(p.x), values.push_back(p.found ? p.value : NAN);
     t.set("searched", std::vector<double>{scene.crackSearch->first, scene.crackSearch->second});
     t.set("positions", xs).set("values", values).set("fitted", r.fitted).set("at_end", r.atEnd);
-    t.set("within_width", std::vector<double>{r.flatLo, r.flatHi});
+    t.set("within_width", std::vector<double>{r.flatLo, r.flatHi}).set("position_width", r.precision);
+    t.set("position_found", r.found);
+    if (!r.found) t.set("note", noCrackPositionNote(scene, quantity));
     t.set("forward_runs", s.runs).set("wall_time_s", s.wallTime);
   }
   j.set("tension_crack", t);

@@ -20,9 +20,17 @@ struct CrackValue {
 };
 
 struct CrackSearch {
+  /// Where the least safe crack is; when no position gave a value (`result.found` false), none
+  /// is, and the crack stays at the case's x.
   calibration::PositionSearchResult result;
   int runs = 0;  ///< forward runs over every position
   double wallTime = 0;
+};
+
+/// The least safe crack of one point of a sweep or a curve.
+struct PointCrack {
+  double x = 0;        ///< where the point's crack is: the least safe position, or the case's x
+  bool found = false;  ///< a position gave a value (else x is the case's)
 };
 
 /// The overrides that put the case's crack at x.
@@ -36,7 +44,8 @@ CrackSearch searchCrackPosition(const std::string& casePath, const Overrides& o,
 
 /// A case that searches its crack (section.tension_crack.search): the least safe position for
 /// `quantity` is found, `scene` is read again with the crack there, and the positions tried are
-/// printed (unless `json`). None, and `scene` untouched, when the case places its crack itself.
+/// printed (unless `json`). None, and `scene` untouched, when the case places its crack itself;
+/// `scene` untouched too when no position gave a value (the crack stays at the case's x).
 std::optional<CrackSearch> placeCrack(const std::string& casePath, const Overrides& o, model::Scene& scene, int threads,
                                       bool maximise, double precision, const std::string& quantity,
                                       const ProgressOptions& progress, bool json,
@@ -44,14 +53,26 @@ std::optional<CrackSearch> placeCrack(const std::string& casePath, const Overrid
 
 /// The least safe crack of one task of a sweep or a curve, which run side by side: its positions
 /// one after another on this thread. `read(x)` is the task's scene with the crack at x. Returns
-/// the position; the positions' forward runs are added to `runs`.
-double leastSafeCrackOnThisThread(const model::Scene& scene, bool maximise, double precision,
-                                  const std::function<model::Scene(double)>& read,
-                                  const std::function<CrackValue(const model::Scene&)>& valueAt, int& runs);
+/// the position, or the case's x (`scene`'s) when no position gave a value; the positions'
+/// forward runs are added to `runs`.
+PointCrack leastSafeCrackOnThisThread(const model::Scene& scene, bool maximise, double precision,
+                                      const std::function<model::Scene(double)>& read,
+                                      const std::function<CrackValue(const model::Scene&)>& valueAt, int& runs);
+
+/// Why the crack stayed at the case's x: no position in the searched range gave `quantity`.
+std::string noCrackPositionNote(const model::Scene& scene, const std::string& quantity);
+
+/// "N forward runs", and with a crack search "N forward runs (M of them searching the crack's
+/// position)": `answerRuns` are the answer's own, the crack search's are added.
+std::string forwardRunsText(int answerRuns, const std::optional<CrackSearch>& crack);
+/// The answer's forward runs and wall time with the crack search's added (the JSON's totals).
+int totalRuns(int answerRuns, const std::optional<CrackSearch>& crack);
+double totalWallTime(double answerWallTime, const std::optional<CrackSearch>& crack);
 
 /// The positions tried and the least safe one, for the text output.
 void printCrackSearch(const CrackSearch& s, const model::Scene& scene, const std::string& quantity);
-/// The same in a command's JSON record (key "tension_crack").
-void appendCrackSearch(io::JsonRecord& j, const CrackSearch& s, const model::Scene& scene);
+/// The same in a command's JSON record (key "tension_crack"); for a crack the case places, its
+/// position alone.
+void appendCrackSearch(io::JsonRecord& j, const CrackSearch& s, const model::Scene& scene, const std::string& quantity);
 
 }  // namespace ddaslope::cli

@@ -44,15 +44,17 @@ int curveCommand(const std::string& casePath, const Overrides& o, const ddaslope
   const std::unique_ptr<ddaslope::TaskFarm> farm = ddaslope::makeTaskFarm(opt.threads);
   const double width = opt.width > 0 ? opt.width : 10;
   // A crack whose position the case searches: each point at its own least safe crack.
+  // A point whose positions all gave no cohesion keeps the case's crack; its x is then the case's.
   ddaslope::calibration::PointScene atCrack;
   if (scene.crackSearch)
     atCrack = [&](double phi, double& crackX, int& runs) {
       const auto read = [&](double x) { return loadCase(casePath, o, crackAt(x)); };
-      crackX = leastSafeCrackOnThisThread(scene, true, width / 10, read, [&](const ddaslope::model::Scene& at) {
+      const PointCrack crack = leastSafeCrackOnThisThread(scene, true, width / 10, read, [&](const ddaslope::model::Scene& at) {
         const auto x = ddaslope::calibration::criticalCohesion(at, joint, phi, width / 10, oneThread());
         return CrackValue{x.found, x.critical, x.runs, x.message};
       }, runs);
-      return read(crackX);
+      crackX = crack.x;
+      return crack.found ? read(crack.x) : scene;
     };
   const auto curve = ddaslope::calibration::criticalCurve(scene, joint, lo, hi, n, width, s, farm.get(), atCrack);
   if (!farm->isRoot()) return kExitOk;  // the root writes
@@ -82,17 +84,31 @@ int curveCommand(const std::string& casePath, const Overrides& o, const ddaslope
   std::filesystem::rename(csv + ".tmp", csv);
   ddaslope::io::writePng({"Critical strength: " + casePath, "friction angle φ (°)", "critical cohesion c (kPa)", {series}}, png);
   if (opt.json) {
+    // No answer, no number: such a point's cohesion is null and its angle is listed in no_answer.
     ddaslope::io::JsonRecord j;
-    std::vector<double> phis, cs;
-    for (const auto& p : curve) phis.push_back(p.frictionDeg), cs.push_back(p.cohesion.critical);
+    std::vector<double> phis, cs, crackXs, noAnswer;
+    std::vector<std::string> messages;
+    for (const auto& p : curve) {
+      phis.push_back(p.frictionDeg), cs.push_back(p.cohesion.found ? p.cohesion.critical : NAN);
+      // As the CSV: no position is least safe where the slope holds without cohesion at every one.
+      crackXs.push_back(p.cohesion.critical > 0 ? p.crackX : NAN), messages.push_back(p.cohesion.message);
+      if (!p.cohesion.found) noAnswer.push_back(p.frictionDeg);
+    }
     j.set("case", casePath).set("joint", opt.joint).set("friction_angle_deg", phis).set("critical_cohesion_pa", cs);
+    if (scene.crackSearch) j.set("tension_crack_x", crackXs);
+    j.set("messages", messages).set("no_answer", noAnswer);
     j.set("all_found", all).set("forward_runs", runs).set("wall_time_s", wall).set("csv", csv).set("png", png);
     std::printf("%s\n", j.dump().c_str());
   } else {
-    for (const auto& p : curve)
-      std::printf("  φ = %6.2f°  c_cr = %10.1f Pa%s%s%s\n", p.frictionDeg, p.cohesion.critical,
-                  std::isfinite(p.crackX) && p.cohesion.critical > 0 ? ("  least safe crack at x = " + std::to_string(p.crackX) + " m").c_str() : "",
-                  p.cohesion.message.empty() ? "" : "  ", p.cohesion.message.c_str());
+    for (const auto& p : curve) {
+      if (p.cohesion.found)
+        std::printf("  φ = %6.2f°  c_cr = %10.1f Pa", p.frictionDeg, p.cohesion.critical);
+      else
+        std::printf("  φ = %6.2f°  no answer", p.frictionDeg);
+      if (scene.crackSearch && p.cohesion.critical > 0) std::printf("  least safe crack at x = %.4g m", p.crackX);
+      if (!p.cohesion.message.empty()) std::printf("  %s", p.cohesion.message.c_str());
+      std::printf("\n");
+    }
     std::printf("%d forward runs, %.2f s wall; wrote %s and %s\n", runs, wall, csv.c_str(), png.c_str());
   }
   return all ? kExitOk : kExitNonConvergence;
@@ -124,21 +140,22 @@ int jrcCommand(const std::string& casePath, const Overrides& o, ddaslope::model:
     j.set("case", casePath).set("joint", opt.joint).set("solve", opt.solve).set("found", r.found);
     j.set("critical", r.found ? r.critical : NAN).set("unit", "JRC");
     j.set("bracket", std::vector<double>{r.failingEnd, r.stableEnd});
-    j.set("forward_runs", r.runs).set("wall_time_s", r.wallTime).set("message", r.message);
-    j.set("settings", settingsLine(scene));
+    j.set("forward_runs", totalRuns(r.runs, crack)).set("wall_time_s", totalWallTime(r.wallTime, crack));
+    j.set("message", r.message).set("settings", settingsLine(scene));
     ddaslope::calibration::appendReview(j, r.review);
     ddaslope::calibration::appendTrials(j, r.trials, "jrc");
-    if (crack) appendCrackSearch(j, *crack, scene);
+    if (scene.tensionCrack) appendCrackSearch(j, crack ? *crack : CrackSearch{}, scene, "critical jrc");
     std::printf("%s\n", j.dump().c_str());
   } else if (r.found) {
     std::printf("critical JRC of joint '%s' at φr = %g°, JCS = %g MPa: %.4g (failing at %.4g, stable at %.4g)%s%s\n",
                 opt.joint.c_str(), ddaslope::radToDeg(scene.joints[joint].frictionAngle),
                 scene.joints[joint].bartonBandis->jcs / 1e6, r.critical, r.failingEnd, r.stableEnd,
                 r.message.empty() ? "" : ": ", r.message.c_str());
-    std::printf("%d forward runs, %.2f s wall; %s\n", r.runs, r.wallTime, settingsLine(scene).c_str());
+    std::printf("%s, %.2f s wall; %s\n", forwardRunsText(r.runs, crack).c_str(), totalWallTime(r.wallTime, crack),
+                settingsLine(scene).c_str());
   } else {
-    std::fprintf(stderr, "ddaslope: %s: no critical JRC found after %d forward runs: %s\n", casePath.c_str(), r.runs,
-                 r.message.c_str());
+    std::fprintf(stderr, "ddaslope: %s: no critical JRC found after %s: %s\n", casePath.c_str(),
+                 forwardRunsText(r.runs, crack).c_str(), r.message.c_str());
   }
   return r.found ? kExitOk : kExitNonConvergence;
 }
@@ -164,14 +181,18 @@ int seismicCoefficientCommand(const std::string& casePath, const Overrides& o, d
       if (opt.direction == "auto" || opt.direction == x) d.push_back(x);
     return d;
   }();
-  // The least safe crack has the least k_y (along the directions asked, the smaller).
+  // The least safe crack has the least k_y (along the directions asked, the smaller). Positions
+  // searched ten times finer than the answer: a tenth of --width, or without it 1e-4 of each
+  // position's k_y against the answer's 1e-3.
+  const double positionWidth = opt.width > 0 ? opt.width / 10 : 0;
+  const std::string quantity = "critical seismic-coefficient (g)";
   const std::optional<CrackSearch> crack =
-      placeCrack(casePath, o, scene, opt.threads, false, 1e-4, "critical seismic-coefficient (g)", opt.progress, opt.json,
-                 [&](const ddaslope::model::Scene& at) {
+      placeCrack(casePath, o, scene, opt.threads, false, opt.width > 0 ? positionWidth : -1e-4, quantity, opt.progress,
+                 opt.json, [&](const ddaslope::model::Scene& at) {
                    CrackValue v;
                    for (const char* d : directions) {
-                     const auto x = ddaslope::calibration::criticalSeismicCoefficient(at, d[0] == '-' ? -1 : 1, opt.width,
-                                                                                      oneThread());
+                     const auto x = ddaslope::calibration::criticalSeismicCoefficient(at, d[0] == '-' ? -1 : 1,
+                                                                                      positionWidth, oneThread(), 1e-4);
                      v.runs += x.runs;
                      if (x.found && (!v.found || x.critical < v.value)) v.found = true, v.value = x.critical;
                      if (!x.found && v.message.empty()) v.message = x.message;
@@ -198,16 +219,18 @@ int seismicCoefficientCommand(const std::string& casePath, const Overrides& o, d
   int runs = 0;
   double wall = 0;
   for (const auto& [d, x] : results) runs += x.runs, wall += x.wallTime;
+  const std::string runsText = forwardRunsText(runs, crack);
+  wall = totalWallTime(wall, crack);
   if (opt.json) {
     ddaslope::io::JsonRecord j;
     j.set("case", casePath).set("solve", opt.solve).set("direction", direction).set("k_v", scene.seismic.kv);
     j.set("found", r.found).set("critical", r.critical).set("unit", "g");
     j.set("failing_at", r.failingEnd).set("stable_at", r.stableEnd);
-    j.set("forward_runs", runs).set("wall_time_s", wall).set("message", r.message);
+    j.set("forward_runs", totalRuns(runs, crack)).set("wall_time_s", wall).set("message", r.message);
     j.set("settings", settingsLine(searched));
     ddaslope::calibration::appendReview(j, r.review);
     ddaslope::calibration::appendTrials(j, r.trials, "k_h");
-    if (crack) appendCrackSearch(j, *crack, scene);
+    if (scene.tensionCrack) appendCrackSearch(j, crack ? *crack : CrackSearch{}, scene, quantity);
     if (!opt.vtkDir.empty()) j.set("vtk", opt.vtkDir);
     std::printf("%s\n", j.dump().c_str());
   } else {
@@ -223,12 +246,12 @@ int seismicCoefficientCommand(const std::string& casePath, const Overrides& o, d
     if (r.found)
       std::printf("  (a force k_y·m·g along %s; a ground acceleration of k_y·g along %s)\n", direction.c_str(),
                   direction == "+x" ? "-x" : "+x");
-    std::printf("%d forward runs, %.2f s wall; %s\n", runs, wall, settingsLine(searched).c_str());
+    std::printf("%s, %.2f s wall; %s\n", runsText.c_str(), wall, settingsLine(searched).c_str());
     printTrialStatesNote(opt.vtkDir, runs);
   }
   if (!r.found)
-    std::fprintf(stderr, "ddaslope: %s: no yield seismic coefficient found after %d forward runs: %s\n", casePath.c_str(),
-                 runs, r.message.c_str());
+    std::fprintf(stderr, "ddaslope: %s: no yield seismic coefficient found after %s: %s\n", casePath.c_str(),
+                 runsText.c_str(), r.message.c_str());
   warnAboutTrials(casePath, ddaslope::calibration::smallMotionWarning(r.trials, "k_h"));
   return r.found ? kExitOk : kExitNonConvergence;
 }
@@ -299,13 +322,14 @@ int criticalCommand(const std::string& casePath, const Overrides& o, const Criti
     j.set("case", casePath).set("joint", opt.joint).set("solve", opt.solve).set("found", r.found);
     if (cohesion) j.set("friction_angle_deg", phi); else j.set("cohesion_pa", c);
     j.set("critical", r.found ? r.critical : NAN).set("unit", unit).set("bracket", std::vector<double>{r.failingEnd, r.stableEnd});
-    j.set("forward_runs", r.runs).set("wall_time_s", r.wallTime).set("message", r.message);
-    j.set("settings", settingsLine(scene));
+    // The totals, the crack search's included (its own in tension_crack).
+    j.set("forward_runs", totalRuns(r.runs, crack)).set("wall_time_s", totalWallTime(r.wallTime, crack));
+    j.set("message", r.message).set("settings", settingsLine(scene));
     ddaslope::calibration::appendReview(j, r.review);
     ddaslope::calibration::appendTrials(j, r.trials, cohesion ? "cohesion_pa" : "friction_angle_deg");
     if (!opt.vtkDir.empty()) j.set("vtk", opt.vtkDir);
     j.set("mechanism_pictures", drawn).set("warnings", warnings);
-    if (scene.tensionCrack) appendCrackSearch(j, crack ? *crack : CrackSearch{}, scene);
+    if (scene.tensionCrack) appendCrackSearch(j, crack ? *crack : CrackSearch{}, scene, "critical " + opt.solve);
     writeResultFile(opt.outDir + "/critical.json", j.dump() + "\n");
     if (opt.json) std::printf("%s\n", j.dump().c_str());
   }
@@ -320,14 +344,15 @@ int criticalCommand(const std::string& casePath, const Overrides& o, const Criti
     std::printf("critical %s of joint '%s' %s: %.6g %s (failing at %.6g, stable at %.6g)%s%s\n", opt.solve.c_str(),
                 opt.joint.c_str(), where.c_str(),
                 r.critical, unit, r.failingEnd, r.stableEnd, r.message.empty() ? "" : ": ", r.message.c_str());
-    std::printf("%d forward runs, %.2f s wall; %s\n", r.runs, r.wallTime, settingsLine(scene).c_str());
+    std::printf("%s, %.2f s wall; %s\n", forwardRunsText(r.runs, crack).c_str(), totalWallTime(r.wallTime, crack),
+                settingsLine(scene).c_str());
     printTrialStatesNote(opt.vtkDir, r.runs);
     std::string files;
     for (const auto& f : drawn) files += (files.empty() ? "" : ", ") + f;
     if (!files.empty()) std::printf("  the mechanism: %s (the trials at the bracket's ends)\n", files.c_str());
   } else {
-    std::fprintf(stderr, "ddaslope: %s: no critical %s found after %d forward runs: %s\n", casePath.c_str(),
-                 opt.solve.c_str(), r.runs, r.message.c_str());
+    std::fprintf(stderr, "ddaslope: %s: no critical %s found after %s: %s\n", casePath.c_str(), opt.solve.c_str(),
+                 forwardRunsText(r.runs, crack).c_str(), r.message.c_str());
   }
   for (const auto& w : warnings)
     if (w != dtWarning) warnAboutTrials(casePath, w);

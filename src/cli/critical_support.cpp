@@ -61,6 +61,7 @@ int supportCurve(const std::string& casePath, const Overrides& o, const ddaslope
   s.threads = opt.threads;
   int runs = 0;
   bool all = true;
+  std::vector<double> values, factors, crackXs, noAnswer;  // N/m, F (null: no answer), m
   for (int k = 0; k < n; ++k) {
     const double x = lo + (hi - lo) * k / (n - 1);
     const auto withSupport = [&](ddaslope::model::Scene at) {
@@ -68,28 +69,35 @@ int supportCurve(const std::string& casePath, const Overrides& o, const ddaslope
       return at;
     };
     // A crack whose position the case searches: F at its least safe position for this size.
-    double crackX = NAN;
+    PointCrack crack{NAN, false};
     int crackRuns = 0;
     ddaslope::model::Scene trial = withSupport(scene);
     if (scene.crackSearch) {
       const auto read = [&](double at) { return withSupport(loadCase(casePath, o, crackAt(at))); };
-      crackX = leastSafeCrackOnThisThread(scene, false, 1e-4, read, [&](const ddaslope::model::Scene& at) {
+      crack = leastSafeCrackOnThisThread(scene, false, 1e-4, read, [&](const ddaslope::model::Scene& at) {
         cal::SearchSettings one;
         one.threads = 1;
         const cal::FactorOfSafetyResult r = cal::factorOfSafety(at, {}, 1e-4, one);
         return CrackValue{r.found, r.factor, r.runs, r.message};
       }, crackRuns);
-      trial = read(crackX);
+      if (crack.found) trial = read(crack.x);
     }
+    const double crackX = crack.x;
     const cal::FactorOfSafetyResult r = cal::factorOfSafety(trial, {}, 1e-3, s);
     std::fprintf(f, "%.6g,%.6g,%.6g,%.6g,%d,%d", x, r.found ? r.factor : NAN, r.stableEnd, r.failingEnd, r.found,
                  r.runs + crackRuns);
     if (scene.crackSearch) std::fprintf(f, ",%.6g", crackX);
     std::fprintf(f, "\n");
-    if (!opt.json)
-      std::printf("  %s %10.4g kN/m: F = %s%s\n", q.name.c_str(), x / 1e3,
-                  r.found ? std::to_string(r.factor).c_str() : ("none (" + r.message + ")").c_str(),
-                  scene.crackSearch ? (", least safe crack at x = " + std::to_string(crackX) + " m").c_str() : "");
+    if (!opt.json) {
+      std::printf("  %s %10.4g kN/m: %s", q.name.c_str(), x / 1e3,
+                  r.found ? ("F = " + std::to_string(r.factor)).c_str() : ("no answer (" + r.message + ")").c_str());
+      if (scene.crackSearch)
+        std::printf(crack.found ? ", least safe crack at x = %.4g m" : ", no crack position gave F: the crack at the case's x = %.4g m",
+                    crackX);
+      std::printf("\n");
+    }
+    values.push_back(x), factors.push_back(r.found ? r.factor : NAN), crackXs.push_back(crackX);
+    if (!r.found) noAnswer.push_back(x);
     runs += crackRuns;
     series.x.push_back(x / 1e3);
     series.y.push_back(r.found ? r.factor : NAN);
@@ -105,7 +113,8 @@ int supportCurve(const std::string& casePath, const Overrides& o, const ddaslope
   if (opt.json) {
     ddaslope::io::JsonRecord j;
     j.set("case", casePath).set("support", opt.support).set("quantity", q.name).set("all_found", all);
-    j.set("values_n_per_m", series.x).set("factor_of_safety", series.y);
+    j.set("values_n_per_m", values).set("factor_of_safety", factors).set("no_answer", noAnswer);
+    if (scene.crackSearch) j.set("tension_crack_x", crackXs);
     j.set("forward_runs", runs).set("wall_time_s", wall).set("csv", csv).set("png", png);
     std::printf("%s\n", j.dump().c_str());
   } else {
@@ -129,23 +138,27 @@ int supportCommand(const std::string& casePath, const Overrides& o, ddaslope::mo
   if (scene.crackSearch && q.kind == SupportQuantity::Kind::Load)
     throw ddaslope::InputError(casePath, "section.tension_crack.search",
                                "sizing a load ('" + opt.support + "') with the crack's position searched: a load may steady "
-                               "or burden the slope, so no one position is least safe for it; give the crack's x "
-                               "(section.tension_crack.x) or size an anchor or a bolt");
+                               "or burden the slope, so no one position is least safe for it; remove "
+                               "section.tension_crack.search from the case and place the crack with section.tension_crack.x, "
+                               "or size an anchor or a bolt");
   cal::SearchSettings one;
   one.threads = 1;
   // Positions searched ten times finer than the answer: --width, or without it a tenth of the
   // 1e-3 of the force (at the case's own crack) that the search narrows to.
   double fine = opt.width > 0 ? opt.width / 10 : 0;
+  cal::CriticalResult scale;
   if (scene.crackSearch && fine <= 0) {
-    const cal::CriticalResult scale = cal::criticalSupport(scene, opt.support, opt.targetFactor, 0, one);
+    scale = cal::criticalSupport(scene, opt.support, opt.targetFactor, 0, one);
     fine = scale.found && scale.critical > 0 ? 1e-4 * scale.critical : 0;
   }
-  const std::optional<CrackSearch> crack =
+  std::optional<CrackSearch> crack =
       placeCrack(casePath, o, scene, opt.threads, true, fine, "critical support (N/m)", opt.progress, opt.json,
                  [&](const ddaslope::model::Scene& at) {
                    const cal::CriticalResult x = cal::criticalSupport(at, opt.support, opt.targetFactor, fine, one);
                    return CrackValue{x.found, x.critical, x.runs, x.message};
                  });
+  // The search for the scale belongs to the crack's.
+  if (crack) crack->runs += scale.runs, crack->wallTime += scale.wallTime;
   const auto log = startProgress("critical --solve support", opt.progress, opt.json);
   cal::SearchSettings s;
   s.threads = opt.threads;
@@ -160,11 +173,11 @@ int supportCommand(const std::string& casePath, const Overrides& o, ddaslope::mo
     j.set("critical", r.found ? r.critical : NAN).set("unit", "N/m");
     j.set("per_support_n", r.found ? r.critical * q.spacing : NAN).set("spacing_m", q.spacing);
     j.set("bracket", std::vector<double>{r.failingEnd, r.stableEnd});
-    j.set("forward_runs", r.runs).set("wall_time_s", r.wallTime).set("message", r.message);
-    j.set("settings", settingsLine(scene));
+    j.set("forward_runs", totalRuns(r.runs, crack)).set("wall_time_s", totalWallTime(r.wallTime, crack));
+    j.set("message", r.message).set("settings", settingsLine(scene));
     cal::appendReview(j, r.review);
     cal::appendTrials(j, r.trials, "value_n_per_m");
-    if (crack) appendCrackSearch(j, *crack, scene);
+    if (scene.tensionCrack) appendCrackSearch(j, crack ? *crack : CrackSearch{}, scene, "critical support (N/m)");
     if (!opt.vtkDir.empty()) j.set("vtk", opt.vtkDir);
     std::printf("%s\n", j.dump().c_str());
   } else if (r.found && r.largestThatHolds) {
@@ -180,11 +193,12 @@ int supportCommand(const std::string& casePath, const Overrides& o, ddaslope::mo
                 r.message.empty() ? "" : ": ", r.message.c_str());
     if (q.spacing != 1) std::printf("  = %.6g kN per support at %g m spacing\n", r.critical * q.spacing / 1e3, q.spacing);
     std::printf("  (every joint's c and tan φ divided by %g; support capacities are not reduced)\n", opt.targetFactor);
-    std::printf("%d forward runs, %.2f s wall; %s\n", r.runs, r.wallTime, settingsLine(scene).c_str());
+    std::printf("%s, %.2f s wall; %s\n", forwardRunsText(r.runs, crack).c_str(), totalWallTime(r.wallTime, crack),
+                settingsLine(scene).c_str());
     printTrialStatesNote(opt.vtkDir, r.runs);
   } else {
-    std::fprintf(stderr, "ddaslope: %s: no %s found after %d forward runs: %s\n", casePath.c_str(), q.name.c_str(),
-                 r.runs, r.message.c_str());
+    std::fprintf(stderr, "ddaslope: %s: no %s found after %s: %s\n", casePath.c_str(), q.name.c_str(),
+                 forwardRunsText(r.runs, crack).c_str(), r.message.c_str());
   }
   for (const auto& b : scene.supports) {
     if (b.id != opt.support) continue;

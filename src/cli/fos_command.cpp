@@ -54,6 +54,7 @@ int fosSweep(const std::string& casePath, const Overrides& o, const FosOptions& 
   struct Point {
     ddaslope::calibration::FactorOfSafetyResult fos;
     double crackX = NAN;  ///< the least safe crack's position, when the case searches it
+    bool crackFound = false;  ///< a crack position gave F (else crackX is the case's x)
     bool done = false;
   };
   std::vector<Point> points(static_cast<size_t>(n));
@@ -62,7 +63,8 @@ int fosSweep(const std::string& casePath, const Overrides& o, const FosOptions& 
   const auto valueAt = [&](int i) { return lo + (hi - lo) * i / (n - 1); };
   FosOptions single = opt;
   single.threads = 1;
-  const auto log = startProgress("fos --sweep", opt.progress, false);
+  const auto log = startProgress("fos --sweep", opt.progress, opt.json);
+  const auto t0 = std::chrono::steady_clock::now();
   int finished = 0;
   const std::unique_ptr<ddaslope::TaskFarm> farm = ddaslope::makeTaskFarm(opt.threads);
   farm->run(
@@ -71,7 +73,7 @@ int fosSweep(const std::string& casePath, const Overrides& o, const FosOptions& 
         const auto started = std::chrono::steady_clock::now();
         ddaslope::model::Scene scene = loadCase(casePath, o, {{path, valueAt(i)}});
         // A crack whose position the case searches: F at its least safe position for this value.
-        double crackX = NAN;
+        PointCrack crack{NAN, false};
         int crackRuns = 0;
         // A sweep of the crack itself places it: no search may move it.
         if (scene.crackSearch && path.rfind("section.tension_crack.", 0) != 0) {
@@ -82,18 +84,18 @@ int fosSweep(const std::string& casePath, const Overrides& o, const FosOptions& 
           };
           FosOptions fine = single;
           fine.width = std::max(1e-4, opt.width / 10);
-          crackX = leastSafeCrackOnThisThread(scene, false, fine.width, read, [&](const ddaslope::model::Scene& at) {
+          crack = leastSafeCrackOnThisThread(scene, false, fine.width, read, [&](const ddaslope::model::Scene& at) {
             const auto r = factorFor(at, casePath, fine);
             return CrackValue{r.found, r.factor, r.runs, r.message};
           }, crackRuns);
-          scene = read(crackX);
+          if (crack.found) scene = read(crack.x);
         }
         const auto r = factorFor(scene, casePath, single);
         ddaslope::BytePacker b;
         // The value's whole time, its crack search's included.
         const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
         b.put(r.found).put(r.factor).put(r.stableEnd).put(r.failingEnd).put(r.runs + crackRuns).put(wall).put(r.message);
-        b.put(crackX);
+        b.put(crack.x).put(crack.found);
         return b.bytes();
       },
       [&](int i, const ddaslope::TaskResult& bytes) {
@@ -107,6 +109,7 @@ int fosSweep(const std::string& casePath, const Overrides& o, const FosOptions& 
         r.wallTime = b.get<double>();
         r.message = b.getString();
         points[i].crackX = b.get<double>();
+        points[i].crackFound = b.get<bool>();
         points[i].done = true;
         if (log->active())
           log->report({"points", ++finished, n,
@@ -115,14 +118,19 @@ int fosSweep(const std::string& casePath, const Overrides& o, const FosOptions& 
       });
   if (!farm->isRoot()) return kExitOk;  // the root writes
   log->finish(true, std::to_string(n) + " values");
-  for (int i = 0; i < n; ++i) {
-    const auto& r = points[i].fos;
-    std::printf("  %s = %-10g F = %s (%d forward runs, %.1f s)", path.c_str(), valueAt(i),
-                r.found ? std::to_string(r.factor).c_str() : r.message.c_str(), r.runs, r.wallTime);
-    if (std::isfinite(points[i].crackX)) std::printf(", least safe crack at x = %.4g m", points[i].crackX);
-    std::printf("\n");
-  }
   const bool cracks = std::isfinite(points[0].crackX);
+  if (!opt.json)
+    for (int i = 0; i < n; ++i) {
+      const auto& r = points[i].fos;
+      std::printf("  %s = %-10g %s (%d forward runs, %.1f s)", path.c_str(), valueAt(i),
+                  r.found ? ("F = " + std::to_string(r.factor)).c_str() : ("no answer: " + r.message).c_str(), r.runs,
+                  r.wallTime);
+      if (cracks)
+        std::printf(points[i].crackFound ? ", least safe crack at x = %.4g m"
+                                         : ", no crack position gave F: the crack at the case's x = %.4g m",
+                    points[i].crackX);
+      std::printf("\n");
+    }
   std::filesystem::create_directories(opt.outDir);
   std::ofstream out(csv + ".tmp");
   out << path << ",factor_of_safety,stable_at,failing_at,found,forward_runs," << (cracks ? "tension_crack_x," : "")
@@ -142,7 +150,34 @@ int fosSweep(const std::string& casePath, const Overrides& o, const FosOptions& 
   out.close();
   std::filesystem::rename(csv + ".tmp", csv);
   ddaslope::io::writePng({"Strength-reduction factor of safety: " + casePath, path, "F", {series}}, png);
-  std::printf("wrote %s and %s\n", csv.c_str(), png.c_str());
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  int runs = 0;
+  for (const auto& p : points) runs += p.fos.runs;
+  if (opt.json) {
+    // No answer, no number: such a point's F is null and its value is listed in no_answer.
+    ddaslope::io::JsonRecord j;
+    std::vector<double> values, factors, crackXs, noAnswer;
+    for (int i = 0; i < n; ++i) {
+      const auto& r = points[i].fos;
+      ddaslope::io::JsonRecord p;
+      p.set("value", valueAt(i)).set("found", r.found).set("factor_of_safety", r.found ? r.factor : NAN);
+      p.set("stable_at", r.stableEnd > 0 ? r.stableEnd : NAN).set("failing_at", r.failingEnd > 0 ? r.failingEnd : NAN);
+      p.set("forward_runs", r.runs).set("wall_time_s", r.wallTime).set("message", r.message);
+      if (cracks) p.set("tension_crack_x", points[i].crackX).set("crack_position_found", points[i].crackFound);
+      j.append("points", p);
+      values.push_back(valueAt(i));
+      factors.push_back(r.found ? r.factor : NAN);
+      crackXs.push_back(points[i].crackX);
+      if (!r.found) noAnswer.push_back(valueAt(i));
+    }
+    j.set("case", casePath).set("sweep", path).set("values", values).set("factor_of_safety", factors);
+    if (cracks) j.set("tension_crack_x", crackXs);
+    j.set("no_answer", noAnswer).set("all_found", all).set("width", opt.width);
+    j.set("forward_runs", runs).set("wall_time_s", wall).set("csv", csv).set("png", png);
+    std::printf("%s\n", j.dump().c_str());
+  } else {
+    std::printf("%d forward runs, %.2f s wall; wrote %s and %s\n", runs, wall, csv.c_str(), png.c_str());
+  }
   return all ? kExitOk : kExitNonConvergence;
 }
 
@@ -154,22 +189,18 @@ int fosCommand(const std::string& casePath, const Overrides& o, const FosOptions
   if (!opt.sweep.empty()) return fosSweep(casePath, o, opt);
   ddaslope::model::Scene scene = loadCase(casePath, o);
   // A tension crack searched: F at its least safe position, the search's table printed first.
-  std::optional<CrackSearch> crack;
-  if (scene.crackSearch) {
-    // Near the least safe position F is flat (docs/case-format.md, "Tension crack"): the positions
-    // are searched ten times finer than the answer, which is cheap beside them.
-    FosOptions single = opt;
-    single.threads = 1;
-    single.vtkDir.clear();
-    single.width = std::max(1e-4, opt.width / 10);
-    crack = searchCrackPosition(casePath, o, scene, opt.threads, false, single.width, "F", opt.progress,
-                                [&](const ddaslope::model::Scene& at) {
-                                  const auto r = factorFor(at, casePath, single);
-                                  return CrackValue{r.found, r.factor, r.runs, r.message};
-                                });
-    scene = loadCase(casePath, o, crackAt(crack->result.best));
-    if (!opt.json) printCrackSearch(*crack, scene, "F");
-  }
+  // Near the least safe position F is flat (docs/case-format.md, "Tension crack"): the positions
+  // are searched ten times finer than the answer, which is cheap beside them.
+  FosOptions single = opt;
+  single.threads = 1;
+  single.vtkDir.clear();
+  single.width = std::max(1e-4, opt.width / 10);
+  const std::optional<CrackSearch> crack =
+      placeCrack(casePath, o, scene, opt.threads, false, single.width, "F", opt.progress, opt.json,
+                 [&](const ddaslope::model::Scene& at) {
+                   const auto r = factorFor(at, casePath, single);
+                   return CrackValue{r.found, r.factor, r.runs, r.message};
+                 });
   // Said before the search, whose trials at such a Δt take long, and kept in fos.json.
   const std::string dtWarning = timeStepWarning(scene);
   warnAboutTrials(casePath, dtWarning);
@@ -189,13 +220,15 @@ int fosCommand(const std::string& casePath, const Overrides& o, const FosOptions
     // No answer, no number: the bracket and the message say what is known.
     j.set("case", casePath).set("found", r.found).set("factor_of_safety", r.found ? r.factor : NAN);
     j.set("bracket", std::vector<double>{r.stableEnd, r.failingEnd}).set("width", opt.width);
-    j.set("forward_runs", r.runs).set("rounds", r.rounds).set("wall_time_s", r.wallTime).set("message", r.message);
+    // The totals, the crack search's included (its own in tension_crack).
+    j.set("forward_runs", totalRuns(r.runs, crack)).set("rounds", r.rounds);
+    j.set("wall_time_s", totalWallTime(r.wallTime, crack)).set("message", r.message);
     j.set("settings", settingsLine(scene)).set("trial_start", ddaslope::calibration::name(r.trialStart));
     ddaslope::calibration::appendReview(j, r.review);
     ddaslope::calibration::appendTrials(j, r.trials, "factor");
     if (!opt.vtkDir.empty()) j.set("vtk", opt.vtkDir);
     j.set("mechanism_pictures", drawn).set("warnings", warnings);
-    if (scene.tensionCrack) appendCrackSearch(j, crack ? *crack : CrackSearch{}, scene);
+    if (scene.tensionCrack) appendCrackSearch(j, crack ? *crack : CrackSearch{}, scene, "F");
     // The result beside the pictures, for `ddaslope report` and for the record.
     writeResultFile(opt.outDir + "/fos.json", j.dump() + "\n");
     if (opt.json) std::printf("%s\n", j.dump().c_str());
@@ -206,8 +239,12 @@ int fosCommand(const std::string& casePath, const Overrides& o, const FosOptions
     std::printf("factor of safety (strength reduction on %s): %.4f (stable at %.4f, failing at %.4f)\n",
                 opt.joints.empty() ? "all joints" : "the named joints", r.factor, r.stableEnd, r.failingEnd);
     if (!r.message.empty()) std::printf("  %s\n", r.message.c_str());
-    std::printf("%d forward runs in %d rounds of %d, %.2f s wall; %s\n", r.runs, r.rounds, opt.threads, r.wallTime,
-                settingsLine(scene).c_str());
+    if (crack)
+      std::printf("%s, the answer's %d in %d rounds of %d, %.2f s wall; %s\n", forwardRunsText(r.runs, crack).c_str(),
+                  r.runs, r.rounds, opt.threads, totalWallTime(r.wallTime, crack), settingsLine(scene).c_str());
+    else
+      std::printf("%d forward runs in %d rounds of %d, %.2f s wall; %s\n", r.runs, r.rounds, opt.threads, r.wallTime,
+                  settingsLine(scene).c_str());
     // Said when asked for: the default start is the one every figure in the docs was made with.
     if (opt.trialStart == "settled") std::printf("  %s\n", trialStartNote("the trials after the first", r.trialStart, opt.trialStart).c_str());
     printTrialStatesNote(opt.vtkDir, r.runs);
@@ -219,10 +256,10 @@ int fosCommand(const std::string& casePath, const Overrides& o, const FosOptions
                 "%s --at-fos %.6g%s --out DIR --vtk (with this command's model options%s)\n",
                 files.c_str(), casePath.c_str(), r.failingEnd,
                 (joints + (r.trialStart == ddaslope::calibration::TrialStart::Settled ? " --trial-start settled" : "")).c_str(),
-                crack ? " and --set section.tension_crack.x at the least safe position" : "");
+                crack && crack->result.found ? " and --set section.tension_crack.x at the least safe position" : "");
   } else {
-    std::fprintf(stderr, "ddaslope: %s: no factor of safety found after %d forward runs: %s\n", casePath.c_str(),
-                 r.runs, r.message.c_str());
+    std::fprintf(stderr, "ddaslope: %s: no factor of safety found after %s: %s\n", casePath.c_str(),
+                 forwardRunsText(r.runs, crack).c_str(), r.message.c_str());
   }
   for (const auto& w : warnings)
     if (w != dtWarning) warnAboutTrials(casePath, w);

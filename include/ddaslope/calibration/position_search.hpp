@@ -19,11 +19,16 @@ struct PositionSample {
 };
 
 struct PositionSearchResult {
+  /// Some position gave a value. When none did, no position is least safe: `best` and the flat
+  /// range are NaN, and the caller keeps the feature where the case puts it.
+  bool found = false;
   double best = 0;          ///< the least safe position
   bool atEnd = false;       ///< it lies at an end of the range (widen the range to look beyond)
   bool fitted = false;      ///< from the parabola's vertex (else the best sample)
   /// Positions whose value is within `precision` of the extreme: how sharply the range decides it.
   double flatLo = 0, flatHi = 0;
+  /// The values' precision in their own unit (`precision` as given, or resolved from its fraction).
+  double precision = 0;
   std::vector<PositionSample> samples;  ///< every position searched, by x
 };
 
@@ -32,7 +37,8 @@ using PositionEvaluator = std::function<std::vector<PositionSample>(const std::v
 
 /// The extreme of the values over [lo, hi]: the least (`maximise` false: a factor of safety) or the
 /// greatest (a critical strength). `points` positions per grid (≥ 5); `precision` is the values'
-/// own (a search's bracket width).
+/// own (a search's bracket width); negative, it is that fraction of the extreme value's magnitude
+/// (searches that narrow to a fraction of their answer).
 PositionSearchResult searchLeastSafePosition(double lo, double hi, int points, bool maximise, double precision,
                                              const PositionEvaluator& evaluate);
 

@@ -93,10 +93,11 @@ CriticalResult criticalJrc(const model::Scene& scene, int joint, double width, c
 /// The yield (critical) horizontal seismic coefficient k_y of Newmark's method: the smallest k_h
 /// (a fraction of g, acting along `direction`, +1 for +x or −1 for −x, with the case's k_v) at
 /// which the slope fails. Brackets upward from 0 by doubling from 0.05 (to at most 2), then
-/// bisects to `width` (≤ 0: to 1e-3 of the bracket's failing end). Not found if the slope fails
-/// without it or holds at 2. A ground-motion record in the scene is left out of the trials.
+/// bisects to `width` (≤ 0: to `relativeWidth` of the bracket's failing end). Not found if the
+/// slope fails without it or holds at 2. A ground-motion record in the scene is left out of the
+/// trials.
 CriticalResult criticalSeismicCoefficient(const model::Scene& scene, int direction, double width,
-                                          const SearchSettings& s = {});
+                                          const SearchSettings& s = {}, double relativeWidth = 1e-3);
 
 /// The size of the support or load `id` (model::Scene::supportQuantity: an anchor's force, a
 /// bolt's capacity, a load's resultant, N/m) at which the scene holds with every joint's strength
