@@ -520,6 +520,16 @@ TEST(TensionCrack, PointsWithoutAnAnswerAreNullAndNamed) {
   EXPECT_EQ(clitest::runCliCapturing(sweep, &text, &err), 3) << err;
   EXPECT_NE(text.find("section.tension_crack.x = -12        no answer: fails at every reduction factor"), std::string::npos)
       << text;
+  // The CSV leaves the point's numbers empty rather than writing 0 or nan, which read as values.
+  const auto lines = [](const std::string& file) {
+    std::ifstream in(file);
+    std::vector<std::string> all;
+    for (std::string line; std::getline(in, line);) all.push_back(line);
+    return all;
+  };
+  const auto sweepCsv = lines(out + "/fos_sweep.csv");
+  ASSERT_EQ(sweepCsv.size(), 3u);
+  EXPECT_EQ(sweepCsv[1].rfind("-12,,,,0,", 0), 0u) << sweepCsv[1];
 
   nlohmann::json doc = crackCase();
   doc["section"]["tension_crack"] = {{"x", -12}, {"water_fraction", 1}};
@@ -532,6 +542,10 @@ TEST(TensionCrack, PointsWithoutAnAnswerAreNullAndNamed) {
   EXPECT_EQ(c["no_answer"], nlohmann::json::parse("[25.0, 30.0]"));
   EXPECT_EQ(clitest::runCliCapturing("critical " + sliver + " --curve 25:30:2 --quiet --out " + out, &text, &err), 3);
   EXPECT_NE(text.find("φ =  25.00°  no answer  fails even with a cohesion of 1e12 Pa"), std::string::npos) << text;
+  const auto curveCsv = lines(out + "/critical_curve.csv");
+  ASSERT_EQ(curveCsv.size(), 3u);
+  EXPECT_EQ(curveCsv[1].rfind("25,,,,0,", 0), 0u) << curveCsv[1];
+  EXPECT_EQ(curveCsv[2].rfind("30,,,,0,", 0), 0u) << curveCsv[2];
   std::filesystem::remove_all(out);
 }
 

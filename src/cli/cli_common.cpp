@@ -311,6 +311,13 @@ std::vector<std::string> MechanismPictures::write(const std::string& dir, const 
   return written;
 }
 
+std::string csvField(double v, bool known) {
+  if (!known || !std::isfinite(v)) return "";
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.6g", v);
+  return buf;
+}
+
 void writeResultFile(const std::string& path, const std::string& text) {
   const std::filesystem::path p(path);
   if (p.has_parent_path()) std::filesystem::create_directories(p.parent_path());

@@ -94,6 +94,10 @@ class MechanismPictures {
 
 int jointIndex(const ddaslope::model::Scene& scene, const std::string& name, const std::string& casePath);
 
+/// A CSV field of a number that may have no value: "%.6g", or empty where the point had no answer
+/// (never 0 or nan, which read as values).
+std::string csvField(double v, bool known = true);
+
 /// Writes a command's result file through a temporary and a rename (its folder made): never half
 /// a file that looks complete.
 void writeResultFile(const std::string& path, const std::string& text);

@@ -71,7 +71,8 @@ int curveCommand(const std::string& casePath, const Overrides& o, const ddaslope
   bool all = true;
   for (const auto& p : curve) {
     const auto& r = p.cohesion;
-    std::fprintf(f, "%g,%.6g,%.6g,%.6g,%d,%d", p.frictionDeg, r.critical, r.failingEnd, r.stableEnd, r.found, r.runs);
+    std::fprintf(f, "%g,%s,%s,%s,%d,%d", p.frictionDeg, csvField(r.critical, r.found).c_str(),
+                 csvField(r.failingEnd, r.found).c_str(), csvField(r.stableEnd, r.found).c_str(), r.found, r.runs);
     // Stable without cohesion at every position: no position is least safe.
     if (scene.crackSearch) std::fprintf(f, ",%s", r.critical > 0 ? std::to_string(p.crackX).c_str() : "");
     std::fprintf(f, "\n");

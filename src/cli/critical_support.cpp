@@ -84,9 +84,9 @@ int supportCurve(const std::string& casePath, const Overrides& o, const ddaslope
     }
     const double crackX = crack.x;
     const cal::FactorOfSafetyResult r = cal::factorOfSafety(trial, {}, 1e-3, s);
-    std::fprintf(f, "%.6g,%.6g,%.6g,%.6g,%d,%d", x, r.found ? r.factor : NAN, r.stableEnd, r.failingEnd, r.found,
-                 r.runs + crackRuns);
-    if (scene.crackSearch) std::fprintf(f, ",%.6g", crackX);
+    std::fprintf(f, "%.6g,%s,%s,%s,%d,%d", x, csvField(r.factor, r.found).c_str(), csvField(r.stableEnd, r.found).c_str(),
+                 csvField(r.failingEnd, r.found).c_str(), r.found, r.runs + crackRuns);
+    if (scene.crackSearch) std::fprintf(f, ",%s", csvField(crackX).c_str());
     std::fprintf(f, "\n");
     if (!opt.json) {
       std::printf("  %s %10.4g kN/m: %s", q.name.c_str(), x / 1e3,

@@ -140,8 +140,9 @@ int fosSweep(const std::string& casePath, const Overrides& o, const FosOptions& 
   for (int i = 0; i < n; ++i) {
     const auto& r = points[i].fos;
     const double v = valueAt(i);
-    out << v << "," << r.factor << "," << r.stableEnd << "," << r.failingEnd << "," << r.found << "," << r.runs << ",";
-    if (cracks) out << points[i].crackX << ",";
+    out << v << "," << csvField(r.factor, r.found) << "," << csvField(r.stableEnd, r.found) << ","
+        << csvField(r.failingEnd, r.found) << "," << r.found << "," << r.runs << ",";
+    if (cracks) out << csvField(points[i].crackX) << ",";
     out << r.wallTime << "\n";
     series.x.push_back(v);
     series.y.push_back(r.found ? r.factor : NAN);
