@@ -345,6 +345,38 @@ TEST(TensionCrack, PositionSearchWithNoValueFindsNoPosition) {
   EXPECT_EQ(r.samples.size(), 9u);
 }
 
+// Every position giving the same value decides nothing: a φ = 40° plane under ψp = 35° stands
+// without cohesion wherever the dry crack is (Hoek & Bray: it needs c·A ≥ W (sin ψp − cos ψp tan φ),
+// which is negative),
+// so every position's critical cohesion is 0 and none is least safe. The search says so after its
+// coarse grid instead of naming the first position tried (and asking to widen the range), and
+// the crack stays at the case's x = −20 m.
+TEST(TensionCrack, EqualValuesEverywhereNameNoPosition) {
+  const auto r = calibration::searchLeastSafePosition(12, 26, 9, true, 10, [](const std::vector<double>& xs) {
+    std::vector<calibration::PositionSample> out;
+    for (double x : xs) out.push_back({x, 0, true, ""});
+    return out;
+  });
+  EXPECT_FALSE(r.found);
+  EXPECT_TRUE(r.tied);
+  EXPECT_TRUE(std::isnan(r.best));
+  EXPECT_EQ(r.samples.size(), 9u);
+
+  const std::string args = std::string(DDASLOPE_SOURCE_DIR) + "/cases/planar_failure_crack.json --friction 40 --quiet";
+  std::string out, err;
+  EXPECT_EQ(clitest::runCliCapturing("critical " + args + " --json", &out, &err), 0) << err;
+  const nlohmann::json j = nlohmann::json::parse(out);
+  EXPECT_EQ(j["critical"].get<double>(), 0);
+  const nlohmann::json& crack = j["tension_crack"];
+  EXPECT_EQ(crack["x"].get<double>(), -20);
+  EXPECT_FALSE(crack["position_found"].get<bool>());
+  EXPECT_FALSE(crack["at_end"].get<bool>());
+  EXPECT_NE(crack["note"].get<std::string>().find("gave the same critical cohesion, so none is least safe"), std::string::npos)
+      << crack["note"];
+  EXPECT_EQ(clitest::runCliCapturing("critical " + args, &out, &err), 0) << err;
+  EXPECT_EQ(out.find("widen section.tension_crack.search"), std::string::npos) << out;
+}
+
 // Without cohesion the plane (φ 30° under ψp 35°) slides at every crack position without seismic
 // loading, so no position has a yield seismic coefficient: the crack stays at the case's
 // x = −20 m, the text says so, and the JSON says "position_found": false with a note.

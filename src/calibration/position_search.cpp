@@ -27,9 +27,12 @@ PositionSearchResult searchLeastSafePosition(double lo, double hi, int points, b
   for (int i = 0; i < points; ++i) coarse.push_back(lo + (hi - lo) * i / (points - 1));
   r.samples = evaluate(coarse);
   const int k = extremeSample(r.samples, sign);
-  if (k < 0) {
+  r.tied = k >= 0 && std::all_of(r.samples.begin(), r.samples.end(), [&](const PositionSample& s) {
+             return s.found && s.value == r.samples[k].value;
+           });
+  if (k < 0 || r.tied) {
     r.best = r.flatLo = r.flatHi = NAN;
-    r.precision = precision >= 0 ? precision : NAN;  // a fraction of no value
+    r.precision = precision >= 0 ? precision : k < 0 ? NAN : -precision * std::abs(r.samples[k].value);
     return r;
   }
   r.found = true;

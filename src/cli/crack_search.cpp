@@ -86,11 +86,13 @@ PointCrack leastSafeCrackOnThisThread(const model::Scene& scene, bool maximise, 
   return r.found ? PointCrack{r.best, true} : PointCrack{scene.tensionCrack->x, false};
 }
 
-std::string noCrackPositionNote(const model::Scene& scene, const std::string& quantity) {
-  char text[320];
+std::string noCrackPositionNote(const model::Scene& scene, const std::string& quantity, bool tied) {
+  char text[360];
   std::snprintf(text, sizeof text,
-                "no crack position in x = [%g, %g] m gave an answer (%s), so none is least safe: the crack stays at the case's "
-                "x = %g m (section.tension_crack.x)",
+                tied ? "every crack position in x = [%g, %g] m gave the same %s, so none is least safe: the crack stays at "
+                       "the case's x = %g m (section.tension_crack.x)"
+                     : "no crack position in x = [%g, %g] m gave an answer (%s), so none is least safe: the crack stays at "
+                       "the case's x = %g m (section.tension_crack.x)",
                 scene.crackSearch->first, scene.crackSearch->second, quantity.c_str(), scene.tensionCrack->x);
   return text;
 }
@@ -118,7 +120,7 @@ void printCrackSearch(const CrackSearch& s, const model::Scene& scene, const std
   }
   const model::CrackGeometry& c = *scene.tensionCrack;
   if (!r.found) {
-    std::printf("%s, %.4g m deep, water %.4g m deep\n", noCrackPositionNote(scene, quantity).c_str(), c.depth(),
+    std::printf("%s, %.4g m deep, water %.4g m deep\n", noCrackPositionNote(scene, quantity, r.tied).c_str(), c.depth(),
                 c.waterDepth());
     return;
   }
@@ -147,7 +149,7 @@ void appendCrackSearch(io::JsonRecord& j, const CrackSearch& s, const model::Sce
     t.set("positions", xs).set("values", values).set("fitted", r.fitted).set("at_end", r.atEnd);
     t.set("within_width", std::vector<double>{r.flatLo, r.flatHi}).set("position_width", r.precision);
     t.set("position_found", r.found);
-    if (!r.found) t.set("note", noCrackPositionNote(scene, quantity));
+    if (!r.found) t.set("note", noCrackPositionNote(scene, quantity, r.tied));
     t.set("forward_runs", s.runs).set("wall_time_s", s.wallTime);
   }
   j.set("tension_crack", t);

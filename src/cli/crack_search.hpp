@@ -60,7 +60,7 @@ PointCrack leastSafeCrackOnThisThread(const model::Scene& scene, bool maximise, 
                                       const std::function<CrackValue(const model::Scene&)>& valueAt, int& runs);
 
 /// Why the crack stayed at the case's x: no position in the searched range gave `quantity`.
-std::string noCrackPositionNote(const model::Scene& scene, const std::string& quantity);
+std::string noCrackPositionNote(const model::Scene& scene, const std::string& quantity, bool tied);
 
 /// "N forward runs", and with a crack search "N forward runs (M of them searching the crack's
 /// position)": `answerRuns` are the answer's own, the crack search's are added.

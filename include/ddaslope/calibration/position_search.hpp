@@ -19,9 +19,11 @@ struct PositionSample {
 };
 
 struct PositionSearchResult {
-  /// Some position gave a value. When none did, no position is least safe: `best` and the flat
-  /// range are NaN, and the caller keeps the feature where the case puts it.
+  /// Some position is least safe. When none gave a value, or every position of the range gave
+  /// the same one (`tied`: a slope that stands without cohesion wherever its crack is), none is:
+  /// `best` and the flat range are NaN, and the caller keeps the feature where the case puts it.
   bool found = false;
+  bool tied = false;
   double best = 0;          ///< the least safe position
   bool atEnd = false;       ///< it lies at an end of the range (widen the range to look beyond)
   bool fitted = false;      ///< from the parabola's vertex (else the best sample)
