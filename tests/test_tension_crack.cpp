@@ -282,6 +282,14 @@ TEST(TensionCrack, AStudySaysItsCrackStaysPut) {
   EXPECT_NE(err.find("the tension crack stays at x = -20 m (section.tension_crack.x) in every run"), std::string::npos)
       << err;
   std::filesystem::remove_all(out);
+  // A study that samples the crack's x itself moves it run by run, and says that instead.
+  const std::string moving = clitest::writeTemp("crack_study_x.json", R"({"case": ")" + std::string(DDASLOPE_SOURCE_DIR) +
+      R"(/cases/planar_failure_crack.json", "probability": {"samples": 4, "seed": 1, "inputs": [
+      {"path": "section.tension_crack.x", "distribution": "uniform", "min": -24, "max": -16}]}})");
+  EXPECT_EQ(clitest::runCli("probability " + moving + " --quiet --out " + out, &err), 0) << err;
+  EXPECT_EQ(err.find("stays at x"), std::string::npos) << err;
+  EXPECT_NE(err.find("the tension crack is where each run's section.tension_crack.x puts it"), std::string::npos) << err;
+  std::filesystem::remove_all(out);
 }
 
 // The position search alone, on a curve like the slope's (a minimum with a cubic lean, values
@@ -633,5 +641,16 @@ TEST(TensionCrack, BackanalyseSaysItsCrackStaysPutBeforeTheFit) {
   EXPECT_EQ(clitest::runCliCapturing("backanalyse " + job + " --quiet --out " + out, &text, &err, "timeout 2"), 124) << err;
   EXPECT_NE(err.find("the tension crack stays at x = -20 m (section.tension_crack.x) in every run"), std::string::npos)
       << err;
+  std::filesystem::remove_all(out);
+  // Fitting the crack's x itself moves it run by run, and the note says that instead.
+  const std::string fitX = clitest::writeTemp("crack_job_x.json", R"({"case": ")" + std::string(DDASLOPE_SOURCE_DIR) +
+      R"(/cases/planar_failure_crack.json", "parameters": [
+      {"name": "crack_x", "path": "section.tension_crack.x", "min": -24, "max": -16}],
+      "observations": [{"type": "factor_of_safety", "label": "F = 1", "target": 1.0, "sigma": 0.01}],
+      "optimiser": {"global": "GN_DIRECT_L", "local": "LN_BOBYQA", "global_evaluations": 5000,
+      "local_evaluations": 5000, "xtol_rel": 1e-12}})");
+  EXPECT_EQ(clitest::runCliCapturing("backanalyse " + fitX + " --quiet --out " + out, &text, &err, "timeout 2"), 124) << err;
+  EXPECT_EQ(err.find("stays at x"), std::string::npos) << err;
+  EXPECT_NE(err.find("the tension crack is where each run's section.tension_crack.x puts it"), std::string::npos) << err;
   std::filesystem::remove_all(out);
 }

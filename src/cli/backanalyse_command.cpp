@@ -15,6 +15,14 @@
 namespace ddaslope::cli {
 namespace {
 
+/// The case numbers the fit sets by their JSON path.
+std::vector<std::string> fittedPaths(const ddaslope::io::BackanalysisJob& job) {
+  std::vector<std::string> paths;
+  for (const auto& p : job.parameters)
+    if (!p.jsonPath.empty()) paths.push_back(p.jsonPath);
+  return paths;
+}
+
 /// result.json's "precision": each parameter's range and scan, the Δt ensemble, the statement.
 void appendPrecision(ddaslope::io::JsonRecord& j, const ddaslope::calibration::Precision& p,
                      const ddaslope::io::BackanalysisJob& job) {
@@ -67,7 +75,7 @@ int backanalyseCommand(const std::string& jobPath, const std::string& outDir, bo
   if (farm->isRoot()) {
     std::vector<double> start;
     for (const auto& p : job.parameters) start.push_back(p.hasStart ? p.start : 0.5 * (p.min + p.max));
-    warnAboutTrials(job.casePath, fixedCrackNote(ddaslope::calibration::sceneAt(job, start)));
+    warnAboutTrials(job.casePath, fixedCrackNote(ddaslope::calibration::sceneAt(job, start), fittedPaths(job)));
   }
   const auto log = startProgress("backanalyse", progress, json);
   const ddaslope::calibration::BackanalysisResult r =
@@ -85,7 +93,7 @@ int backanalyseCommand(const std::string& jobPath, const std::string& outDir, bo
   j.set("global_search", r.globalStatus).set("local_search", r.localStatus).set("wall_time_s", r.wallTime);
   const ddaslope::model::Scene atEstimate = ddaslope::calibration::sceneAt(job, r.estimate);
   const std::string settings = settingsLine(atEstimate);
-  warnAboutTrials(job.casePath, fixedCrackNote(atEstimate));
+  warnAboutTrials(job.casePath, fixedCrackNote(atEstimate, fittedPaths(job)));
   j.set("settings", settings);
   if (!r.map.empty()) j.set("constrains_only_a_line", r.lineOnly).set("statement", r.statement);
   for (const auto& f : r.fit) {

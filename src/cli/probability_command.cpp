@@ -671,7 +671,9 @@ int probabilityCommand(const std::string& path, const Overrides& o, const Probab
   refuseFixedInputs(job, o);
   const SceneMaker make{job, o};
   const model::Scene reference = loadCase(job.casePath, o, io::caseOverridesFor(job.model));
-  if (processRank() == 0) warnAboutTrials(job.casePath, fixedCrackNote(reference));
+  std::vector<std::string> sampled;
+  for (const auto& input : spec.inputs) sampled.push_back(input.path);
+  if (processRank() == 0) warnAboutTrials(job.casePath, fixedCrackNote(reference, sampled));
   calibration::SampleSettings settings;
   settings.measure = spec.method == model::ProbabilityMethod::ActiveLearning ? model::ProbabilityMeasure::FactorOfSafety
                                                                             : spec.measure;

@@ -34,7 +34,9 @@ void saySearchSize(const model::Scene& scene);
 void printWaterNotes(const model::Scene& scene);
 /// For a command whose runs keep the case's crack where the case puts it (probability,
 /// backanalyse) although the case asks for its position to be searched: says so; empty otherwise.
-std::string fixedCrackNote(const model::Scene& scene);
+/// `varied`: the case numbers the command itself sets run by run; with section.tension_crack.x
+/// among them the crack moves as they say, and the note says that instead.
+std::string fixedCrackNote(const model::Scene& scene, const std::vector<std::string>& varied = {});
 /// The seismic loading in force: the coefficients and the record's span and peaks.
 void printSeismicNote(const model::Scene& scene);
 
