@@ -370,7 +370,8 @@ TEST(TensionCrack, EqualValuesEverywhereNameNoPosition) {
   EXPECT_TRUE(std::isnan(r.best));
   EXPECT_EQ(r.samples.size(), 9u);
 
-  const std::string args = std::string(DDASLOPE_SOURCE_DIR) + "/cases/planar_failure_crack.json --friction 40 --quiet";
+  const std::string dir = std::filesystem::temp_directory_path() / ("crack_tied_" + std::to_string(::getpid()));
+  const std::string args = std::string(DDASLOPE_SOURCE_DIR) + "/cases/planar_failure_crack.json --friction 40 --quiet --out " + dir;
   std::string out, err;
   EXPECT_EQ(clitest::runCliCapturing("critical " + args + " --json", &out, &err), 0) << err;
   const nlohmann::json j = nlohmann::json::parse(out);
@@ -383,18 +384,21 @@ TEST(TensionCrack, EqualValuesEverywhereNameNoPosition) {
       << crack["note"];
   EXPECT_EQ(clitest::runCliCapturing("critical " + args, &out, &err), 0) << err;
   EXPECT_EQ(out.find("widen section.tension_crack.search"), std::string::npos) << out;
+  std::filesystem::remove_all(dir);
 }
 
 // Without cohesion the plane (φ 30° under ψp 35°) slides at every crack position without seismic
 // loading, so no position has a yield seismic coefficient: the crack stays at the case's
 // x = −20 m, the text says so, and the JSON says "position_found": false with a note.
 TEST(TensionCrack, NoPositionWithAnAnswerKeepsTheCasesCrack) {
+  const std::string dir = std::filesystem::temp_directory_path() / ("crack_none_" + std::to_string(::getpid()));
   const std::string args = std::string(DDASLOPE_SOURCE_DIR) + "/cases/planar_failure_crack.json --solve seismic-coefficient "
-                           "--direction +x --set joints.sliding_plane.cohesion=0 --quiet";
+                           "--direction +x --set joints.sliding_plane.cohesion=0 --quiet --out " + dir;
   std::string out, err;
   EXPECT_EQ(clitest::runCliCapturing("critical " + args + " --json", &out, &err), 3) << err;
   const nlohmann::json r = nlohmann::json::parse(out);
   EXPECT_FALSE(r["found"].get<bool>());
+  EXPECT_TRUE(r["critical"].is_null());  // no answer, no number
   const nlohmann::json& crack = r["tension_crack"];
   EXPECT_EQ(crack["x"].get<double>(), -20);
   EXPECT_FALSE(crack["position_found"].get<bool>());
@@ -407,6 +411,7 @@ TEST(TensionCrack, NoPositionWithAnAnswerKeepsTheCasesCrack) {
             std::string::npos)
       << out;
   EXPECT_EQ(out.find("least safe crack:"), std::string::npos) << out;
+  std::filesystem::remove_all(dir);
 }
 
 // The yield seismic coefficient's positions are searched a tenth as wide as the answer: 1e-4 of
@@ -438,14 +443,27 @@ TEST(TensionCrack, EverySolveRecordsAFixedCrack) {
   doc["joints"]["sliding_plane"] = nlohmann::json::parse(
       R"({"law": "barton_bandis", "residual_friction_angle": 25, "jrc": 8, "jcs": 5e7, "tensile_strength": 0})");
   const std::string bb = clitest::writeTemp("crack_fixed_bb.json", doc.dump());
+  // Each also writes critical.json in --out, as cohesion and friction do: the result printed.
+  const std::string out = std::filesystem::temp_directory_path() / ("crack_fixed_" + std::to_string(::getpid()));
   for (const std::string& args : {bb + " --solve jrc", fixed + " --solve seismic-coefficient --direction +x",
                                   fixed + " --solve support --support a --target-fos 1.3"}) {
     std::string err;
-    const nlohmann::json r = nlohmann::json::parse(clitest::captureCli("critical " + args + " --quiet --json", &err));
+    std::filesystem::remove_all(out);
+    const nlohmann::json r =
+        nlohmann::json::parse(clitest::captureCli("critical " + args + " --quiet --json --out " + out, &err));
     ASSERT_TRUE(r.contains("tension_crack")) << args;
     EXPECT_EQ(r["tension_crack"]["x"].get<double>(), -20) << args;
     EXPECT_FALSE(r["tension_crack"].contains("positions")) << args;
+    std::ifstream written(out + "/critical.json");
+    ASSERT_TRUE(written.good()) << args;
+    EXPECT_EQ(nlohmann::json::parse(written), r) << args;
+    // ... which `report` turns into its page, answer and bracket in the headline.
+    std::string text;
+    EXPECT_EQ(clitest::runCliCapturing("report " + out, &text, &err), 0) << args << ": " << err;
+    EXPECT_NE(text.find("critical " + r["solve"].get<std::string>()), std::string::npos) << text;
+    EXPECT_NE(text.find("failing at"), std::string::npos) << text;
   }
+  std::filesystem::remove_all(out);
 }
 
 // The support curve's JSON gives its sizes in N/m, as its name says, and each size's crack.

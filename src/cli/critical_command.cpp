@@ -136,7 +136,7 @@ int jrcCommand(const std::string& casePath, const Overrides& o, ddaslope::model:
   recordTrialStates(s, opt.vtkDir, scene);
   const auto r = ddaslope::calibration::criticalJrc(scene, joint, width, s);
   log->finish(r.found, r.found ? "critical JRC " + std::to_string(r.critical) : r.message);
-  if (opt.json) {
+  {
     ddaslope::io::JsonRecord j;
     j.set("case", casePath).set("joint", opt.joint).set("solve", opt.solve).set("found", r.found);
     j.set("critical", r.found ? r.critical : NAN).set("unit", "JRC");
@@ -146,7 +146,11 @@ int jrcCommand(const std::string& casePath, const Overrides& o, ddaslope::model:
     ddaslope::calibration::appendReview(j, r.review);
     ddaslope::calibration::appendTrials(j, r.trials, "jrc");
     if (scene.tensionCrack) appendCrackSearch(j, crack ? *crack : CrackSearch{}, scene, "critical jrc");
-    std::printf("%s\n", j.dump().c_str());
+    writeResultFile(opt.outDir + "/critical.json", j.dump() + "\n");
+    if (opt.json) std::printf("%s\n", j.dump().c_str());
+  }
+  if (opt.json) {
+    // printed above
   } else if (r.found) {
     std::printf("critical JRC of joint '%s' at φr = %g°, JCS = %g MPa: %.4g (failing at %.4g, stable at %.4g)%s%s\n",
                 opt.joint.c_str(), ddaslope::radToDeg(scene.joints[joint].frictionAngle),
@@ -222,19 +226,22 @@ int seismicCoefficientCommand(const std::string& casePath, const Overrides& o, d
   for (const auto& [d, x] : results) runs += x.runs, wall += x.wallTime;
   const std::string runsText = forwardRunsText(runs, crack);
   wall = totalWallTime(wall, crack);
-  if (opt.json) {
+  {
     ddaslope::io::JsonRecord j;
     j.set("case", casePath).set("solve", opt.solve).set("direction", direction).set("k_v", scene.seismic.kv);
-    j.set("found", r.found).set("critical", r.critical).set("unit", "g");
-    j.set("failing_at", r.failingEnd).set("stable_at", r.stableEnd);
+    j.set("found", r.found).set("critical", r.found ? r.critical : NAN).set("unit", "g");
+    j.set("failing_at", r.found ? r.failingEnd : NAN).set("stable_at", r.found ? r.stableEnd : NAN);
+    j.set("bracket", std::vector<double>{r.found ? r.failingEnd : NAN, r.found ? r.stableEnd : NAN});
     j.set("forward_runs", totalRuns(runs, crack)).set("wall_time_s", wall).set("message", r.message);
     j.set("settings", settingsLine(searched));
     ddaslope::calibration::appendReview(j, r.review);
     ddaslope::calibration::appendTrials(j, r.trials, "k_h");
     if (scene.tensionCrack) appendCrackSearch(j, crack ? *crack : CrackSearch{}, scene, quantity);
     if (!opt.vtkDir.empty()) j.set("vtk", opt.vtkDir);
-    std::printf("%s\n", j.dump().c_str());
-  } else {
+    writeResultFile(opt.outDir + "/critical.json", j.dump() + "\n");
+    if (opt.json) std::printf("%s\n", j.dump().c_str());
+  }
+  if (!opt.json) {
     for (const auto& [d, x] : results) {
       if (x.found)
         std::printf("yield seismic coefficient k_y along %s (k_v = %g): %.6g g (failing at %.6g, stable at %.6g)%s\n",

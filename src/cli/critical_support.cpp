@@ -166,7 +166,7 @@ int supportCommand(const std::string& casePath, const Overrides& o, ddaslope::mo
   recordTrialStates(s, opt.vtkDir, scene);
   const cal::CriticalResult r = cal::criticalSupport(scene, opt.support, opt.targetFactor, opt.width, s);
   log->finish(r.found, r.found ? q.name + " " + std::to_string(r.critical) : r.message);
-  if (opt.json) {
+  {
     ddaslope::io::JsonRecord j;
     j.set("case", casePath).set("solve", "support").set("support", opt.support).set("quantity", q.name);
     j.set("target_factor_of_safety", opt.targetFactor).set("found", r.found);
@@ -179,7 +179,11 @@ int supportCommand(const std::string& casePath, const Overrides& o, ddaslope::mo
     cal::appendTrials(j, r.trials, "value_n_per_m");
     if (scene.tensionCrack) appendCrackSearch(j, crack ? *crack : CrackSearch{}, scene, "critical support (N/m)");
     if (!opt.vtkDir.empty()) j.set("vtk", opt.vtkDir);
-    std::printf("%s\n", j.dump().c_str());
+    writeResultFile(opt.outDir + "/critical.json", j.dump() + "\n");
+    if (opt.json) std::printf("%s\n", j.dump().c_str());
+  }
+  if (opt.json) {
+    // printed above
   } else if (r.found && r.largestThatHolds) {
     std::printf("largest %s of '%s' that holds at F = %g: %.6g kN/m (stable at %.6g, failing at %.6g)%s%s\n",
                 q.name.c_str(), opt.support.c_str(), opt.targetFactor, r.critical / 1e3, r.stableEnd / 1e3,

@@ -131,10 +131,17 @@ Analysis identify(const fs::path& dir) {
     char held[64] = "";
     if (r.contains("friction_angle_deg")) std::snprintf(held, sizeof held, " at φ = %.4g°", number(r, "friction_angle_deg"));
     if (r.contains("cohesion_pa")) std::snprintf(held, sizeof held, " at c = %.6g Pa", number(r, "cohesion_pa"));
-    if (r.value("found", false))
-      std::snprintf(text, sizeof text, "critical %s of joint %s%s = %.6g %s: failing at %.6g, stable at %.6g",
-                    r.value("solve", "").c_str(), r.value("joint", "").c_str(), held, number(r, "critical"),
-                    r.value("unit", "").c_str(), r["bracket"][0].get<double>(), r["bracket"][1].get<double>());
+    // Seismic coefficients and supports belong to the slope, not to one joint.
+    const std::string joint = r.value("joint", "");
+    const std::string of = joint.empty() ? "" : " of joint " + joint;
+    if (r.value("found", false) && r.contains("bracket") && r["bracket"].size() == 2 && r["bracket"][0].is_number() &&
+        r["bracket"][1].is_number())
+      std::snprintf(text, sizeof text, "critical %s%s%s = %.6g %s: failing at %.6g, stable at %.6g",
+                    r.value("solve", "").c_str(), of.c_str(), held, number(r, "critical"), r.value("unit", "").c_str(),
+                    r["bracket"][0].get<double>(), r["bracket"][1].get<double>());
+    else if (r.value("found", false))
+      std::snprintf(text, sizeof text, "critical %s%s%s = %.6g %s", r.value("solve", "").c_str(), of.c_str(), held,
+                    number(r, "critical"), r.value("unit", "").c_str());
     else
       std::snprintf(text, sizeof text, "no critical value found: %s", r.value("message", "").c_str());
     a.answer = text;
