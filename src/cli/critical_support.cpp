@@ -151,14 +151,17 @@ int supportCommand(const std::string& casePath, const Overrides& o, ddaslope::mo
     scale = cal::criticalSupport(scene, opt.support, opt.targetFactor, 0, one);
     fine = scale.found && scale.critical > 0 ? 1e-4 * scale.critical : 0;
   }
+  // The table is printed once the search for the scale, which belongs to the crack's, is counted in.
   std::optional<CrackSearch> crack =
-      placeCrack(casePath, o, scene, opt.threads, true, fine, "critical support (N/m)", opt.progress, opt.json,
+      placeCrack(casePath, o, scene, opt.threads, true, fine, "critical support (N/m)", opt.progress, true,
                  [&](const ddaslope::model::Scene& at) {
                    const cal::CriticalResult x = cal::criticalSupport(at, opt.support, opt.targetFactor, fine, one);
                    return CrackValue{x.found, x.critical, x.runs, x.message};
                  });
-  // The search for the scale belongs to the crack's.
-  if (crack) crack->runs += scale.runs, crack->wallTime += scale.wallTime;
+  if (crack) {
+    crack->runs += scale.runs, crack->wallTime += scale.wallTime;
+    if (!opt.json) printCrackSearch(*crack, scene, "critical support (N/m)");
+  }
   const auto log = startProgress("critical --solve support", opt.progress, opt.json);
   cal::SearchSettings s;
   s.threads = opt.threads;
