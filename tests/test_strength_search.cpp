@@ -240,6 +240,11 @@ TEST(StrengthReduction, ABlockThatTopplesWhateverItsStrengthHasNoFactor) {
   std::string err;
   EXPECT_EQ(clitest::runCli("fos " + path + " --quiet --out " + path + ".out", &err), 3) << err;
   EXPECT_NE(err.find("no strength of the reduced joints holds this scene"), std::string::npos) << err;
+  std::string text;
+  EXPECT_EQ(clitest::runCliCapturing("fos " + path + " --quiet --json --out " + path + ".out", &text, &err), 3) << err;
+  const nlohmann::json j = nlohmann::json::parse(text);
+  EXPECT_TRUE(j["factor_of_safety"].is_null());
+  EXPECT_TRUE(j["bracket"][0].is_null() && j["bracket"][1].is_null()) << j["bracket"];  // no answer, no numbers
   std::filesystem::remove_all(path + ".out");
 
   s.b = 2;

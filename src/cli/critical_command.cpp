@@ -140,7 +140,7 @@ int jrcCommand(const std::string& casePath, const Overrides& o, ddaslope::model:
     ddaslope::io::JsonRecord j;
     j.set("case", casePath).set("joint", opt.joint).set("solve", opt.solve).set("found", r.found);
     j.set("critical", r.found ? r.critical : NAN).set("unit", "JRC");
-    j.set("bracket", std::vector<double>{r.failingEnd, r.stableEnd});
+    j.set("bracket", std::vector<double>{r.found ? r.failingEnd : NAN, r.found ? r.stableEnd : NAN});
     j.set("forward_runs", totalRuns(r.runs, crack)).set("wall_time_s", totalWallTime(r.wallTime, crack));
     j.set("message", r.message).set("settings", settingsLine(scene));
     ddaslope::calibration::appendReview(j, r.review);
@@ -329,7 +329,7 @@ int criticalCommand(const std::string& casePath, const Overrides& o, const Criti
     ddaslope::io::JsonRecord j;
     j.set("case", casePath).set("joint", opt.joint).set("solve", opt.solve).set("found", r.found);
     if (cohesion) j.set("friction_angle_deg", phi); else j.set("cohesion_pa", c);
-    j.set("critical", r.found ? r.critical : NAN).set("unit", unit).set("bracket", std::vector<double>{r.failingEnd, r.stableEnd});
+    j.set("critical", r.found ? r.critical : NAN).set("unit", unit).set("bracket", std::vector<double>{r.found ? r.failingEnd : NAN, r.found ? r.stableEnd : NAN});
     // The totals, the crack search's included (its own in tension_crack).
     j.set("forward_runs", totalRuns(r.runs, crack)).set("wall_time_s", totalWallTime(r.wallTime, crack));
     j.set("message", r.message).set("settings", settingsLine(scene));
