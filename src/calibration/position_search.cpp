@@ -27,6 +27,17 @@ PositionSearchResult searchLeastSafePosition(double lo, double hi, int points, b
   for (int i = 0; i < points; ++i) coarse.push_back(lo + (hi - lo) * i / (points - 1));
   r.samples = evaluate(coarse);
   const int k = extremeSample(r.samples, sign);
+  // A position where the scene fails outright is less safe than any value: it is the answer, and
+  // no finer grid can improve on it.
+  const auto failing = std::find_if(r.samples.begin(), r.samples.end(), [](const PositionSample& s) { return s.fails; });
+  if (failing != r.samples.end()) {
+    r.found = r.fails = true;
+    r.best = r.flatLo = r.flatHi = failing->x;
+    for (const PositionSample& s : r.samples)
+      if (s.fails) r.flatLo = std::min(r.flatLo, s.x), r.flatHi = std::max(r.flatHi, s.x);
+    r.precision = precision >= 0 ? precision : NAN;
+    return r;
+  }
   r.tied = k >= 0 && std::all_of(r.samples.begin(), r.samples.end(), [&](const PositionSample& s) {
              return s.found && s.value == r.samples[k].value;
            });

@@ -1,5 +1,6 @@
 #include "crack_search.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -9,6 +10,25 @@
 #include "ddaslope/core/task_farm.hpp"
 
 namespace ddaslope::cli {
+
+namespace {
+
+/// No answer because every trial failed: the scene fails at every value the search tried.
+bool failsThroughout(bool found, const std::vector<calibration::TrialRecord>& trials) {
+  return !found && !trials.empty() && std::all_of(trials.begin(), trials.end(), [](const calibration::TrialRecord& t) {
+           return !t.result.stable && !t.result.undecided;
+         });
+}
+
+}  // namespace
+
+CrackValue crackValueOf(const calibration::CriticalResult& r) {
+  return {r.found, r.critical, r.runs, r.message, failsThroughout(r.found, r.trials)};
+}
+
+CrackValue crackValueOf(const calibration::FactorOfSafetyResult& r) {
+  return {r.found, r.factor, r.runs, r.message, failsThroughout(r.found, r.trials)};
+}
 
 std::vector<io::CaseOverride> crackAt(double x) {
   // A crack given by its depth is moved by its position.
@@ -32,7 +52,7 @@ CrackSearch searchCrackPosition(const std::string& casePath, const Overrides& o,
         [&](int i) {
           const CrackValue v = valueAt(loadCase(casePath, o, crackAt(xs[i])));
           BytePacker b;
-          b.put(v.found).put(v.value).put(v.runs).put(v.message);
+          b.put(v.found).put(v.value).put(v.runs).put(v.message).put(v.fails);
           return b.bytes();
         },
         [&](int i, const TaskResult& bytes) {
@@ -43,6 +63,7 @@ CrackSearch searchCrackPosition(const std::string& casePath, const Overrides& o,
           s.value = b.get<double>();
           out.runs += b.get<int>();
           s.message = b.getString();
+          s.fails = b.get<bool>();
           if (log->active())
             log->report({"positions", ++done, 0,
                          "crack at x = " + std::to_string(xs[i]) + ": " + quantity + " " +
@@ -79,11 +100,23 @@ PointCrack leastSafeCrackOnThisThread(const model::Scene& scene, bool maximise, 
         for (double x : xs) {
           const CrackValue v = valueAt(read(x));
           runs += v.runs;
-          samples.push_back({x, v.value, v.found, v.message});
+          samples.push_back({x, v.value, v.found, v.message, v.fails});
         }
         return samples;
       });
-  return r.found ? PointCrack{r.best, true} : PointCrack{scene.tensionCrack->x, false};
+  return r.found ? PointCrack{r.best, true, false, r.fails} : PointCrack{scene.tensionCrack->x, false, r.tied, false};
+}
+
+std::string pointCrackText(bool found, bool tied, bool fails, double x, double caseX, const std::string& quantity) {
+  char text[200];
+  if (found && fails)
+    std::snprintf(text, sizeof text, ", least safe crack at x = %.4g m, where the slope fails at every value tried", x);
+  else if (found)
+    std::snprintf(text, sizeof text, ", least safe crack at x = %.4g m", x);
+  else
+    std::snprintf(text, sizeof text, ", no crack position is least safe (%s): the crack at the case's x = %.4g m",
+                  tied ? ("every one gave the same " + quantity).c_str() : ("none gave " + quantity).c_str(), caseX);
+  return text;
 }
 
 std::string noCrackPositionNote(const model::Scene& scene, const std::string& quantity, bool tied) {
@@ -114,14 +147,24 @@ void printCrackSearch(const CrackSearch& s, const model::Scene& scene, const std
   std::printf("tension crack position searched in x = [%g, %g] m (%zu positions, %d forward runs, %.2f s wall):\n",
               scene.crackSearch->first, scene.crackSearch->second, r.samples.size(), s.runs, s.wallTime);
   bool missing = false;
+  int failing = 0;
   for (const auto& p : r.samples) {
     std::printf("  x = %-10.4g %s %s\n", p.x, quantity.c_str(), p.found ? std::to_string(p.value).c_str() : ("none: " + p.message).c_str());
-    missing |= !p.found;
+    missing |= !p.found && !p.fails;
+    failing += p.fails;
   }
   const model::CrackGeometry& c = *scene.tensionCrack;
+  if (r.fails) {
+    std::printf("least safe crack: x = %.4g m, %.4g m deep, water %.4g m deep, where the slope fails at every value "
+                "tried (%d of the %zu positions, x in [%.4g, %.4g] m): there is no %s\n",
+                c.x, c.depth(), c.waterDepth(), failing, r.samples.size(), r.flatLo, r.flatHi, quantity.c_str());
+    std::fflush(stdout);
+    return;
+  }
   if (!r.found) {
     std::printf("%s, %.4g m deep, water %.4g m deep\n", noCrackPositionNote(scene, quantity, r.tied).c_str(), c.depth(),
                 c.waterDepth());
+    std::fflush(stdout);
     return;
   }
   std::printf("least safe crack: x = %.4g m, %.4g m deep, water %.4g m deep (%s); %s within the search's width for x "
@@ -129,12 +172,13 @@ void printCrackSearch(const CrackSearch& s, const model::Scene& scene, const std
               c.x, c.depth(), c.waterDepth(), r.fitted ? "the vertex of a parabola through the nearest positions" : "the best position tried",
               quantity.c_str(), r.flatLo, r.flatHi);
   if (missing)
-    std::printf("  note: some positions gave no %s (above): where the slope fails at every strength tried, it is less "
-                "safe there than at the position reported\n",
+    std::printf("  note: some positions gave no %s (above) without failing, as held at every value tried or undecided: "
+                "they are left out\n",
                 quantity.c_str());
   if (r.atEnd)
     std::printf("  note: the least safe position lies at an end of the range: widen section.tension_crack.search to "
                 "look beyond it\n");
+  std::fflush(stdout);  // before an error on stderr about the answer at this crack
 }
 
 void appendCrackSearch(io::JsonRecord& j, const CrackSearch& s, const model::Scene& scene, const std::string& quantity) {
@@ -148,7 +192,7 @@ void appendCrackSearch(io::JsonRecord& j, const CrackSearch& s, const model::Sce
     t.set("searched", std::vector<double>{scene.crackSearch->first, scene.crackSearch->second});
     t.set("positions", xs).set("values", values).set("fitted", r.fitted).set("at_end", r.atEnd);
     t.set("within_width", std::vector<double>{r.flatLo, r.flatHi}).set("position_width", r.precision);
-    t.set("position_found", r.found);
+    t.set("position_found", r.found).set("position_fails", r.fails);
     if (!r.found) t.set("note", noCrackPositionNote(scene, quantity, r.tied));
     t.set("forward_runs", s.runs).set("wall_time_s", s.wallTime);
   }

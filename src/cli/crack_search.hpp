@@ -7,6 +7,7 @@
 
 #include "cli_common.hpp"
 #include "ddaslope/calibration/position_search.hpp"
+#include "ddaslope/calibration/strength_search.hpp"
 #include "ddaslope/io/json_record.hpp"
 
 namespace ddaslope::cli {
@@ -17,7 +18,12 @@ struct CrackValue {
   double value = 0;
   int runs = 0;
   std::string message;  ///< why no value, when none
+  bool fails = false;   ///< no value because every trial failed (calibration::PositionSample::fails)
 };
+
+/// A search's result as one position's value.
+CrackValue crackValueOf(const calibration::CriticalResult& r);
+CrackValue crackValueOf(const calibration::FactorOfSafetyResult& r);
 
 struct CrackSearch {
   /// Where the least safe crack is; when no position gave a value (`result.found` false), none
@@ -30,7 +36,9 @@ struct CrackSearch {
 /// The least safe crack of one point of a sweep or a curve.
 struct PointCrack {
   double x = 0;        ///< where the point's crack is: the least safe position, or the case's x
-  bool found = false;  ///< a position gave a value (else x is the case's)
+  bool found = false;  ///< a position is least safe (else x is the case's)
+  bool tied = false;   ///< none is because every position gave the same value
+  bool fails = false;  ///< the least safe position is one where the slope fails at every value
 };
 
 /// The overrides that put the case's crack at x.
@@ -58,6 +66,10 @@ std::optional<CrackSearch> placeCrack(const std::string& casePath, const Overrid
 PointCrack leastSafeCrackOnThisThread(const model::Scene& scene, bool maximise, double precision,
                                       const std::function<model::Scene(double)>& read,
                                       const std::function<CrackValue(const model::Scene&)>& valueAt, int& runs);
+
+/// ", least safe crack at x = …" and the like: where one point's crack of a sweep or a curve is,
+/// `x` its least safe position (NaN: none), `caseX` the case's.
+std::string pointCrackText(bool found, bool tied, bool fails, double x, double caseX, const std::string& quantity);
 
 /// Why the crack stayed at the case's x: no position in the searched range gave `quantity`.
 std::string noCrackPositionNote(const model::Scene& scene, const std::string& quantity, bool tied);

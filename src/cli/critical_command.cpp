@@ -43,17 +43,18 @@ int curveCommand(const std::string& casePath, const Overrides& o, const ddaslope
   const auto t0 = std::chrono::steady_clock::now();
   const std::unique_ptr<ddaslope::TaskFarm> farm = ddaslope::makeTaskFarm(opt.threads);
   const double width = opt.width > 0 ? opt.width : 10;
-  // A crack whose position the case searches: each point at its own least safe crack.
-  // A point whose positions all gave no cohesion keeps the case's crack; its x is then the case's.
+  // A crack whose position the case searches: each point at its own least safe crack. A point
+  // with none (no position gave a cohesion, or all gave the same) keeps the case's crack, and its
+  // crack x is NaN: no position is least safe.
   ddaslope::calibration::PointScene atCrack;
   if (scene.crackSearch)
     atCrack = [&](double phi, double& crackX, int& runs) {
       const auto read = [&](double x) { return loadCase(casePath, o, crackAt(x)); };
       const PointCrack crack = leastSafeCrackOnThisThread(scene, true, width / 10, read, [&](const ddaslope::model::Scene& at) {
         const auto x = ddaslope::calibration::criticalCohesion(at, joint, phi, width / 10, oneThread());
-        return CrackValue{x.found, x.critical, x.runs, x.message};
+        return crackValueOf(x);
       }, runs);
-      crackX = crack.x;
+      crackX = crack.found ? crack.x : NAN;
       return crack.found ? read(crack.x) : scene;
     };
   const auto curve = ddaslope::calibration::criticalCurve(scene, joint, lo, hi, n, width, s, farm.get(), atCrack);
@@ -73,8 +74,8 @@ int curveCommand(const std::string& casePath, const Overrides& o, const ddaslope
     const auto& r = p.cohesion;
     std::fprintf(f, "%g,%s,%s,%s,%d,%d", p.frictionDeg, csvField(r.critical, r.found).c_str(),
                  csvField(r.failingEnd, r.found).c_str(), csvField(r.stableEnd, r.found).c_str(), r.found, r.runs);
-    // Stable without cohesion at every position: no position is least safe.
-    if (scene.crackSearch) std::fprintf(f, ",%s", r.critical > 0 ? std::to_string(p.crackX).c_str() : "");
+    // NaN (an empty field): no position is least safe (all tied, or none gave a cohesion).
+    if (scene.crackSearch) std::fprintf(f, ",%s", csvField(p.crackX).c_str());
     std::fprintf(f, "\n");
     series.x.push_back(p.frictionDeg);
     series.y.push_back(r.found ? r.critical / 1e3 : NAN);
@@ -91,8 +92,8 @@ int curveCommand(const std::string& casePath, const Overrides& o, const ddaslope
     std::vector<std::string> messages;
     for (const auto& p : curve) {
       phis.push_back(p.frictionDeg), cs.push_back(p.cohesion.found ? p.cohesion.critical : NAN);
-      // As the CSV: no position is least safe where the slope holds without cohesion at every one.
-      crackXs.push_back(p.cohesion.critical > 0 ? p.crackX : NAN), messages.push_back(p.cohesion.message);
+      // null, as the CSV leaves it empty: no position is least safe.
+      crackXs.push_back(p.crackX), messages.push_back(p.cohesion.message);
       if (!p.cohesion.found) noAnswer.push_back(p.frictionDeg);
     }
     j.set("case", casePath).set("joint", opt.joint).set("friction_angle_deg", phis).set("critical_cohesion_pa", cs);
@@ -106,7 +107,10 @@ int curveCommand(const std::string& casePath, const Overrides& o, const ddaslope
         std::printf("  φ = %6.2f°  c_cr = %10.1f Pa", p.frictionDeg, p.cohesion.critical);
       else
         std::printf("  φ = %6.2f°  no answer", p.frictionDeg);
-      if (scene.crackSearch && p.cohesion.critical > 0) std::printf("  least safe crack at x = %.4g m", p.crackX);
+      if (scene.crackSearch && std::isfinite(p.crackX))
+        std::printf(p.cohesion.found ? "  least safe crack at x = %.4g m" : "  at the least safe crack, x = %.4g m:", p.crackX);
+      else if (scene.crackSearch && !(p.cohesion.found && p.cohesion.critical == 0))
+        std::printf("  no crack position is least safe: the case's x = %.4g m", scene.tensionCrack->x);
       if (!p.cohesion.message.empty()) std::printf("  %s", p.cohesion.message.c_str());
       std::printf("\n");
     }
@@ -127,7 +131,7 @@ int jrcCommand(const std::string& casePath, const Overrides& o, ddaslope::model:
       placeCrack(casePath, o, scene, opt.threads, true, width / 10, "critical jrc", opt.progress, opt.json,
                  [&](const ddaslope::model::Scene& at) {
                    const auto x = ddaslope::calibration::criticalJrc(at, joint, width / 10, oneThread());
-                   return CrackValue{x.found, x.critical, x.runs, x.message};
+                   return crackValueOf(x);
                  });
   const auto log = startProgress("critical --solve jrc", opt.progress, opt.json);
   ddaslope::calibration::SearchSettings s;
@@ -198,10 +202,13 @@ int seismicCoefficientCommand(const std::string& casePath, const Overrides& o, d
                    for (const char* d : directions) {
                      const auto x = ddaslope::calibration::criticalSeismicCoefficient(at, d[0] == '-' ? -1 : 1,
                                                                                       positionWidth, oneThread(), 1e-4);
-                     v.runs += x.runs;
-                     if (x.found && (!v.found || x.critical < v.value)) v.found = true, v.value = x.critical;
-                     if (!x.found && v.message.empty()) v.message = x.message;
+                     const CrackValue one = crackValueOf(x);
+                     v.runs += one.runs;
+                     if (one.found && (!v.found || one.value < v.value)) v.found = true, v.value = one.value;
+                     if (!one.found && (v.message.empty() || one.fails)) v.message = one.message;
+                     v.fails |= one.fails;  // failing without seismic loading: the least k_y of all
                    }
+                   if (v.fails) v.found = false;
                    return v;
                  });
   ddaslope::model::Scene searched = scene;  // what the trials run: no record, k_h their own
@@ -307,7 +314,7 @@ int criticalCommand(const std::string& casePath, const Overrides& o, const Criti
                  [&](const ddaslope::model::Scene& at) {
                    const auto x = cohesion ? ddaslope::calibration::criticalCohesion(at, joint, phi, width / 10, oneThread())
                                            : ddaslope::calibration::criticalFriction(at, joint, c, width / 10, oneThread());
-                   return CrackValue{x.found, x.critical, x.runs, x.message};
+                   return crackValueOf(x);
                  });
   if (crack) recordTrialStates(s, opt.vtkDir, scene);
   const MechanismPictures pictures(s, scene);

@@ -69,7 +69,7 @@ int supportCurve(const std::string& casePath, const Overrides& o, const ddaslope
       return at;
     };
     // A crack whose position the case searches: F at its least safe position for this size.
-    PointCrack crack{NAN, false};
+    PointCrack crack{NAN, false, false, false};
     int crackRuns = 0;
     ddaslope::model::Scene trial = withSupport(scene);
     if (scene.crackSearch) {
@@ -78,11 +78,11 @@ int supportCurve(const std::string& casePath, const Overrides& o, const ddaslope
         cal::SearchSettings one;
         one.threads = 1;
         const cal::FactorOfSafetyResult r = cal::factorOfSafety(at, {}, 1e-4, one);
-        return CrackValue{r.found, r.factor, r.runs, r.message};
+        return crackValueOf(r);
       }, crackRuns);
       if (crack.found) trial = read(crack.x);
     }
-    const double crackX = crack.x;
+    const double crackX = crack.found ? crack.x : NAN;  // NaN: no position is least safe
     const cal::FactorOfSafetyResult r = cal::factorOfSafety(trial, {}, 1e-3, s);
     std::fprintf(f, "%.6g,%s,%s,%s,%d,%d", x, csvField(r.factor, r.found).c_str(), csvField(r.stableEnd, r.found).c_str(),
                  csvField(r.failingEnd, r.found).c_str(), r.found, r.runs + crackRuns);
@@ -92,8 +92,7 @@ int supportCurve(const std::string& casePath, const Overrides& o, const ddaslope
       std::printf("  %s %10.4g kN/m: %s", q.name.c_str(), x / 1e3,
                   r.found ? ("F = " + std::to_string(r.factor)).c_str() : ("no answer (" + r.message + ")").c_str());
       if (scene.crackSearch)
-        std::printf(crack.found ? ", least safe crack at x = %.4g m" : ", no crack position gave F: the crack at the case's x = %.4g m",
-                    crackX);
+        std::printf("%s", pointCrackText(crack.found, crack.tied, crack.fails, crackX, scene.tensionCrack->x, "F").c_str());
       std::printf("\n");
     }
     values.push_back(x), factors.push_back(r.found ? r.factor : NAN), crackXs.push_back(crackX);
@@ -156,7 +155,7 @@ int supportCommand(const std::string& casePath, const Overrides& o, ddaslope::mo
       placeCrack(casePath, o, scene, opt.threads, true, fine, "critical support (N/m)", opt.progress, true,
                  [&](const ddaslope::model::Scene& at) {
                    const cal::CriticalResult x = cal::criticalSupport(at, opt.support, opt.targetFactor, fine, one);
-                   return CrackValue{x.found, x.critical, x.runs, x.message};
+                   return crackValueOf(x);
                  });
   if (crack) {
     crack->runs += scale.runs, crack->wallTime += scale.wallTime;

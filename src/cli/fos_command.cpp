@@ -53,8 +53,9 @@ int fosSweep(const std::string& casePath, const Overrides& o, const FosOptions& 
   // farm), spread over the threads, or the ranks under mpirun.
   struct Point {
     ddaslope::calibration::FactorOfSafetyResult fos;
-    double crackX = NAN;  ///< the least safe crack's position, when the case searches it
-    bool crackFound = false;  ///< a crack position gave F (else crackX is the case's x)
+    bool crackSearched = false;  ///< the case searches its crack, and the sweep does not place it
+    double crackX = NAN;         ///< the least safe crack's position; NaN when no position is
+    bool crackFound = false, crackTied = false, crackFails = false;  ///< as PointCrack's
     bool done = false;
   };
   std::vector<Point> points(static_cast<size_t>(n));
@@ -73,10 +74,13 @@ int fosSweep(const std::string& casePath, const Overrides& o, const FosOptions& 
         const auto started = std::chrono::steady_clock::now();
         ddaslope::model::Scene scene = loadCase(casePath, o, {{path, valueAt(i)}});
         // A crack whose position the case searches: F at its least safe position for this value.
-        PointCrack crack{NAN, false};
+        PointCrack crack{NAN, false, false, false};
+        bool searched = false;
         int crackRuns = 0;
-        // A sweep of the crack itself places it: no search may move it.
-        if (scene.crackSearch && path.rfind("section.tension_crack.", 0) != 0) {
+        // A sweep of the crack's place (its x or its depth) places it: no search may move it. A sweep
+        // of anything else, its water among them, searches each value's crack.
+        const bool placesCrack = path == "section.tension_crack.x" || path == "section.tension_crack.depth";
+        if (scene.crackSearch && !placesCrack) {
           const auto read = [&](double x) {
             std::vector<ddaslope::io::CaseOverride> extra{{path, valueAt(i)}};
             for (auto& c : crackAt(x)) extra.push_back(std::move(c));
@@ -86,16 +90,17 @@ int fosSweep(const std::string& casePath, const Overrides& o, const FosOptions& 
           fine.width = std::max(1e-4, opt.width / 10);
           crack = leastSafeCrackOnThisThread(scene, false, fine.width, read, [&](const ddaslope::model::Scene& at) {
             const auto r = factorFor(at, casePath, fine);
-            return CrackValue{r.found, r.factor, r.runs, r.message};
+            return crackValueOf(r);
           }, crackRuns);
           if (crack.found) scene = read(crack.x);
+          searched = true;
         }
         const auto r = factorFor(scene, casePath, single);
         ddaslope::BytePacker b;
         // The value's whole time, its crack search's included.
         const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
         b.put(r.found).put(r.factor).put(r.stableEnd).put(r.failingEnd).put(r.runs + crackRuns).put(wall).put(r.message);
-        b.put(crack.x).put(crack.found);
+        b.put(searched).put(crack.found ? crack.x : NAN).put(crack.found).put(crack.tied).put(crack.fails);
         return b.bytes();
       },
       [&](int i, const ddaslope::TaskResult& bytes) {
@@ -108,8 +113,11 @@ int fosSweep(const std::string& casePath, const Overrides& o, const FosOptions& 
         r.runs = b.get<int>();
         r.wallTime = b.get<double>();
         r.message = b.getString();
+        points[i].crackSearched = b.get<bool>();
         points[i].crackX = b.get<double>();
         points[i].crackFound = b.get<bool>();
+        points[i].crackTied = b.get<bool>();
+        points[i].crackFails = b.get<bool>();
         points[i].done = true;
         if (log->active())
           log->report({"points", ++finished, n,
@@ -118,17 +126,17 @@ int fosSweep(const std::string& casePath, const Overrides& o, const FosOptions& 
       });
   if (!farm->isRoot()) return kExitOk;  // the root writes
   log->finish(true, std::to_string(n) + " values");
-  const bool cracks = std::isfinite(points[0].crackX);
+  const bool cracks = points[0].crackSearched;
+  double caseCrackX = NAN;
+  if (cracks) caseCrackX = loadCase(casePath, o).tensionCrack->x;
   if (!opt.json)
     for (int i = 0; i < n; ++i) {
       const auto& r = points[i].fos;
       std::printf("  %s = %-10g %s (%d forward runs, %.1f s)", path.c_str(), valueAt(i),
                   r.found ? ("F = " + std::to_string(r.factor)).c_str() : ("no answer: " + r.message).c_str(), r.runs,
                   r.wallTime);
-      if (cracks)
-        std::printf(points[i].crackFound ? ", least safe crack at x = %.4g m"
-                                         : ", no crack position gave F: the crack at the case's x = %.4g m",
-                    points[i].crackX);
+      if (cracks) std::printf("%s", pointCrackText(points[i].crackFound, points[i].crackTied, points[i].crackFails,
+                                                   points[i].crackX, caseCrackX, "F").c_str());
       std::printf("\n");
     }
   std::filesystem::create_directories(opt.outDir);
@@ -200,7 +208,7 @@ int fosCommand(const std::string& casePath, const Overrides& o, const FosOptions
       placeCrack(casePath, o, scene, opt.threads, false, single.width, "F", opt.progress, opt.json,
                  [&](const ddaslope::model::Scene& at) {
                    const auto r = factorFor(at, casePath, single);
-                   return CrackValue{r.found, r.factor, r.runs, r.message};
+                   return crackValueOf(r);
                  });
   // Said before the search, whose trials at such a Δt take long, and kept in fos.json.
   const std::string dtWarning = timeStepWarning(scene);

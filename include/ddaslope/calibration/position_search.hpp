@@ -16,6 +16,9 @@ struct PositionSample {
   double value = 0;
   bool found = false;  ///< the search at x gave a value
   std::string message;  ///< why not, when it did not
+  /// No value because the scene fails at every value the search tried (no F, no strength or
+  /// support that holds): less safe than any value, where "held at every value" is safer.
+  bool fails = false;
 };
 
 struct PositionSearchResult {
@@ -24,6 +27,9 @@ struct PositionSearchResult {
   /// `best` and the flat range are NaN, and the caller keeps the feature where the case puts it.
   bool found = false;
   bool tied = false;
+  /// The least safe position is one where the scene fails at every value tried (`best`: the first
+  /// such, `flatLo`–`flatHi` their span): the answer there is none, which the caller reports.
+  bool fails = false;
   double best = 0;          ///< the least safe position
   bool atEnd = false;       ///< it lies at an end of the range (widen the range to look beyond)
   bool fitted = false;      ///< from the parabola's vertex (else the best sample)
