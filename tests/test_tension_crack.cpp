@@ -290,6 +290,16 @@ TEST(TensionCrack, AStudySaysItsCrackStaysPut) {
   EXPECT_EQ(err.find("stays at x"), std::string::npos) << err;
   EXPECT_NE(err.find("the tension crack is where each run's section.tension_crack.x puts it"), std::string::npos) << err;
   std::filesystem::remove_all(out);
+  // So does one that samples the depth of a crack placed by its depth.
+  nlohmann::json byDepth = crackCase();
+  byDepth["section"]["tension_crack"] = {{"depth", 6}, {"search", {-26, -12}}};
+  const std::string depthCase = clitest::writeTemp("crack_by_depth.json", byDepth.dump());
+  const std::string deeper = clitest::writeTemp("crack_study_depth.json", R"({"case": ")" + depthCase +
+      R"(", "probability": {"samples": 4, "seed": 1, "inputs": [
+      {"path": "section.tension_crack.depth", "distribution": "uniform", "min": 5, "max": 8}]}})");
+  EXPECT_EQ(clitest::runCli("probability " + deeper + " --quiet --out " + out, &err), 0) << err;
+  EXPECT_NE(err.find("the tension crack is where each run's section.tension_crack.depth puts it"), std::string::npos) << err;
+  std::filesystem::remove_all(out);
 }
 
 // The position search alone, on a curve like the slope's (a minimum with a cubic lean, values
@@ -335,7 +345,11 @@ TEST(TensionCrack, BadValuesAreRefusedWithTheirPath) {
   refused({{"depth", 50}}, "section.tension_crack.depth", "nowhere this deep");
   refused({{"depth", -1}}, "section.tension_crack.depth", "a depth > 0 m");
   refused({{"x", -20}, {"water_fraction", 1.5}}, "section.tension_crack.water_fraction", "in [0, 1]");
-  refused({{"x", -20}, {"search", {-12, -26}}}, "section.tension_crack.search", "x_min < x_max");
+  refused({{"x", -20}, {"search", {-12, -26}}}, "section.tension_crack.search", "x_min < x_max, found [-12, -26]");
+  // The crack is cut between the sliding surface's crown (x = -28.563) and its toe (0).
+  refused({{"x", -20}, {"search", {-60, -12}}}, "section.tension_crack.search",
+          "between the sliding surface's crown (x = -28.563 m) and its toe (x = 0 m), found [-60, -12]");
+  refused({{"x", -20}, {"search", {-26, 3}}}, "section.tension_crack.search", "found [-26, 3]");
   refused({{"x", -20}, {"search", -12}}, "section.tension_crack.search", "expected [x_min, x_max]");
   refused({{"x", -20}, {"width", 1}}, "section.tension_crack.width", "");
   refused({{"x", -20}, {"water_fraction", 0.5}}, "water", "the tension crack's water", true);

@@ -244,13 +244,14 @@ void printSupportNotes(const ddaslope::model::Scene& scene) {
 std::string fixedCrackNote(const ddaslope::model::Scene& scene, const std::vector<std::string>& varied) {
   if (!scene.crackSearch || !scene.tensionCrack) return "";
   char text[256];
-  if (std::find(varied.begin(), varied.end(), "section.tension_crack.x") != varied.end()) {
-    std::snprintf(text, sizeof text,
-                  "the tension crack is where each run's section.tension_crack.x puts it: section.tension_crack.search "
-                  "over [%g, %g] m is used only by fos and critical",
-                  scene.crackSearch->first, scene.crackSearch->second);
-    return text;
-  }
+  for (const char* place : {"section.tension_crack.x", "section.tension_crack.depth"})
+    if (std::find(varied.begin(), varied.end(), place) != varied.end()) {
+      std::snprintf(text, sizeof text,
+                    "the tension crack is where each run's %s puts it: section.tension_crack.search over [%g, %g] m is "
+                    "used only by fos and critical",
+                    place, scene.crackSearch->first, scene.crackSearch->second);
+      return text;
+    }
   std::snprintf(text, sizeof text,
                 "the tension crack stays at x = %g m (section.tension_crack.x) in every run: only fos and critical "
                 "search its position over [%g, %g] m",

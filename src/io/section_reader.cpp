@@ -1,6 +1,7 @@
 #include "section_reader.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <optional>
 
@@ -86,7 +87,19 @@ std::optional<std::pair<double, double>> readTensionCrack(const Reader& r, const
   if (!range.is_array() || range.size() != 2)
     r.fail(p + ".search", "expected [x_min, x_max]: the range fos and critical search the crack's position in");
   const double lo = r.number(range[0], p + ".search[0]"), hi = r.number(range[1], p + ".search[1]");
-  if (!(lo < hi)) r.fail(p + ".search", "expected x_min < x_max");
+  char found[96];
+  std::snprintf(found, sizeof found, ", found [%g, %g]", lo, hi);
+  if (!(lo < hi)) r.fail(p + ".search", std::string("expected x_min < x_max") + found);
+  // The crack is cut between the sliding surface's crown and its toe (model/section.cpp).
+  if (spec.slidingSurface.size() >= 2) {
+    const double crown = spec.slidingSurface.front().x(), toe = spec.slidingSurface.back().x();
+    if (!(lo > crown && hi < toe)) {
+      char m[160];
+      std::snprintf(m, sizeof m, "expected a range between the sliding surface's crown (x = %g m) and its toe (x = %g m)",
+                    crown, toe);
+      r.fail(p + ".search", m + std::string(found));
+    }
+  }
   return std::make_pair(lo, hi);
 }
 
