@@ -143,7 +143,7 @@ constexpr const char* kUndecidedBracket =
 /// Why strength reduction found no F: at 1.5^-40 every reduced joint has 1.1e7 times its cohesion,
 /// tensile strength and tan φ, so what still moves is not held by their strength.
 constexpr const char* kFailsAtEveryFactor =
-    "fails at every reduction factor tried, down to 1.5^-40 (c, tensile strength and tan phi multiplied by "
+    "fails at every reduction factor tried, down to 1.5^-40 (c, tensile strength and tan φ multiplied by "
     "1.1e7): no strength of the reduced joints holds this scene. Something their strength does not resist moves "
     "it: a block that topples or lifts off joints with no tensile strength to multiply, or one moving on joints "
     "not reduced; see the mechanism with `ddaslope run CASE --at-fos 0.01`";

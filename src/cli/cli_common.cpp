@@ -298,6 +298,9 @@ std::vector<std::string> MechanismPictures::write(const std::string& dir, const 
     const auto found = kept_->states.find(value);
     if (found == kept_->states.end()) continue;
     const auto& [state, result] = found->second;
+    // A bracket with no failing end (a slope stable without cohesion: both ends 0) draws no
+    // failure: each picture only of a trial whose verdict it names.
+    if (result.stable != (std::string(verdict) == "stable")) continue;
     // Rule (0) decides before t = 0: its motion is the settling's.
     const bool settling = result.rule == calibration::VerdictRule::MovedWhileSettling;
     char title[320];

@@ -149,7 +149,9 @@ void printCrackSearch(const CrackSearch& s, const model::Scene& scene, const std
   bool missing = false;
   int failing = 0;
   for (const auto& p : r.samples) {
-    std::printf("  x = %-10.4g %s %s\n", p.x, quantity.c_str(), p.found ? std::to_string(p.value).c_str() : ("none: " + p.message).c_str());
+    // A position's reason in brief (its first clause): the answer's own message gives it in full.
+    const std::string brief = p.message.substr(0, p.message.find(": "));
+    std::printf("  x = %-10.4g %s %s\n", p.x, quantity.c_str(), p.found ? std::to_string(p.value).c_str() : ("none: " + brief).c_str());
     missing |= !p.found && !p.fails;
     failing += p.fails;
   }

@@ -356,9 +356,12 @@ int criticalCommand(const std::string& casePath, const Overrides& o, const Criti
         : jp.bartonBandis ? "(Barton–Bandis φr) at JRC = " + std::to_string(jp.bartonBandis->jrc) + ", JCS = " +
                                 std::to_string(jp.bartonBandis->jcs / 1e6) + " MPa"
                           : "at c = " + std::to_string(c) + " Pa";
-    std::printf("critical %s of joint '%s' %s: %.6g %s (failing at %.6g, stable at %.6g)%s%s\n", opt.solve.c_str(),
-                opt.joint.c_str(), where.c_str(),
-                r.critical, unit, r.failingEnd, r.stableEnd, r.message.empty() ? "" : ": ", r.message.c_str());
+    // No bracket when the slope holds at the least value (stable without cohesion): no failing end.
+    char bracket[96] = "";
+    if (r.failingEnd != r.stableEnd)
+      std::snprintf(bracket, sizeof bracket, " (failing at %.6g, stable at %.6g)", r.failingEnd, r.stableEnd);
+    std::printf("critical %s of joint '%s' %s: %.6g %s%s%s%s\n", opt.solve.c_str(), opt.joint.c_str(), where.c_str(),
+                r.critical, unit, bracket, r.message.empty() ? "" : ": ", r.message.c_str());
     std::printf("%s, %.2f s wall; %s\n", forwardRunsText(r.runs, crack).c_str(), totalWallTime(r.wallTime, crack),
                 settingsLine(scene).c_str());
     printTrialStatesNote(opt.vtkDir, r.runs);
