@@ -203,10 +203,10 @@ TEST(StrengthReduction, TopplingSlopeMatchesPublishedDistinctElementResult) {
 // A6/A7 (benchmarks.md; Hoek & Bray's sliding and toppling chart): a block with b/h < tan α
 // topples about its toe whatever the strength of its base, so strength reduction has no F, and
 // says why rather than calling it a failure at some small F. b = 1, h = 2.5 on 30° (b/h 0.4 <
-// 0.577), φ = 40°. The critical cohesion search agrees: no cohesion holds it. The same block
-// lying down (b = 2, h = 1: b/h 2 > tan α) only slides, at F = tan 40°/tan 30° = 1.4533 (A5's
-// closed form); 0.008 is the bracket's width of 0.005 plus A5's 0.05° resolution of the critical
-// friction, 0.0026 in F.
+// 0.577), φ = 40°. The critical cohesion and friction searches agree: no cohesion or friction
+// holds it. The same block lying down (b = 2, h = 1: b/h 2 > tan α) only slides, at F = tan 40°/
+// tan 30° = 1.4533 (A5's closed form); 0.008 is the bracket's width of 0.005 plus A5's 0.05°
+// resolution of the critical friction, 0.0026 in F.
 TEST(StrengthReduction, ABlockThatTopplesWhateverItsStrengthHasNoFactor) {
   InclineSpec s;
   s.phiDeg = 40;
@@ -220,6 +220,9 @@ TEST(StrengthReduction, ABlockThatTopplesWhateverItsStrengthHasNoFactor) {
   const calibration::CriticalResult c = calibration::criticalCohesion(toppling, 0, 40, 1000);
   EXPECT_FALSE(c.found);
   EXPECT_NE(c.message.find("strength cannot hold this scene"), std::string::npos) << c.message;
+  const calibration::CriticalResult f = calibration::criticalFriction(toppling, 0, 0, 0.1);
+  EXPECT_FALSE(f.found);
+  EXPECT_NE(f.message.find("strength cannot hold this scene"), std::string::npos) << f.message;
 
   // The toppling block as a user writes it, a case file placed 1e5 m from the origin: `fos` exits
   // with 3 (no answer) and says why.

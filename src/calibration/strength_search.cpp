@@ -334,7 +334,9 @@ CriticalResult criticalFriction(const model::Scene& scene, int joint, double coh
   copyBracket(b, r);
   r.critical = b.critical;
   if (!r.found) {
-    r.message = b.stableEnd == 0 ? "stable even with φ = 0 at this cohesion" : "fails even with φ = 89.9°";
+    r.message = b.stableEnd == 0 ? "stable even with φ = 0 at this cohesion"
+                                 : "fails even with φ = 89.9°: strength cannot hold this scene (a block that topples or "
+                                   "lifts off, or one moving on other joints)";
     if (b.stableEnd == 0) {  // holds without friction: the critical angle is 0
       r.found = true;
       r.critical = 0;
