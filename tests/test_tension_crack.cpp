@@ -355,6 +355,20 @@ TEST(TensionCrack, BadValuesAreRefusedWithTheirPath) {
   refused({{"x", -20}, {"water_fraction", 0.5}}, "water", "the tension crack's water", true);
 }
 
+// A crack placed outside the range its position is searched in is accepted (run, check and the
+// studies use it), and check says that it lies outside the range fos and critical search.
+TEST(TensionCrack, CheckSaysTheCrackLiesOutsideItsSearchRange) {
+  nlohmann::json doc = crackCase();
+  doc["section"]["tension_crack"] = {{"x", -25}, {"search", {-22, -14}}};
+  const std::string path = clitest::writeTemp("crack_outside.json", doc.dump());
+  std::string text, err;
+  EXPECT_EQ(clitest::runCliCapturing("check " + path, &text, &err), 0) << err;
+  EXPECT_NE(text.find("lies outside that range"), std::string::npos) << text;
+  doc["section"]["tension_crack"]["x"] = -20;
+  EXPECT_EQ(clitest::runCliCapturing("check " + clitest::writeTemp("crack_inside.json", doc.dump()), &text, &err), 0);
+  EXPECT_EQ(text.find("lies outside that range"), std::string::npos) << text;
+}
+
 // When no position gives a value, none is least safe: the search says so and does not pick one.
 TEST(TensionCrack, PositionSearchWithNoValueFindsNoPosition) {
   const auto r = calibration::searchLeastSafePosition(12, 26, 9, false, 1e-4, [](const std::vector<double>& xs) {

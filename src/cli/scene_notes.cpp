@@ -267,8 +267,11 @@ void printWaterNotes(const ddaslope::model::Scene& scene) {
                 c->x, c->depth(), c->top, c->bottom, c->waterDepth(), c->waterFraction,
                 c->waterFraction > 0 ? ", draining along the sliding surface to the toe" : "", c->gap);
     if (scene.crackSearch)
-      std::printf("  fos and critical search the crack's position in x = [%g, %g] m for the least safe\n",
-                  scene.crackSearch->first, scene.crackSearch->second);
+      std::printf("  fos and critical search the crack's position in x = [%g, %g] m for the least safe%s\n",
+                  scene.crackSearch->first, scene.crackSearch->second,
+                  c->x < scene.crackSearch->first || c->x > scene.crackSearch->second
+                      ? " (the crack above, which the other commands use, lies outside that range)"
+                      : "");
   }
   if (!scene.water.active()) return;
   const ddaslope::model::WaterTable water = scene.water.at(0);
