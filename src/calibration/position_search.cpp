@@ -27,6 +27,11 @@ PositionSearchResult searchLeastSafePosition(double lo, double hi, int points, b
   for (int i = 0; i < points; ++i) coarse.push_back(lo + (hi - lo) * i / (points - 1));
   r.samples = evaluate(coarse);
   const int k = extremeSample(r.samples, sign);
+  // The values' precision in their unit: as given, or that fraction of the extreme value (NaN
+  // without one).
+  const auto resolved = [precision](const PositionSample* extreme) {
+    return precision >= 0 ? precision : extreme ? -precision * std::abs(extreme->value) : NAN;
+  };
   // A position where the scene fails outright is less safe than any value: it is the answer, and
   // no finer grid can improve on it.
   const auto failing = std::find_if(r.samples.begin(), r.samples.end(), [](const PositionSample& s) { return s.fails; });
@@ -35,7 +40,7 @@ PositionSearchResult searchLeastSafePosition(double lo, double hi, int points, b
     r.best = r.flatLo = r.flatHi = failing->x;
     for (const PositionSample& s : r.samples)
       if (s.fails) r.flatLo = std::min(r.flatLo, s.x), r.flatHi = std::max(r.flatHi, s.x);
-    r.precision = precision >= 0 ? precision : NAN;
+    r.precision = resolved(nullptr);
     return r;
   }
   r.tied = k >= 0 && std::all_of(r.samples.begin(), r.samples.end(), [&](const PositionSample& s) {
@@ -43,7 +48,7 @@ PositionSearchResult searchLeastSafePosition(double lo, double hi, int points, b
            });
   if (k < 0 || r.tied) {
     r.best = r.flatLo = r.flatHi = NAN;
-    r.precision = precision >= 0 ? precision : k < 0 ? NAN : -precision * std::abs(r.samples[k].value);
+    r.precision = resolved(k < 0 ? nullptr : &r.samples[k]);
     return r;
   }
   r.found = true;
@@ -82,17 +87,16 @@ PositionSearchResult searchLeastSafePosition(double lo, double hi, int points, b
       r.fitted = true;
     }
   }
-  r.precision = precision >= 0 ? precision : -precision * std::abs(r.samples[kBest].value);
-  precision = r.precision;
+  r.precision = resolved(&r.samples[kBest]);
   // Within the precision of the extreme: by the parabola where it was fitted, else by the samples.
   if (r.fitted) {
-    const double reach = half * std::sqrt(std::max(precision, 0.0) / c2);
+    const double reach = half * std::sqrt(std::max(r.precision, 0.0) / c2);
     r.flatLo = std::max(lo, r.best - reach), r.flatHi = std::min(hi, r.best + reach);
   } else {
     const double extreme = sign * r.samples[kBest].value;
     r.flatLo = r.flatHi = r.best;
     for (const PositionSample& s : r.samples)
-      if (s.found && sign * s.value <= extreme + precision) r.flatLo = std::min(r.flatLo, s.x), r.flatHi = std::max(r.flatHi, s.x);
+      if (s.found && sign * s.value <= extreme + r.precision) r.flatLo = std::min(r.flatLo, s.x), r.flatHi = std::max(r.flatHi, s.x);
   }
   r.atEnd = !r.fitted && (r.best <= lo + 1e-9 * (hi - lo) || r.best >= hi - 1e-9 * (hi - lo));
   return r;

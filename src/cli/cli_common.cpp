@@ -321,6 +321,10 @@ std::string csvField(double v, bool known) {
   return buf;
 }
 
+std::vector<double> bracketField(bool found, double first, double second) {
+  return {found ? first : NAN, found ? second : NAN};
+}
+
 void writeResultFile(const std::string& path, const std::string& text) {
   const std::filesystem::path p(path);
   if (p.has_parent_path()) std::filesystem::create_directories(p.parent_path());

@@ -97,6 +97,8 @@ int jointIndex(const ddaslope::model::Scene& scene, const std::string& name, con
 /// A CSV field of a number that may have no value: "%.6g", or empty where the point had no answer
 /// (never 0 or nan, which read as values).
 std::string csvField(double v, bool known = true);
+/// A result's bracket for its JSON: the two ends, or nulls (NaN) when there is no answer.
+std::vector<double> bracketField(bool found, double first, double second);
 
 /// Writes a command's result file through a temporary and a rename (its folder made): never half
 /// a file that looks complete.

@@ -144,7 +144,7 @@ int jrcCommand(const std::string& casePath, const Overrides& o, ddaslope::model:
     ddaslope::io::JsonRecord j;
     j.set("case", casePath).set("joint", opt.joint).set("solve", opt.solve).set("found", r.found);
     j.set("critical", r.found ? r.critical : NAN).set("unit", "JRC");
-    j.set("bracket", std::vector<double>{r.found ? r.failingEnd : NAN, r.found ? r.stableEnd : NAN});
+    j.set("bracket", bracketField(r.found, r.failingEnd, r.stableEnd));
     j.set("forward_runs", totalRuns(r.runs, crack)).set("wall_time_s", totalWallTime(r.wallTime, crack));
     j.set("message", r.message).set("settings", settingsLine(scene));
     ddaslope::calibration::appendReview(j, r.review);
@@ -238,7 +238,7 @@ int seismicCoefficientCommand(const std::string& casePath, const Overrides& o, d
     j.set("case", casePath).set("solve", opt.solve).set("direction", direction).set("k_v", scene.seismic.kv);
     j.set("found", r.found).set("critical", r.found ? r.critical : NAN).set("unit", "g");
     j.set("failing_at", r.found ? r.failingEnd : NAN).set("stable_at", r.found ? r.stableEnd : NAN);
-    j.set("bracket", std::vector<double>{r.found ? r.failingEnd : NAN, r.found ? r.stableEnd : NAN});
+    j.set("bracket", bracketField(r.found, r.failingEnd, r.stableEnd));
     j.set("forward_runs", totalRuns(runs, crack)).set("wall_time_s", wall).set("message", r.message);
     j.set("settings", settingsLine(searched));
     ddaslope::calibration::appendReview(j, r.review);
@@ -336,7 +336,7 @@ int criticalCommand(const std::string& casePath, const Overrides& o, const Criti
     ddaslope::io::JsonRecord j;
     j.set("case", casePath).set("joint", opt.joint).set("solve", opt.solve).set("found", r.found);
     if (cohesion) j.set("friction_angle_deg", phi); else j.set("cohesion_pa", c);
-    j.set("critical", r.found ? r.critical : NAN).set("unit", unit).set("bracket", std::vector<double>{r.found ? r.failingEnd : NAN, r.found ? r.stableEnd : NAN});
+    j.set("critical", r.found ? r.critical : NAN).set("unit", unit).set("bracket", bracketField(r.found, r.failingEnd, r.stableEnd));
     // The totals, the crack search's included (its own in tension_crack).
     j.set("forward_runs", totalRuns(r.runs, crack)).set("wall_time_s", totalWallTime(r.wallTime, crack));
     j.set("message", r.message).set("settings", settingsLine(scene));

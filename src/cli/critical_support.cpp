@@ -174,7 +174,7 @@ int supportCommand(const std::string& casePath, const Overrides& o, ddaslope::mo
     j.set("target_factor_of_safety", opt.targetFactor).set("found", r.found);
     j.set("critical", r.found ? r.critical : NAN).set("unit", "N/m");
     j.set("per_support_n", r.found ? r.critical * q.spacing : NAN).set("spacing_m", q.spacing);
-    j.set("bracket", std::vector<double>{r.found ? r.failingEnd : NAN, r.found ? r.stableEnd : NAN});
+    j.set("bracket", bracketField(r.found, r.failingEnd, r.stableEnd));
     j.set("forward_runs", totalRuns(r.runs, crack)).set("wall_time_s", totalWallTime(r.wallTime, crack));
     j.set("message", r.message).set("settings", settingsLine(scene));
     cal::appendReview(j, r.review);

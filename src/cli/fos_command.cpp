@@ -228,7 +228,7 @@ int fosCommand(const std::string& casePath, const Overrides& o, const FosOptions
     ddaslope::io::JsonRecord j;
     // No answer, no number: the bracket and the message say what is known.
     j.set("case", casePath).set("found", r.found).set("factor_of_safety", r.found ? r.factor : NAN);
-    j.set("bracket", std::vector<double>{r.found ? r.stableEnd : NAN, r.found ? r.failingEnd : NAN}).set("width", opt.width);
+    j.set("bracket", bracketField(r.found, r.stableEnd, r.failingEnd)).set("width", opt.width);
     // The totals, the crack search's included (its own in tension_crack).
     j.set("forward_runs", totalRuns(r.runs, crack)).set("rounds", r.rounds);
     j.set("wall_time_s", totalWallTime(r.wallTime, crack)).set("message", r.message);
