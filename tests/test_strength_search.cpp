@@ -353,3 +353,62 @@ TEST(StrengthReduction, FosWritesTheMechanismAtItsBracketsEnds) {
   EXPECT_TRUE(isPng(dir / "mechanism_failed.png"));
   fs::remove_all(dir);
 }
+
+// A search told where F probably is (SearchSettings::hint, as a back-analysis tells it from its
+// earlier evaluations) ends in the bracket of the search without a hint, on DDA trials: Hoek &
+// Bray's planar slide (edge and vertex contacts) and Alejano & Alonso's toppling slope, one and
+// two trials at a time, hints inside the final bracket, beside it and far from it. The search
+// without a hint is the referee (and itself meets Hoek & Bray above); a hint inside its final
+// bracket costs that bracket's two ends alone. Where the two searches' trials together are not
+// monotone (the toppling slope with one thread fails at F = 0.8776 while settling and stands at
+// 0.8958), neither search's bracket is more right than the other's: both must lie in that range.
+TEST(StrengthReduction, AHintedSearchEndsInTheBracketOfTheSearchWithout) {
+  model::Scene vertex = planar(35, 25e3, 30).scene;
+  vertex.settings.contactTreatment = model::ContactTreatment::Vertex;
+  const std::vector<std::pair<std::string, model::Scene>> scenes = {
+      {"planar", planar(35, 25e3, 30).scene},
+      {"planar, vertex contacts", vertex},
+      {"toppling", io::readCase(std::string(DDASLOPE_SOURCE_DIR) + "/cases/toppling_slope.json")}};
+  for (const auto& [name, scene] : scenes)
+    for (const int threads : {1, 2}) {
+      calibration::SearchSettings s;
+      s.threads = threads;
+      const auto cold = calibration::factorOfSafety(scene, {}, 0.005, s);
+      ASSERT_TRUE(cold.found) << name << ": " << cold.message;
+      const double inside = 0.5 * (cold.stableEnd + cold.failingEnd);
+      for (const double hint : {inside, cold.failingEnd + 0.004, cold.stableEnd - 0.03, 1.6 * cold.factor}) {
+        SCOPED_TRACE(name + ", threads " + std::to_string(threads) + ", hint " + std::to_string(hint));
+        s.hint = hint;
+        const auto warm = calibration::factorOfSafety(scene, {}, 0.005, s);
+        s.hint.reset();
+        ASSERT_TRUE(warm.found) << warm.message;
+        const auto trials = [](const calibration::FactorOfSafetyResult& r) {
+          std::string t;
+          for (const auto& x : r.trials)
+            t += std::to_string(x.value) + " " + calibration::name(x.result.rule) + (x.rerun ? " (re-run)" : "") + "; ";
+          return t;
+        };
+        // The two searches' trials together: a failing trial below a stable one means the verdict
+        // is not monotone there, and each search's F is one sample of that mixed range.
+        double lowestFailing = INFINITY, highestStable = -INFINITY;
+        for (const auto* r : {&cold, &warm})
+          for (const auto& t : r->trials) {
+            if (t.result.stable) highestStable = std::max(highestStable, t.value);
+            else if (!t.result.undecided) lowestFailing = std::min(lowestFailing, t.value);
+          }
+        if (lowestFailing > highestStable) {
+          EXPECT_EQ(warm.stableEnd, cold.stableEnd) << "with: " << trials(warm) << "\nwithout: " << trials(cold);
+          EXPECT_EQ(warm.failingEnd, cold.failingEnd);
+        } else {
+          std::printf("%s, threads %d, hint %.6f: verdicts not monotone over [%.6f, %.6f]; F %.6f with the hint, "
+                      "%.6f without\n", name.c_str(), threads, hint, lowestFailing, highestStable, warm.factor, cold.factor);
+          for (const double f : {warm.factor, cold.factor}) {
+            EXPECT_GE(f, lowestFailing - 0.005);
+            EXPECT_LE(f, highestStable + 0.005);
+          }
+        }
+        if (hint == inside && cold.review.reruns == 0) EXPECT_EQ(warm.runs, 2);
+        EXPECT_LE(warm.runs, cold.runs + 2 * threads + 2);
+      }
+    }
+}

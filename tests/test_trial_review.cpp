@@ -64,6 +64,24 @@ calibration::SearchSettings twoAtOnce() {
 
 }  // namespace
 
+// The same block accelerated at 0.01 m/s² from rest, run for 1 s as drawn: 5 mm travelled, 2.19 mm
+// of it over the last window against 1.56 mm over the one before. Against a failure displacement
+// of 6.5 mm that pace carries it past within one more window: the run goes on, and rule (a)
+// decides at t = √(2 · 0.0065 / 0.01) = 1.140 s, where a search's review would have re-run a
+// trend verdict from the start. Against 8 mm it does not (7.19 mm): rule (b) decides at 1 s.
+TEST(SmallMotion, ASlideItsPaceCarriesPastTheFailureDisplacementRunsOnToIt) {
+  const TrialResult near = judgedOnFrictionlessBase(0, 0.01, 0.0065, false);
+  EXPECT_EQ(near.rule, calibration::VerdictRule::PassedDisplacement) << near.reason;
+  EXPECT_NEAR(near.timeReached, std::sqrt(2 * 0.0065 / 0.01), 0.002);
+  EXPECT_EQ(near.extensions, 1);
+  const TrialResult far = judgedOnFrictionlessBase(0, 0.01, 0.008, false);
+  EXPECT_EQ(far.rule, calibration::VerdictRule::StillMoving) << far.reason;
+  EXPECT_NEAR(far.timeReached, 1.0, 1e-9);
+  EXPECT_EQ(far.extensions, 0);
+  // Within 5 %, as GrowingMotionIsFailureEvenWhenSmall: the block starts on penalty springs.
+  EXPECT_NEAR(far.lastWindowMotion, 0.005 * (1 - 0.75 * 0.75), 0.05 * 0.0021875) << "m: a t²/2 from 0.75 to 1 s";
+}
+
 // A block gliding at a constant 1 cm/s moves 4 cm in 4 s against a failure displacement of 1 m:
 // under 10 % of it, and neither growing nor stopping (Newton's first law: no force, no change). It
 // must be undecided after three extensions, not failure.
@@ -241,4 +259,66 @@ TEST(SearchReview, FirstTwoTrialsRunSideBySide) {
     EXPECT_NEAR(r.factor, critical, 0.005);
     EXPECT_EQ(r.review.reruns, 0);
   }
+}
+
+// A warm search (SearchSettings::hint) narrows to the very bracket of the search without a hint
+// whenever the verdict is monotone in F, whatever the hint: near, far, on either side, or absurd.
+// The cold search is the referee (same grid, same bracket to the last bit). A hint inside the
+// cold search's final bracket costs exactly that bracket's two ends.
+TEST(WarmSearch, GivesTheBracketOfTheColdSearchWhateverTheHint) {
+  int nearCold = 0, nearWarm = 0, farCold = 0, farWarm = 0;
+  for (const int threads : {1, 2, 3})
+    for (const double width : {0.005, 0.001})
+      for (const double critical : {0.37, 0.9999, 1.0, 1.1224, 1.5, 2.718, 7.3}) {
+        FakeVerdict v;
+        v.critical = critical;
+        calibration::SearchSettings s;
+        s.threads = threads;
+        const auto cold = calibration::factorOfSafetyOf(v, width, s);
+        ASSERT_TRUE(cold.found) << cold.message;
+        for (const double hint : {critical, critical + 0.3 * width, critical - 0.7 * width, critical + 0.01,
+                                  critical - 0.01, critical + 0.3, 3.0 * critical, 0.2 * critical, 1e-6, 1e4}) {
+          SCOPED_TRACE("threads " + std::to_string(threads) + " width " + std::to_string(width) + " F " +
+                       std::to_string(critical) + " hint " + std::to_string(hint));
+          s.hint = hint;
+          const auto warm = calibration::factorOfSafetyOf(v, width, s);
+          s.hint.reset();
+          ASSERT_TRUE(warm.found) << warm.message;
+          EXPECT_EQ(warm.stableEnd, cold.stableEnd);
+          EXPECT_EQ(warm.failingEnd, cold.failingEnd);
+          EXPECT_EQ(warm.factor, cold.factor);
+          EXPECT_EQ(warm.review.reruns, 0);
+          EXPECT_EQ(warm.runs, static_cast<int>(warm.trials.size()));
+          if (hint > cold.stableEnd && hint < cold.failingEnd) {
+            EXPECT_EQ(warm.runs, 2);
+            EXPECT_EQ(warm.rounds, threads >= 2 ? 1 : 2);
+          }
+          const bool near = std::abs(hint - critical) <= 0.01;
+          (near ? nearCold : farCold) += cold.runs;
+          (near ? nearWarm : farWarm) += warm.runs;
+        }
+      }
+  std::printf("forward runs without and with hints: %d and %d with hints within 0.01 of F, %d and %d farther\n",
+              nearCold, nearWarm, farCold, farWarm);
+  EXPECT_LT(nearWarm, nearCold / 2);
+}
+
+// A hint among chatter failures (rule (b) at F = 0.70-0.86, true F = 1, as in
+// OneThreadSearchChecksItsFailingEnd) must not let them stand in for the failures the search
+// would have run beyond them: they imply nothing, the review re-runs them, and F is 1 again.
+TEST(WarmSearch, ChatterFailuresNearTheHintImplyNothing) {
+  FakeVerdict v;
+  v.special = [](double f, double length, TrialResult& r) {
+    if (f > 0.70 && f < 0.86 && length == 1) r.stable = false, r.rule = calibration::VerdictRule::StillMoving;
+    return true;
+  };
+  for (const int threads : {1, 2})
+    for (const double hint : {0.78, 0.72, 0.5}) {
+      calibration::SearchSettings s;
+      s.threads = threads;
+      s.hint = hint;
+      const auto r = calibration::factorOfSafetyOf(v, 0.005, s);
+      ASSERT_TRUE(r.found) << r.message << " (threads " << threads << ", hint " << hint << ")";
+      EXPECT_NEAR(r.factor, 1.0, 0.005) << "threads " << threads << ", hint " << hint;
+    }
 }

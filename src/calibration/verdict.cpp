@@ -122,6 +122,7 @@ struct WindowJudgement {
   bool smallMotion = false;  ///< some point still moves, on too little motion to call it failure
   WindowMotion motion;     ///< of the deciding point
   std::string point;       ///< the deciding point
+  double travelled = 0;    ///< the deciding point's largest displacement since t = 0 (m)
 };
 
 /// Each point's net motion over the last window per second at every judgement so far, and its
@@ -157,7 +158,10 @@ void judgeAllWindows(const PointPaths& paths, const std::vector<std::string>& na
     // floor they come.
     const double score = v == WindowVerdict::StillMoving ? (small ? 2 : 4) + mo.last
                                                          : mo.last / std::max(mo.floor, 1e-300) / 1e3;
-    if (score > worstScore) worstScore = score, worst.verdict = small ? WindowVerdict::AtRest : v, worst.motion = mo, worst.point = names[m];
+    if (score > worstScore) {
+      worstScore = score, worst.verdict = small ? WindowVerdict::AtRest : v, worst.motion = mo, worst.point = names[m];
+      worst.travelled = record.largest[offset + m];
+    }
     worst.marginal |= marginal;
     worst.smallMotion |= small;
   }
@@ -334,6 +338,7 @@ TrialResult judgeStability(const model::Scene& scene, const VerdictSettings& set
     if (atEnd) atEnd(sim, r);
     return r;
   };
+  bool ranOn = false;  // a failing slide run on to the failure displacement
   try {
     // Rule (0) is decided the moment a point passes the threshold while the scene settles.
     sim.stopSettlingPast(threshold);
@@ -393,6 +398,16 @@ TrialResult judgeStability(const model::Scene& scene, const VerdictSettings& set
         continue;
       }
       if (!failing && j.smallMotion) return finish(VerdictRule::Undecided);
+      // A slide that its last window's pace, not slowing, carries past the failure displacement
+      // within one more window is run on (as long again, stopping there: rule (a), certain)
+      // rather than called failing on its trend, which a search's review re-runs from the start.
+      if (failing && !ranOn && j.travelled + j.motion.last >= threshold && j.motion.last >= j.motion.previous) {
+        ranOn = true;
+        ++r.extensions;
+        r.extended = true;
+        sim.extendDuration(scene.settings.duration);
+        continue;
+      }
       r.marginal = j.marginal;
       return finish(failing ? VerdictRule::StillMoving
                     : j.verdict == WindowVerdict::SlowingDown ? VerdictRule::SlowingDown

@@ -23,6 +23,9 @@ namespace ddaslope::calibration {
 ///     quarter before (a slide just past failure accelerates: 7/5 of it from rest), and either the
 ///     largest motion since t = 0 is at least 10 % of `failureDisplacement`, or the motion grows
 ///     (net speed over the last window up by 10 % or more at each of two extensions of the run).
+///     A point that its last window's pace, not slowing, carries past `failureDisplacement` within
+///     one more window is not judged on its trend: the run goes on (one extension, stopping at
+///     the threshold), and rule (a) decides it, as a longer run would.
 /// A still-moving motion under 10 % of `failureDisplacement` that neither grows nor stops within
 /// three extensions of the run (each by its duration) is **undecided**: reported as such, never as
 /// failure: a contact chattering at a T-junction moves a little and steadily, and is no failure.
