@@ -29,7 +29,7 @@ std::string loadedPage(const fs::path& html) {
 
 }  // namespace
 
-// A run, a fos, a critical, a back-analysis and a probability folder each give report.html: the
+// A run, a fos, a critical, a back-analysis and a probability folder, a sweep's and a curve's, each give report.html: the
 // answer as the analysis wrote it, its pictures embedded (no file beside the HTML is needed), and,
 // loaded in headless Chromium, every picture decoded (the page's own check sets
 // data-pictures="loaded") with no script error. Chromium is installed by scripts/install-deps.
@@ -49,6 +49,15 @@ TEST(Report, EveryAnalysisFolderOpensInABrowserWithItsPictures) {
       {"critical", "critical " + src + "/cases/planar_failure.json --quiet", "critical cohesion of joint sliding_plane at φ = 30°", 2},
       {"backanalyse", "backanalyse " + src + "/calibration/two_block_slide/job.json --quiet", "friction_angle = ", 0},
       {"probability", "probability " + src + "/calibration/planar_failure/probability_small.json --quiet", "Pf = ", 3},
+      // Hoek & Bray's dry planar failure with its crack searched: F 1.1110 with the crack 6.61 m
+      // behind the crest, x = -18.16 (the case's description); the search's parabola puts it at -18.14.
+      {"crack", "fos " + src + "/cases/planar_failure_crack.json --quiet", "least safe tension crack at x = -18.14 m", 2},
+      {"seismic", "critical " + src + "/cases/planar_failure.json --solve seismic-coefficient --quiet",
+       "Yield seismic coefficient", 0},
+      {"sweep", "fos " + src + "/cases/planar_failure.json --sweep joints.sliding_plane.cohesion=0:50000:3 --quiet",
+       "3 points of joints.sliding_plane.cohesion from 0 to 50000: factor_of_safety from", 1},
+      {"curve", "critical " + src + "/cases/planar_failure.json --joint sliding_plane --curve 20:40:3 --quiet",
+       "3 points of friction_angle_deg from 20 to 40: critical_cohesion_pa from", 1},
   };
   for (const auto& a : analyses) {
     const fs::path dir = root / a.name;

@@ -243,11 +243,13 @@ TEST(StrengthReduction, ABlockThatTopplesWhateverItsStrengthHasNoFactor) {
   std::string err;
   EXPECT_EQ(clitest::runCli("fos " + path + " --quiet --out " + path + ".out", &err), 3) << err;
   EXPECT_NE(err.find("no strength of the reduced joints holds this scene"), std::string::npos) << err;
+  EXPECT_NE(err.find("`ddaslope run " + path + " --at-fos 0.01`"), std::string::npos) << "the user's case in the hint: " << err;
   std::string text;
   EXPECT_EQ(clitest::runCliCapturing("fos " + path + " --quiet --json --out " + path + ".out", &text, &err), 3) << err;
   const nlohmann::json j = nlohmann::json::parse(text);
   EXPECT_TRUE(j["factor_of_safety"].is_null());
   EXPECT_TRUE(j["bracket"][0].is_null() && j["bracket"][1].is_null()) << j["bracket"];  // no answer, no numbers
+  EXPECT_NE(j["message"].get<std::string>().find("`ddaslope run " + path + " --at-fos 0.01`"), std::string::npos);
   std::filesystem::remove_all(path + ".out");
 
   s.b = 2;
@@ -407,7 +409,9 @@ TEST(StrengthReduction, AHintedSearchEndsInTheBracketOfTheSearchWithout) {
             EXPECT_LE(f, highestStable + 0.005);
           }
         }
-        if (hint == inside && cold.review.reruns == 0) EXPECT_EQ(warm.runs, 2);
+        if (hint == inside && cold.review.reruns == 0) {
+          EXPECT_EQ(warm.runs, 2);
+        }
         EXPECT_LE(warm.runs, cold.runs + 2 * threads + 2);
       }
     }

@@ -300,6 +300,13 @@ TEST(TensionCrack, AStudySaysItsCrackStaysPut) {
   EXPECT_EQ(clitest::runCli("probability " + deeper + " --quiet --out " + out, &err), 0) << err;
   EXPECT_NE(err.find("the tension crack is where each run's section.tension_crack.depth puts it"), std::string::npos) << err;
   std::filesystem::remove_all(out);
+  // One that samples something else says the crack stays where its depth puts it.
+  const std::string still = clitest::writeTemp("crack_study_depth_still.json", R"({"case": ")" + depthCase +
+      R"(", "probability": {"samples": 2, "seed": 1, "inputs": [
+      {"path": "joints.sliding_plane.cohesion", "distribution": "lognormal", "mean": 25000, "sd": 3000}]}})");
+  EXPECT_EQ(clitest::runCli("probability " + still + " --quiet --out " + out, &err), 0) << err;
+  EXPECT_NE(err.find("(where section.tension_crack.depth puts it) in every run"), std::string::npos) << err;
+  std::filesystem::remove_all(out);
 }
 
 // The position search alone, on a curve like the slope's (a minimum with a cubic lean, values

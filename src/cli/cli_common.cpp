@@ -368,7 +368,19 @@ void printTrialStatesNote(const std::string& dir, int runs) {
 
 /// Verdict warnings go to stderr, so a --json result on stdout stays clean.
 void warnAboutTrials(const std::string& casePath, const std::string& warning) {
-  if (!warning.empty()) std::fprintf(stderr, "ddaslope: warning: %s: %s\n", casePath.c_str(), warning.c_str());
+  if (!warning.empty())
+    std::fprintf(stderr, "ddaslope: warning: %s: %s\n", casePath.c_str(), withCase(warning, casePath).c_str());
+}
+
+std::string withCase(std::string message, const std::string& casePath) {
+  const std::string hint = "`ddaslope run CASE ", with = "`ddaslope run " + casePath + " ";
+  std::string out;
+  size_t from = 0;
+  for (size_t at = message.find(hint); at != std::string::npos; at = message.find(hint, from)) {
+    out += message.substr(from, at - from) + with;
+    from = at + hint.size();
+  }
+  return out + message.substr(from);
 }
 
 }  // namespace ddaslope::cli

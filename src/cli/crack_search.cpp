@@ -120,14 +120,20 @@ std::string pointCrackText(bool found, bool tied, bool fails, double x, double c
 }
 
 std::string noCrackPositionNote(const model::Scene& scene, const std::string& quantity, bool tied) {
-  char text[360];
+  char text[400];
   std::snprintf(text, sizeof text,
                 tied ? "every crack position in x = [%g, %g] m gave the same %s, so none is least safe: the crack stays at "
-                       "the case's x = %g m (section.tension_crack.x)"
+                       "the case's x = %g m (%s)"
                      : "no crack position in x = [%g, %g] m gave an answer (%s), so none is least safe: the crack stays at "
-                       "the case's x = %g m (section.tension_crack.x)",
-                scene.crackSearch->first, scene.crackSearch->second, quantity.c_str(), scene.tensionCrack->x);
+                       "the case's x = %g m (%s)",
+                scene.crackSearch->first, scene.crackSearch->second, quantity.c_str(), scene.tensionCrack->x,
+                crackPlacement(scene).c_str());
   return text;
+}
+
+std::string crackPlacement(const model::Scene& scene) {
+  return scene.tensionCrack && scene.tensionCrack->placedByDepth ? "where section.tension_crack.depth puts it"
+                                                                  : "section.tension_crack.x";
 }
 
 std::string forwardRunsText(int answerRuns, const std::optional<CrackSearch>& crack) {

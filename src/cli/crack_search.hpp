@@ -73,6 +73,8 @@ std::string pointCrackText(bool found, bool tied, bool fails, double x, double c
 
 /// Why the crack stayed at the case's x: no position in the searched range gave `quantity`.
 std::string noCrackPositionNote(const model::Scene& scene, const std::string& quantity, bool tied);
+/// How the case places its crack, for notes: "section.tension_crack.x", or where its depth puts it.
+std::string crackPlacement(const model::Scene& scene);
 
 /// "N forward runs", and with a crack search "N forward runs (M of them searching the crack's
 /// position)": `answerRuns` are the answer's own, the crack search's are added.

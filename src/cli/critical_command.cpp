@@ -331,7 +331,7 @@ int criticalCommand(const std::string& casePath, const Overrides& o, const Criti
   std::vector<std::string> warnings;
   for (std::string w : {ddaslope::calibration::smallMotionWarning(r.trials, cohesion ? "c" : "φ"), slightBendNote(scene),
                         notchWarning(scene), dtWarning})
-    if (!w.empty()) warnings.push_back(std::move(w));
+    if (!w.empty()) warnings.push_back(withCase(std::move(w), casePath));
   {
     ddaslope::io::JsonRecord j;
     j.set("case", casePath).set("joint", opt.joint).set("solve", opt.solve).set("found", r.found);

@@ -217,13 +217,14 @@ int fosCommand(const std::string& casePath, const Overrides& o, const FosOptions
   const auto log = startProgress("fos", opt.progress, opt.json);
   std::unique_ptr<MechanismPictures> pictures;
   const auto r = factorFor(scene, casePath, opt, ddaslope::io::sinkOf(log.get()), &pictures);
-  log->finish(r.found, r.found ? "F " + std::to_string(r.factor) : r.message);
+  const std::string message = withCase(r.message, casePath);
+  log->finish(r.found, r.found ? "F " + std::to_string(r.factor) : message);
   const std::vector<std::string> drawn =
       r.found ? pictures->write(opt.outDir, casePath, "F", r.stableEnd, r.failingEnd) : std::vector<std::string>{};
   // Said on stderr and kept in fos.json, so that a report carries them.
   std::vector<std::string> warnings;
   for (std::string w : {ddaslope::calibration::smallMotionWarning(r.trials, "F"), slightBendNote(scene), notchWarning(scene), dtWarning})
-    if (!w.empty()) warnings.push_back(std::move(w));
+    if (!w.empty()) warnings.push_back(withCase(std::move(w), casePath));
   {
     ddaslope::io::JsonRecord j;
     // No answer, no number: the bracket and the message say what is known.
@@ -231,7 +232,7 @@ int fosCommand(const std::string& casePath, const Overrides& o, const FosOptions
     j.set("bracket", bracketField(r.found, r.stableEnd, r.failingEnd)).set("width", opt.width);
     // The totals, the crack search's included (its own in tension_crack).
     j.set("forward_runs", totalRuns(r.runs, crack)).set("rounds", r.rounds);
-    j.set("wall_time_s", totalWallTime(r.wallTime, crack)).set("message", r.message);
+    j.set("wall_time_s", totalWallTime(r.wallTime, crack)).set("message", message);
     j.set("settings", settingsLine(scene)).set("trial_start", ddaslope::calibration::name(r.trialStart));
     ddaslope::calibration::appendReview(j, r.review);
     ddaslope::calibration::appendTrials(j, r.trials, "factor");
@@ -247,7 +248,7 @@ int fosCommand(const std::string& casePath, const Overrides& o, const FosOptions
   } else if (r.found) {
     std::printf("factor of safety (strength reduction on %s): %.4f (stable at %.4f, failing at %.4f)\n",
                 opt.joints.empty() ? "all joints" : "the named joints", r.factor, r.stableEnd, r.failingEnd);
-    if (!r.message.empty()) std::printf("  %s\n", r.message.c_str());
+    if (!message.empty()) std::printf("  %s\n", message.c_str());
     if (crack)
       std::printf("%s, the answer's %d in %d rounds of %d, %.2f s wall; %s\n", forwardRunsText(r.runs, crack).c_str(),
                   r.runs, r.rounds, opt.threads, totalWallTime(r.wallTime, crack), settingsLine(scene).c_str());
@@ -268,7 +269,7 @@ int fosCommand(const std::string& casePath, const Overrides& o, const FosOptions
                 crack && crack->result.found ? " and --set section.tension_crack.x at the least safe position" : "");
   } else {
     std::fprintf(stderr, "ddaslope: %s: no factor of safety found after %s: %s\n", casePath.c_str(),
-                 forwardRunsText(r.runs, crack).c_str(), r.message.c_str());
+                 forwardRunsText(r.runs, crack).c_str(), message.c_str());
   }
   for (const auto& w : warnings)
     if (w != dtWarning) warnAboutTrials(casePath, w);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <map>
 #include <fstream>
@@ -111,6 +112,76 @@ struct Analysis {
   std::string answer;
 };
 
+/// Where the answer's tension crack was, for the headline: the least safe position a search found,
+/// or the case's own.
+std::string crackText(const json& r) {
+  if (!r.contains("tension_crack") || !r["tension_crack"].is_object()) return "";
+  const json& t = r["tension_crack"];
+  if (!t.contains("x") || !t["x"].is_number()) return "";
+  char text[160];
+  const double x = t["x"].get<double>();
+  if (!t.contains("position_found")) std::snprintf(text, sizeof text, "; tension crack at x = %.4g m", x);
+  else if (t["position_found"].get<bool>())
+    std::snprintf(text, sizeof text, "; least safe tension crack at x = %.4g m%s", x,
+                  t.value("position_fails", false) ? ", where the slope fails at every value tried" : "");
+  else std::snprintf(text, sizeof text, "; no crack position least safe: the crack at the case's x = %.4g m", x);
+  return text;
+}
+
+/// A sweep's or curve's CSV as the report's result: one object per point (empty fields null), and
+/// a headline of its span.
+Analysis curveOf(const fs::path& file, const std::string& kind) {
+  std::ifstream in(file);
+  std::string line;
+  std::vector<std::string> header;
+  const auto split = [](const std::string& l) {
+    std::vector<std::string> f;
+    std::stringstream ss(l);
+    for (std::string x; std::getline(ss, x, ',');) f.push_back(x);
+    if (!l.empty() && l.back() == ',') f.emplace_back();
+    return f;
+  };
+  if (!std::getline(in, line)) throw InputError(file.string(), "", "expected a CSV header line, found an empty file");
+  header = split(line);
+  json points = json::array();
+  for (int row = 2; std::getline(in, line); ++row) {
+    if (line.empty()) continue;
+    const std::vector<std::string> f = split(line);
+    if (f.size() != header.size())
+      throw InputError(file.string(), "line " + std::to_string(row),
+                       "expected " + std::to_string(header.size()) + " fields, found " + std::to_string(f.size()));
+    json p = json::object();
+    for (size_t i = 0; i < f.size(); ++i) {
+      char* end = nullptr;
+      const double v = std::strtod(f[i].c_str(), &end);
+      p[header[i]] = f[i].empty() ? json() : end && *end == '\0' ? json(v) : json(f[i]);
+    }
+    points.push_back(p);
+  }
+  Analysis a{kind, file.filename().string(), json{{"points", points}}, ""};
+  // The swept value (first column) and the answer (second): their spans, and the points without one.
+  double lo = INFINITY, hi = -INFINITY, vlo = INFINITY, vhi = -INFINITY;
+  int none = 0;
+  for (const json& p : points) {
+    const json& x = p[header[0]];
+    const json& v = header.size() > 1 ? p[header[1]] : json();
+    if (x.is_number()) lo = std::min(lo, x.get<double>()), hi = std::max(hi, x.get<double>());
+    if (v.is_number()) vlo = std::min(vlo, v.get<double>()), vhi = std::max(vhi, v.get<double>());
+    else ++none;
+  }
+  char text[512];
+  if (points.empty()) std::snprintf(text, sizeof text, "no points");
+  else if (vlo > vhi)
+    std::snprintf(text, sizeof text, "%zu points of %s from %.6g to %.6g: none gave %s", points.size(), header[0].c_str(),
+                  lo, hi, header.size() > 1 ? header[1].c_str() : "a value");
+  else
+    std::snprintf(text, sizeof text, "%zu points of %s from %.6g to %.6g: %s from %.6g to %.6g%s", points.size(),
+                  header[0].c_str(), lo, hi, header[1].c_str(), vlo, vhi,
+                  none ? (", " + std::to_string(none) + " without an answer").c_str() : "");
+  a.answer = text;
+  return a;
+}
+
 Analysis identify(const fs::path& dir) {
   Analysis a;
   char text[512];
@@ -123,10 +194,14 @@ Analysis identify(const fs::path& dir) {
                     r.value("forward_runs", 0));
     else
       std::snprintf(text, sizeof text, "no factor of safety found: %s", r.value("message", "").c_str());
-    a.answer = text;
+    a.answer = text + crackText(r);
   } else if (fs::exists(dir / "critical.json")) {
     a = {"Critical strength (critical)", "critical.json", readJson(dir / "critical.json"), ""};
     const json& r = a.result;
+    const std::string solve = r.value("solve", "");
+    if (solve == "seismic-coefficient") a.kind = "Yield seismic coefficient (critical --solve seismic-coefficient)";
+    else if (solve == "support") a.kind = "Support or load that holds the slope (critical --solve support)";
+    else if (solve == "jrc") a.kind = "Critical JRC (critical --solve jrc)";
     // The other strength, held while this one was solved for.
     char held[64] = "";
     if (r.contains("friction_angle_deg")) std::snprintf(held, sizeof held, " at φ = %.4g°", number(r, "friction_angle_deg"));
@@ -144,7 +219,7 @@ Analysis identify(const fs::path& dir) {
                     number(r, "critical"), r.value("unit", "").c_str());
     else
       std::snprintf(text, sizeof text, "no critical value found: %s", r.value("message", "").c_str());
-    a.answer = text;
+    a.answer = text + crackText(r);
   } else if (fs::exists(dir / "result.json")) {
     a = {"Back-analysis (backanalyse)", "result.json", readJson(dir / "result.json"), ""};
     std::string estimate;
@@ -182,10 +257,18 @@ Analysis identify(const fs::path& dir) {
       }
     }
   }
-  if (a.kind.empty())
+  if (a.kind.empty()) {
+    // Sweeps and curves write a CSV of their points and its picture.
+    for (const auto& [file, kind] : std::vector<std::pair<std::string, std::string>>{
+             {"fos_sweep.csv", "Factor of safety over a sweep (fos --sweep)"},
+             {"critical_curve.csv", "Critical strength curve (critical --curve)"},
+             {"support_curve.csv", "Support curve (critical --solve support --curve)"}})
+      if (fs::exists(dir / file)) return curveOf(dir / file, kind);
     throw InputError(dir.string(), "",
                      "expected a folder written by run, fos, critical, backanalyse or probability (summary.json, "
-                     "fos.json, critical.json or result.json), found none");
+                     "fos.json, critical.json, result.json, fos_sweep.csv, critical_curve.csv or support_curve.csv), "
+                     "found none");
+  }
   return a;
 }
 

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <sstream>
 
+#include "crack_search.hpp"
 #include "ddaslope/assembly/water_terms.hpp"
 #include "ddaslope/geometry/polygon.hpp"
 #include "ddaslope/io/ground_motion.hpp"
@@ -253,9 +254,9 @@ std::string fixedCrackNote(const ddaslope::model::Scene& scene, const std::vecto
       return text;
     }
   std::snprintf(text, sizeof text,
-                "the tension crack stays at x = %g m (section.tension_crack.x) in every run: only fos and critical "
-                "search its position over [%g, %g] m",
-                scene.tensionCrack->x, scene.crackSearch->first, scene.crackSearch->second);
+                "the tension crack stays at x = %g m (%s) in every run: only fos and critical search its position over "
+                "[%g, %g] m",
+                scene.tensionCrack->x, ddaslope::cli::crackPlacement(scene).c_str(), scene.crackSearch->first, scene.crackSearch->second);
   return text;
 }
 

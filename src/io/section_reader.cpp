@@ -77,6 +77,7 @@ std::optional<std::pair<double, double>> readTensionCrack(const Reader& r, const
     const double depth = r.numberIn(t.at("depth"), p + ".depth", 0, 1e6, true, false, "a depth > 0 m");
     if (spec.slidingSurface.size() < 2 || spec.ground.size() < 2) r.fail(p + ".depth", "needs the section's ground and sliding surface");
     crack.x = model::crackPositionAtDepth(spec, depth);
+    crack.placedByDepth = true;
     if (!std::isfinite(crack.x))
       r.fail(p + ".depth", "the sliding surface is nowhere this deep below the ground between crown and toe");
   }

@@ -337,6 +337,7 @@ CrackGeometry cutCrack(const SectionSpec& s, const Extent& e, std::vector<Vec2>&
   c.x = t.x;
   c.toe = toe;
   c.waterFraction = t.waterFraction;
+  c.placedByDepth = t.placedByDepth;
   if (!(t.x > crown.x() + c.gap && t.x < toe.x())) {
     std::ostringstream m;
     m << "expected x between the crown (" << crown.x() << " m, plus the crack's width " << c.gap << " m) and the toe ("

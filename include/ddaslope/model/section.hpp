@@ -23,6 +23,7 @@ struct JointSet {
 struct TensionCrack {
   double x = 0;              ///< position (m), between the crown and the toe
   double waterFraction = 0;  ///< water depth in the crack as a fraction of its depth, in [0, 1]
+  bool placedByDepth = false;  ///< x found from section.tension_crack.depth
 };
 
 /// Where a crack was cut: its position, top (on the ground) and bottom (on the sliding surface),
@@ -30,6 +31,7 @@ struct TensionCrack {
 struct CrackGeometry {
   double x = 0, top = 0, bottom = 0, gap = 0;
   double waterFraction = 0;
+  bool placedByDepth = false;  ///< x found from section.tension_crack.depth
   Vec2 toe{0, 0};  ///< where the sliding surface daylights: the crack drains there
   double depth() const { return top - bottom; }
   double waterDepth() const { return waterFraction * depth(); }
