@@ -77,25 +77,3 @@ TEST_P(CalibrationStudy, MeetsItsExpectedResult) {
 
 INSTANTIATE_TEST_SUITE_P(Studies, CalibrationStudy, ::testing::ValuesIn(studies()),
                          [](const auto& info) { return fs::path(info.param).filename().string(); });
-
-// A back-analysis predicts each search's F from its earlier evaluations (FactorHints): a plane
-// through the nearest ones once there are dims + 1, the nearest one's F before. On F linear in
-// the parameters (F = 0.5 + c/100 kPa + φ/50°, as limit equilibrium of a planar slide is in c and
-// nearly in φ) the plane is exact to round-off.
-TEST(FactorHints, PredictsAPlaneExactlyAndTheNearestBeforeThereAreEnough) {
-  io::BackanalysisJob job;
-  job.parameters.resize(2);
-  job.parameters[0].min = 0, job.parameters[0].max = 60000;
-  job.parameters[1].min = 20, job.parameters[1].max = 34;
-  const auto plane = [](const std::vector<double>& x) { return 0.5 + x[0] / 1e5 + x[1] / 50; };
-  calibration::FactorHints hints(job);
-  EXPECT_FALSE(hints.predict(0, {30000, 27}).has_value());
-  hints.record(0, {10000, 22}, plane({10000, 22}));
-  hints.record(0, {50000, 31}, plane({50000, 31}));
-  EXPECT_DOUBLE_EQ(*hints.predict(0, {12000, 23}), plane({10000, 22})) << "two points in two dimensions: the nearest";
-  hints.record(0, {20000, 33}, plane({20000, 33}));
-  hints.record(0, {45000, 21}, plane({45000, 21}));
-  EXPECT_NEAR(*hints.predict(0, {30000, 27}), plane({30000, 27}), 1e-12);
-  EXPECT_NEAR(*hints.predict(0, {59000, 34}), plane({59000, 34}), 1e-12);
-  EXPECT_FALSE(hints.predict(1, {30000, 27}).has_value()) << "another observation has its own record";
-}

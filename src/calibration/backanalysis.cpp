@@ -9,8 +9,6 @@
 #include <sstream>
 #include <thread>
 
-#include <Eigen/Dense>
-
 #include "ddaslope/calibration/minimiser.hpp"
 #include "ddaslope/calibration/strength_search.hpp"
 #include "ddaslope/core/byte_record.hpp"
@@ -114,57 +112,13 @@ model::Scene sceneAt(const io::BackanalysisJob& job, const std::vector<double>& 
   return s;
 }
 
-std::vector<double> FactorHints::unit(const std::vector<double>& x) const {
-  std::vector<double> u(x.size());
-  for (size_t d = 0; d < x.size() && d < job_.parameters.size(); ++d) {
-    const io::ParameterSpec& p = job_.parameters[d];
-    u[d] = p.max > p.min ? (x[d] - p.min) / (p.max - p.min) : 0.0;
-  }
-  return u;
-}
-
-std::optional<double> FactorHints::predict(size_t observation, const std::vector<double>& x) const {
-  const std::vector<double> u = unit(x);
-  std::vector<std::pair<double, const Seen*>> near;
-  for (const Seen& s : seen_) {
-    if (s.observation != observation || s.u.size() != u.size()) continue;
-    double d2 = 0;
-    for (size_t d = 0; d < u.size(); ++d) d2 += (s.u[d] - u[d]) * (s.u[d] - u[d]);
-    near.emplace_back(d2, &s);
-  }
-  if (near.empty()) return std::nullopt;
-  std::sort(near.begin(), near.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-  const double nearest = near.front().second->factor;
-  const size_t dims = u.size();
-  if (near.front().first == 0 || near.size() < dims + 1) return nearest;
-  // F ≈ a + g·(u' − u) over the nearest points: a is the prediction.
-  const size_t m = std::min(near.size(), dims + 2);
-  Eigen::MatrixXd a(m, dims + 1);
-  Eigen::VectorXd b(m);
-  for (size_t i = 0; i < m; ++i) {
-    a(i, 0) = 1;
-    for (size_t d = 0; d < dims; ++d) a(i, d + 1) = near[i].second->u[d] - u[d];
-    b(i) = near[i].second->factor;
-  }
-  const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(a);
-  if (qr.rank() < static_cast<Eigen::Index>(dims + 1)) return nearest;
-  const double f = qr.solve(b)(0);
-  return std::isfinite(f) && f > 0 ? f : nearest;
-}
-
-void FactorHints::record(size_t observation, const std::vector<double>& x, double factor) {
-  seen_.push_back({observation, unit(x), factor});
-}
-
 double misfitAt(const io::BackanalysisJob& job, const std::vector<double>& x, int* runs,
-                const solver::HeldEquilibrium* shared, int searchThreads, std::vector<ObservationFit>* fit,
-                FactorHints* hints) {
-  return misfitOf(job, sceneAt(job, x), runs, shared, searchThreads, fit, hints, x);
+                const solver::HeldEquilibrium* shared, int searchThreads, std::vector<ObservationFit>* fit) {
+  return misfitOf(job, sceneAt(job, x), runs, shared, searchThreads, fit);
 }
 
 double misfitOf(const io::BackanalysisJob& job, const model::Scene& scene, int* runs,
-                const solver::HeldEquilibrium* shared, int searchThreads, std::vector<ObservationFit>* fit,
-                FactorHints* hints, const std::vector<double>& x) {
+                const solver::HeldEquilibrium* shared, int searchThreads, std::vector<ObservationFit>* fit) {
   if (fit) fit->clear();
   double total = 0;
   bool needTrace = false;
@@ -177,8 +131,7 @@ double misfitOf(const io::BackanalysisJob& job, const model::Scene& scene, int* 
     run = io::runScene(scene, options);
     if (runs) ++*runs;
   }
-  for (size_t index = 0; index < job.observations.size(); ++index) {
-    const io::ObservationSpec& o = job.observations[index];
+  for (const auto& o : job.observations) {
     double sum = 0;
     int count = 0;
     ObservationFit met{o.label, NAN, o.target, o.sigma, o.kind == io::ObservationSpec::Kind::Series, true, {}};
@@ -187,9 +140,7 @@ double misfitOf(const io::BackanalysisJob& job, const model::Scene& scene, int* 
       for (const auto& n : o.joints) joints.push_back(jointNamed(scene, n, job.jobPath));
       SearchSettings s;
       s.threads = std::max(1, searchThreads);
-      if (hints && !x.empty()) s.hint = hints->predict(index, x);
       const FactorOfSafetyResult f = factorOfSafety(scene, joints, 0.2 * o.sigma, s);
-      if (hints && !x.empty() && f.found) hints->record(index, x, f.factor);
       if (runs) *runs += f.runs;
       met.simulated = f.found ? f.factor : 0.0;
       met.trials = f.trials;
@@ -313,12 +264,10 @@ BackanalysisResult runBackanalysis(const io::BackanalysisJob& job, TaskFarm* far
     std::snprintf(text, sizeof text, "best misfit %.4g (%d forward runs)", std::min(stageBest, bestSeen), runs.load());
     progress({stage, stageDone, stagePlanned, text, {{"best_misfit", std::min(stageBest, bestSeen)}}});
   };
-  // The optimisers' evaluations, one at a time, start their searches for F from the earlier ones'.
-  FactorHints hints(job);
   const std::function<double(const std::vector<double>&)> f = [&](const std::vector<double>& u) {
     int n = 0;
     std::vector<ObservationFit> fit;
-    const double v = misfitAt(job, physical(job, u), &n, shared, job.threads, &fit, &hints);
+    const double v = misfitAt(job, physical(job, u), &n, shared, job.threads, &fit);
     runs += n;
     if (v < bestSeen) bestSeen = v, r.fit = std::move(fit);  // the optimisers call f one at a time
     evaluated(v);

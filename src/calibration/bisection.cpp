@@ -16,24 +16,15 @@ std::vector<bool> evaluateAll(const std::function<bool(double)>& stableAt, const
 }
 
 BisectionResult narrowBracket(const std::function<bool(double)>& stableAt, double stable, double failing,
-                              double width, int threads, const std::function<std::optional<bool>(double)>& known) {
+                              double width, int threads) {
   BisectionResult r;
   const int k = std::max(1, threads);
   while (std::abs(failing - stable) > width) {
     std::vector<double> trial;
     for (int i = 1; i <= k; ++i) trial.push_back(stable + (failing - stable) * i / (k + 1));
-    std::vector<bool> ok(trial.size());
-    std::vector<double> run;
-    std::vector<size_t> at;
-    for (size_t i = 0; i < trial.size(); ++i) {
-      const std::optional<bool> v = known ? known(trial[i]) : std::nullopt;
-      if (v) ok[i] = *v;
-      else run.push_back(trial[i]), at.push_back(i);
-    }
-    const std::vector<bool> ran = evaluateAll(stableAt, run, k);
-    for (size_t j = 0; j < run.size(); ++j) ok[at[j]] = ran[j];
-    r.runs += static_cast<int>(run.size());
-    r.rounds += run.empty() ? 0 : 1;
+    const std::vector<bool> ok = evaluateAll(stableAt, trial, k);
+    r.runs += k;
+    ++r.rounds;
     // The new bracket lies between the last stable trial and the first failing one.
     double s = stable, f = failing;
     for (int i = 0; i < k; ++i) {

@@ -44,11 +44,6 @@ struct CountedVerdict {
   std::vector<TrialRecord> trials;
   /// Undecided verdicts in a row, as the bracketing loops see them (they run one trial at a time).
   int undecidedInARow = 0;
-  /// A warm search: values the trials already run decide are answered from them (askAll): the
-  /// verdict of a trial at that very value, or one that a trial implies, the verdict being
-  /// monotone with stable values below failing ones (`stableBelow`) or above them.
-  bool inferring = false;
-  bool stableBelow = true;
   bool operator()(double x) {
     ++runs;
     TrialResult r = verdict(x, length);
@@ -57,12 +52,6 @@ struct CountedVerdict {
     trials.push_back({x, r, length > 1});
     if (progress) report(x, r.stable ? "stable" : r.undecided ? "undecided" : "fails");
     return r.stable;
-  }
-  /// The verdict the trials run so far give at x, when inferring (see there).
-  std::optional<TrialResult> known(double x) {
-    if (!inferring) return std::nullopt;
-    const std::lock_guard<std::mutex> lock(mutex);
-    return knownAt(x);
   }
   /// The trials by value: the record does not depend on which thread finished first.
   std::vector<TrialRecord> sortedTrials() {
@@ -73,26 +62,6 @@ struct CountedVerdict {
   }
 
  private:
-  /// The verdict the record gives at x: a first run at x itself, or one implied by a trial on the
-  /// same side (none if such trials disagree about x). Undecided trials imply nothing, nor do
-  /// failures decided on the trend of a motion (rule (b)), which the review may overturn: the
-  /// search runs the values beyond them as it would without a hint. Called with the mutex held.
-  std::optional<TrialResult> knownAt(double x) const {
-    const auto o = [&](double v) { return stableBelow ? v : -v; };
-    bool stable = false, failing = false;
-    for (const TrialRecord& t : trials) {
-      if (t.rerun) continue;
-      if (t.value == x) return t.result;
-      if (t.result.undecided || t.result.rule == VerdictRule::StillMoving) continue;
-      if (t.result.stable && o(t.value) > o(x)) stable = true;
-      if (!t.result.stable && o(t.value) < o(x)) failing = true;
-    }
-    if (stable == failing) return std::nullopt;
-    TrialResult implied;
-    implied.stable = stable;
-    implied.rule = stable ? VerdictRule::AtRest : VerdictRule::PassedDisplacement;
-    return implied;
-  }
   /// The tightest bracket so far (a stable and a failing trial closest together) and the runs a
   /// k-section still needs to narrow it to the width.
   void report(double last, const char* lastVerdict) {
@@ -123,28 +92,6 @@ struct CountedVerdict {
     progress(e);
   }
 };
-
-/// The verdicts at xs: those the trials already run give (CountedVerdict::known), decided for
-/// every value before the others run, `threads` at a time. So which values run does not depend on
-/// which thread finishes first.
-std::vector<bool> askAll(CountedVerdict& v, const std::vector<double>& xs, int threads) {
-  std::vector<bool> out(xs.size());
-  std::vector<double> run;
-  std::vector<size_t> at;
-  for (size_t i = 0; i < xs.size(); ++i) {
-    if (const std::optional<TrialResult> k = v.known(xs[i])) {
-      out[i] = k->stable;
-      v.undecidedInARow = k->undecided ? v.undecidedInARow + 1 : 0;
-    } else {
-      run.push_back(xs[i]), at.push_back(i);
-    }
-  }
-  const std::vector<bool> ran = evaluateAll(std::ref(v), run, threads);
-  for (size_t j = 0; j < run.size(); ++j) out[at[j]] = ran[j];
-  return out;
-}
-
-bool ask(CountedVerdict& v, double x) { return askAll(v, {x}, 1)[0]; }
 
 /// Stage 1 of the equilibrium, computed once for a search whose trials differ only in joint
 /// strengths (it holds every contact, so strengths do not enter it).
@@ -330,73 +277,6 @@ void reviewTrials(Result& r, CountedVerdict& v, bool stableBelow, std::pair<doub
   }
   r.found = false;
   r.message = "the review of the trials did not settle within its rounds (see the trials)";
-}
-
-/// The final bracket [stable end, failing end] that a strength-reduction search to `width` with
-/// these settings narrows to when F is `answer` (every trial below it stable, every other failing);
-/// none if that search would not bracket it.
-std::optional<std::pair<double, double>> bracketFor(double answer, double width, const SearchSettings& s) {
-  SearchSettings plain;
-  plain.threads = s.threads;
-  plain.trialStart = s.trialStart;
-  const FactorOfSafetyResult r = factorOfSafetyOf(
-      [answer](double f, double) {
-        TrialResult t;
-        t.stable = f < answer;
-        t.rule = t.stable ? VerdictRule::AtRest : VerdictRule::PassedDisplacement;
-        return t;
-      },
-      width, plain);
-  if (!r.found) return std::nullopt;
-  return std::make_pair(r.stableEnd, r.failingEnd);
-}
-
-/// Rounds a warm search spends looking beyond a hint's bracket for the other verdict before it
-/// narrows as without a hint: far hints then cost little more than none (GivesTheBracketOfThe-
-/// ColdSearchWhateverTheHint prints the runs).
-constexpr int kGallopRounds = 2;
-
-/// A warm search's first trials (SearchSettings::hint), run with `v` inferring. Returns the
-/// rounds that ran trials.
-int warmStart(CountedVerdict& v, double hint, double width, const SearchSettings& s) {
-  const auto cell = bracketFor(hint, width, s);
-  if (!cell) return 0;
-  const int k = std::max(1, s.threads);
-  int rounds = 0;
-  const auto runRound = [&](const std::vector<double>& xs) {
-    const int before = v.runs;
-    const std::vector<bool> ok = askAll(v, xs, k);
-    if (v.runs > before) rounds += (v.runs - before + k - 1) / k;
-    return ok;
-  };
-  const auto undecided = [&](const std::vector<double>& xs) {
-    const std::lock_guard<std::mutex> lock(v.mutex);
-    for (const TrialRecord& t : v.trials)
-      if (!t.rerun && t.result.undecided && std::find(xs.begin(), xs.end(), t.value) != xs.end()) return true;
-    return false;
-  };
-  const std::vector<double> ends = {cell->first, cell->second};
-  const std::vector<bool> ok = runRound(ends);
-  // Bracketed, or contradicting (failing below stable), or undecided: the search takes it from here.
-  if (ok[0] != ok[1] || undecided(ends)) return rounds;
-  const bool up = ok[0];  // both stable: F lies above the bracket; both failing: below it
-  const double step = cell->second - cell->first;
-  for (int j = 1, round = 0; j <= 40 && round < kGallopRounds; ++round) {
-    std::vector<double> xs;
-    for (int i = 0; i < k && j <= 40; ++i, ++j) {
-      const double h = hint + (up ? 1 : -1) * step * std::ldexp(1.0, j);
-      const auto c = h > 0 ? bracketFor(h, width, s) : std::nullopt;
-      if (!c) {
-        j = 41;
-        break;
-      }
-      xs.push_back(up ? c->second : c->first);
-    }
-    if (xs.empty()) break;
-    const std::vector<bool> at = runRound(xs);
-    if (undecided(xs) || std::find(at.begin(), at.end(), !up) != at.end()) break;
-  }
-  return rounds;
 }
 
 }  // namespace
@@ -702,11 +582,6 @@ FactorOfSafetyResult factorOfSafetyOf(const std::function<TrialResult(double, do
   const auto t0 = std::chrono::steady_clock::now();
   CountedVerdict stableAt{verdict, s, "F", width};
   FactorOfSafetyResult r;
-  int warmRounds = 0;
-  if (s.hint && std::isfinite(*s.hint) && *s.hint > 0 && s.trialStart == TrialStart::Held) {
-    stableAt.inferring = true;
-    warmRounds = warmStart(stableAt, *s.hint, width, s);
-  }
   // Bracket from F = 1 by factors of 1.5 (stable: raise F; failing: lower it).
   double stable = 0, failing = 0, f = 1;
   bool atOne = false;
@@ -714,7 +589,7 @@ FactorOfSafetyResult factorOfSafetyOf(const std::function<TrialResult(double, do
     // F = 1 and 1.5 at once: most slopes stand at F = 1, and then the trial at 1.5, which a
     // search one trial at a time makes next, costs no wall time. (A slope failing at F = 1 spends
     // it: that search goes down.) Trials that start from F = 1's rest must wait for it.
-    const std::vector<bool> first = askAll(stableAt, {1.0, 1.5}, 2);
+    const std::vector<bool> first = evaluateAll(std::ref(stableAt), {1.0, 1.5}, 2);
     atOne = first[0];
     (atOne ? stable : failing) = 1;
     if (atOne) f = 1.5, (first[1] ? stable : failing) = f;
@@ -726,28 +601,23 @@ FactorOfSafetyResult factorOfSafetyOf(const std::function<TrialResult(double, do
     };
     stableAt.undecidedInARow = atOne ? static_cast<int>(undecidedAt(1.5)) : static_cast<int>(undecidedAt(1.0));
   } else {
-    atOne = ask(stableAt, f);
+    atOne = stableAt(f);
     (atOne ? stable : failing) = f;
   }
   for (int k = 0; k < 40 && (stable == 0 || failing == 0) && stableAt.undecidedInARow < 2; ++k) {
     f = atOne ? f * 1.5 : f / 1.5;
-    (ask(stableAt, f) ? stable : failing) = f;
+    (stableAt(f) ? stable : failing) = f;
   }
   if (stable == 0 || failing == 0) {
     r.message = stableAt.undecidedInARow >= 2 ? kUndecidedBracket
                 : stable == 0                 ? kFailsAtEveryFactor
                                               : "stable at every reduction factor tried (up to 1.5^40)";
   } else {
-    const BisectionResult b =
-        narrowBracket(std::ref(stableAt), stable, failing, width, s.threads, [&](double x) -> std::optional<bool> {
-          const std::optional<TrialResult> k = stableAt.known(x);
-          return k ? std::optional<bool>(k->stable) : std::nullopt;
-        });
+    const BisectionResult b = narrowBracket(std::ref(stableAt), stable, failing, width, s.threads);
     copyBracket(b, r);
     r.factor = b.critical;
-    r.rounds = b.rounds + warmRounds;
+    r.rounds = b.rounds;
   }
-  stableAt.inferring = false;  // the review judges the trials run, and re-runs them
   reviewTrials(r, stableAt, true, {0.0, 1e6}, width, s.threads, [&](double stable, double failing) {
     r.stableEnd = stable, r.failingEnd = failing, r.factor = 0.5 * (stable + failing);
   });

@@ -400,7 +400,8 @@ TrialResult judgeStability(const model::Scene& scene, const VerdictSettings& set
       if (!failing && j.smallMotion) return finish(VerdictRule::Undecided);
       // A slide that its last window's pace, not slowing, carries past the failure displacement
       // within one more window is run on (as long again, stopping there: rule (a), certain)
-      // rather than called failing on its trend, which a search's review re-runs from the start.
+      // rather than called failing on its trend, which a search's review re-runs from the start
+      // along the same path. If it stops short, the longer run's windows judge it.
       if (failing && !ranOn && j.travelled + j.motion.last >= threshold && j.motion.last >= j.motion.previous) {
         ranOn = true;
         ++r.extensions;

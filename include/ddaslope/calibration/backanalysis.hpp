@@ -2,7 +2,6 @@
 // Back-analysis: the joint strengths (or any case values) that best explain the observations.
 // Misfit = Σ weight · mean(((simulated − observed)/σ)²) over the observations; a global search
 // then a local polish (NLopt), and for two parameters a misfit map over the box.
-#include <optional>
 #include <string>
 #include <vector>
 
@@ -58,41 +57,15 @@ model::Scene sceneAt(const io::BackanalysisJob& job, const std::vector<double>& 
 /// first equilibrium stage, when the parameters are joint strengths only. `searchThreads`: trial
 /// factors run at once by a factor-of-safety observation's search (1 when the caller already
 /// evaluates several points in parallel, as the misfit map does).
-/// The factors of safety a job's earlier evaluations found, to predict F at new parameters for
-/// the next search (SearchSettings::hint: the answer is the one without a hint, in fewer runs).
-/// The prediction is a plane fitted by least squares through the evaluations nearest in the unit
-/// box of the parameters (dims + 2 of them), or the nearest one's F while there are too few. Not
-/// thread-safe: for a caller evaluating one point at a time.
-class FactorHints {
- public:
-  explicit FactorHints(const io::BackanalysisJob& job) : job_(job) {}
-  /// Predicted F of factor-of-safety observation `observation` at x (physical units).
-  std::optional<double> predict(size_t observation, const std::vector<double>& x) const;
-  void record(size_t observation, const std::vector<double>& x, double factor);
-
- private:
-  std::vector<double> unit(const std::vector<double>& x) const;
-  const io::BackanalysisJob& job_;
-  struct Seen {
-    size_t observation;
-    std::vector<double> u;
-    double factor;
-  };
-  std::vector<Seen> seen_;
-};
-
-/// `fit`: if given, receives how each observation is met. `hints`: if given, predicts each
-/// factor-of-safety search's answer from the earlier evaluations and records this one's.
+/// `fit`: if given, receives how each observation is met.
 double misfitAt(const io::BackanalysisJob& job, const std::vector<double>& x, int* runs = nullptr,
                 const solver::HeldEquilibrium* shared = nullptr, int searchThreads = 1,
-                std::vector<ObservationFit>* fit = nullptr, FactorHints* hints = nullptr);
+                std::vector<ObservationFit>* fit = nullptr);
 
-/// Misfit of a scene already built (misfitAt with sceneAt(job, x) and, say, a Δt changed);
-/// `hints` as misfitAt's, at the parameters `x` the scene was built with.
+/// Misfit of a scene already built (misfitAt with sceneAt(job, x) and, say, a Δt changed).
 double misfitOf(const io::BackanalysisJob& job, const model::Scene& scene, int* runs = nullptr,
                 const solver::HeldEquilibrium* shared = nullptr, int searchThreads = 1,
-                std::vector<ObservationFit>* fit = nullptr, FactorHints* hints = nullptr,
-                const std::vector<double>& x = {});
+                std::vector<ObservationFit>* fit = nullptr);
 
 /// The search, the precision study and the misfit map of a job. Independent evaluations (a
 /// grid global stage, "optimiser.global": "grid", and the map) run on `farm` (null: job.threads

@@ -2,7 +2,6 @@
 // Narrowing a bracket between a stable and a failing trial (bisection, or k-section when
 // several forward runs can be evaluated at once).
 #include <functional>
-#include <optional>
 #include <string>
 #include <vector>
 
@@ -25,12 +24,9 @@ std::vector<bool> evaluateAll(const std::function<bool(double)>& stableAt, const
 
 /// Narrows [stable, failing] (verdicts already known) to `width`: each round evaluates
 /// `threads` equally spaced interior points at once, shrinking the bracket by threads + 1.
-/// The verdict is assumed monotone between the ends. `known`, if given, gives the verdicts known
-/// without a forward run (asked for every value of a round before the round's runs start): they
-/// are not evaluated or counted as runs, nor a round of them alone.
+/// The verdict is assumed monotone between the ends.
 BisectionResult narrowBracket(const std::function<bool(double)>& stableAt, double stable, double failing,
-                              double width, int threads = 1,
-                              const std::function<std::optional<bool>(double)>& known = {});
+                              double width, int threads = 1);
 
 /// Evaluates both ends, then narrows. Exactly one end must be stable.
 BisectionResult bisect(const std::function<bool(double)>& stableAt, double lo, double hi, double width,

@@ -59,15 +59,6 @@ struct SearchSettings {
   /// (stage 1) with its own strengths, as all trials do when F = 1 fails (docs/calibration.md,
   /// "Where a trial starts").
   TrialStart trialStart = TrialStart::Held;
-  /// Strength reduction with held starts: a predicted F (a back-analysis's earlier evaluations).
-  /// The search first runs the ends of the final bracket it would narrow to if F were the hint,
-  /// then, if F lies beyond one end, the far ends of the brackets of F 2, 4, 8, ... bracket widths
-  /// further that way, `threads` at a time for two rounds at most, until a trial gives the other
-  /// verdict; it then brackets and narrows as without a hint,
-  /// taking every verdict the trials run imply (the verdict is monotone in F) without running
-  /// it. So the bracket, and F, are those of the search without a hint whenever the verdicts
-  /// are monotone, in fewer forward runs the closer the hint.
-  std::optional<double> hint;
 };
 
 struct CriticalResult {

@@ -24,8 +24,10 @@ namespace ddaslope::calibration {
 ///     largest motion since t = 0 is at least 10 % of `failureDisplacement`, or the motion grows
 ///     (net speed over the last window up by 10 % or more at each of two extensions of the run).
 ///     A point that its last window's pace, not slowing, carries past `failureDisplacement` within
-///     one more window is not judged on its trend: the run goes on (one extension, stopping at
-///     the threshold), and rule (a) decides it, as a longer run would.
+///     one more window is not judged on its trend: the run goes on (one extension by its
+///     duration, stopping at the threshold). Rule (a) decides it if it gets there; if it does not,
+///     the windows of the longer run do, as after any extension. The path is the one a longer
+///     run follows, so the verdict is the one a search's re-run of a trend failure would reach.
 /// A still-moving motion under 10 % of `failureDisplacement` that neither grows nor stops within
 /// three extensions of the run (each by its duration) is **undecided**: reported as such, never as
 /// failure: a contact chattering at a T-junction moves a little and steadily, and is no failure.
@@ -94,7 +96,7 @@ struct TrialResult {
   double timeReached = 0;          ///< simulated time when the trial stopped (s)
   int steps = 0;                   ///< accepted steps after t = 0
   int equilibriumSteps = 0;        ///< steps before t = 0: the equilibrium's static and settling steps
-  bool extended = false;           ///< run longer than its duration (a marginal verdict or a small motion)
+  bool extended = false;           ///< run longer than its duration (a marginal verdict, a small motion, or a slide run on)
   int extensions = 0;              ///< how many times, each by the duration
   bool marginal = false;           ///< still marginal after the extension: decided by the 90 % rule
   bool converged = true;           ///< false if the run hit non-convergence (counted as failing)
