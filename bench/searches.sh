@@ -15,7 +15,7 @@ threads=${2:-2}
 [ $# -ge 2 ] && shift 2 || shift $#
 here=$(cd "$(dirname "$0")/.." && pwd)
 echo "case,factor_of_safety,forward_runs,steps,equilibrium_steps,early_rest_trials,wall_s"
-for case in vajont goodman_bray_toppling toppling_slope stepped_toppling bilinear_slab chair_slide planar_failure; do
+for case in vajont jiufengershan goodman_bray_toppling toppling_slope stepped_toppling bilinear_slab chair_slide planar_failure; do
   out=$(mktemp)
   start=$(date +%s.%N)
   "$build/ddaslope" fos "$here/cases/$case.json" --quiet --json --threads "$threads" "$@" > "$out" || true
