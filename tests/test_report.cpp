@@ -2,6 +2,8 @@
 // real browser (Debian's Chromium, headless): every picture decodes and no script error occurs.
 #include <gtest/gtest.h>
 
+#include <chrono>
+
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -53,7 +55,9 @@ TEST(Report, EveryAnalysisFolderOpensInABrowserWithItsPictures) {
       // behind the crest, x = -18.16 (the case's description); the search's parabola puts it at -18.14.
       {"crack", "fos " + src + "/cases/planar_failure_crack.json --quiet", "least safe tension crack at x = -18.14 m", 2},
       {"seismic", "critical " + src + "/cases/planar_failure.json --solve seismic-coefficient --quiet",
-       "Yield seismic coefficient", 0},
+       "yield seismic coefficient k_y along -x = ", 0},
+      {"support", "critical " + src + "/cases/planar_failure_anchor.json --solve support --support anchor --target-fos 1.5 --quiet",
+       "anchor force of anchor at F = 1.5 = ", 0},
       {"sweep", "fos " + src + "/cases/planar_failure.json --sweep joints.sliding_plane.cohesion=0:50000:3 --quiet",
        "3 points of joints.sliding_plane.cohesion from 0 to 50000: factor_of_safety from", 1},
       {"curve", "critical " + src + "/cases/planar_failure.json --joint sliding_plane --curve 20:40:3 --quiet",
@@ -64,8 +68,8 @@ TEST(Report, EveryAnalysisFolderOpensInABrowserWithItsPictures) {
     clitest::captureCli(a.command + " --out " + dir.string(), &err);
     const std::string printed = clitest::captureCli("report " + dir.string(), &err);
     EXPECT_NE(printed.find(a.answer), std::string::npos) << a.name << ": " << printed;
-    EXPECT_NE(printed.find("(" + std::to_string(a.pictures) + " pictures embedded)"), std::string::npos)
-        << a.name << ": " << printed;
+    const std::string embedded = std::to_string(a.pictures) + (a.pictures == 1 ? " picture embedded" : " pictures embedded");
+    EXPECT_NE(printed.find(embedded), std::string::npos) << a.name << ": " << printed;
     const fs::path html = dir / "report.html";
     const std::string text = slurp(html);
     EXPECT_NE(text.find("<p class=\"answer\">"), std::string::npos) << a.name;
@@ -78,6 +82,30 @@ TEST(Report, EveryAnalysisFolderOpensInABrowserWithItsPictures) {
   EXPECT_NE(err.find("expected a folder written by run, fos, critical, backanalyse or probability"), std::string::npos)
       << err;
   EXPECT_EQ(clitest::runCli("report " + (root / "nothing").string(), &err), 2);
+
+  // A folder two commands wrote into: the newer analysis is reported, with its own picture, and
+  // the older result named as left out.
+  const fs::path both = root / "both";
+  clitest::captureCli("fos " + src + "/cases/planar_failure.json --quiet --out " + both.string(), &err);
+  fs::last_write_time(both / "fos.json", fs::last_write_time(both / "fos.json") - std::chrono::hours(1));
+  clitest::captureCli("fos " + src + "/cases/planar_failure.json --sweep joints.sliding_plane.cohesion=0:50000:3 --quiet --out " +
+                          both.string(), &err);
+  std::string printed = clitest::captureCli("report " + both.string(), &err);
+  EXPECT_NE(printed.find("Factor of safety over a sweep"), std::string::npos) << printed;
+  EXPECT_NE(printed.find("the folder also holds fos.json (older, not in this report"), std::string::npos) << printed;
+  EXPECT_NE(printed.find("(1 picture embedded)"), std::string::npos) << printed;
+  // A cut-off CSV (its header alone) and one whose swept values are not numbers are refused.
+  std::string header = slurp(both / "fos_sweep.csv");
+  header.resize(header.find('\n') + 1);
+  fs::create_directories(root / "cut");
+  std::ofstream(root / "cut" / "fos_sweep.csv") << header;
+  EXPECT_EQ(clitest::runCli("report " + (root / "cut").string(), &err), 2);
+  EXPECT_NE(err.find("fos_sweep.csv: expected a row per point (at least 2), found 0"), std::string::npos) << err;
+  fs::create_directories(root / "words");
+  std::ofstream(root / "words" / "support_curve.csv") << "x,y\nfoo,bar\nbaz,1\n";
+  EXPECT_EQ(clitest::runCli("report " + (root / "words").string(), &err), 2);
+  EXPECT_NE(err.find("support_curve.csv: line 2, x: expected the value swept (a number), found \"foo\""), std::string::npos)
+      << err;
   fs::remove_all(root);
 }
 

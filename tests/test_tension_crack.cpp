@@ -501,11 +501,13 @@ TEST(TensionCrack, EverySolveRecordsAFixedCrack) {
     std::ifstream written(out + "/critical.json");
     ASSERT_TRUE(written.good()) << args;
     EXPECT_EQ(nlohmann::json::parse(written), r) << args;
-    // ... which `report` turns into its page, answer and bracket in the headline.
+    // ... which `report` turns into its page: the answer, its bracket and the crack it was found
+    // with in the headline, under the solve's own title.
     std::string text;
     EXPECT_EQ(clitest::runCliCapturing("report " + out, &text, &err), 0) << args << ": " << err;
-    EXPECT_NE(text.find("critical " + r["solve"].get<std::string>()), std::string::npos) << text;
+    EXPECT_NE(text.find("(critical --solve " + r["solve"].get<std::string>() + ")"), std::string::npos) << text;
     EXPECT_NE(text.find("failing at"), std::string::npos) << text;
+    EXPECT_NE(text.find("; tension crack at x = -20 m"), std::string::npos) << text;
   }
   std::filesystem::remove_all(out);
 }

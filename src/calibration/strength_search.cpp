@@ -142,11 +142,12 @@ constexpr const char* kUndecidedBracket =
 
 /// Why strength reduction found no F: at 1.5^-40 every reduced joint has 1.1e7 times its cohesion,
 /// tensile strength and tan φ, so what still moves is not held by their strength.
-constexpr const char* kFailsAtEveryFactor =
-    "fails at every reduction factor tried, down to 1.5^-40 (c, tensile strength and tan φ multiplied by "
-    "1.1e7): no strength of the reduced joints holds this scene. Something their strength does not resist moves "
-    "it: a block that topples or lifts off joints with no tensile strength to multiply, or one moving on joints "
-    "not reduced; see the mechanism with `ddaslope run CASE --at-fos 0.01`";
+std::string failsAtEveryFactor(const std::string& caseLabel) {
+  return "fails at every reduction factor tried, down to 1.5^-40 (c, tensile strength and tan φ multiplied by "
+         "1.1e7): no strength of the reduced joints holds this scene. Something their strength does not resist moves "
+         "it: a block that topples or lifts off joints with no tensile strength to multiply, or one moving on joints "
+         "not reduced; see the mechanism with `ddaslope run " + caseLabel + " --at-fos 0.01`";
+}
 
 /// The verdict in force at each value tried (a re-run's replaces the first run's), by value.
 std::map<double, TrialResult> verdictsByValue(const std::vector<TrialRecord>& trials) {
@@ -610,7 +611,7 @@ FactorOfSafetyResult factorOfSafetyOf(const std::function<TrialResult(double, do
   }
   if (stable == 0 || failing == 0) {
     r.message = stableAt.undecidedInARow >= 2 ? kUndecidedBracket
-                : stable == 0                 ? kFailsAtEveryFactor
+                : stable == 0                 ? failsAtEveryFactor(s.caseLabel)
                                               : "stable at every reduction factor tried (up to 1.5^40)";
   } else {
     const BisectionResult b = narrowBracket(std::ref(stableAt), stable, failing, width, s.threads);

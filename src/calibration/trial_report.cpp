@@ -44,7 +44,8 @@ std::string shortNumber(double v) {
 }
 }  // namespace
 
-std::string smallMotionWarning(const std::vector<TrialRecord>& trials, const std::string& valueLabel) {
+std::string smallMotionWarning(const std::vector<TrialRecord>& trials, const std::string& valueLabel,
+                               const std::string& caseLabel) {
   int n = 0;
   const TrialRecord* least = nullptr;
   for (const TrialRecord& t : trials)
@@ -59,8 +60,8 @@ std::string smallMotionWarning(const std::vector<TrialRecord>& trials, const std
     << " moved " << least->result.maxDisplacement << " m of " << least->result.failureDisplacement
     << " m; rule: " << name(least->result.rule) << "). Such a verdict rests on the trend of the motion, not its "
     << "size: check it with "
-    << (valueLabel == "F" ? "`ddaslope run CASE --at-fos " + shortNumber(least->value) + "`"
-                          : "`ddaslope run CASE --set ...` at that value")
+    << (valueLabel == "F" ? "`ddaslope run " + caseLabel + " --at-fos " + shortNumber(least->value) + "`"
+                          : "`ddaslope run " + caseLabel + " --set ...` at that value")
     << " (history.png), or lengthen analysis.duration";
   return m.str();
 }

@@ -369,18 +369,16 @@ void printTrialStatesNote(const std::string& dir, int runs) {
 /// Verdict warnings go to stderr, so a --json result on stdout stays clean.
 void warnAboutTrials(const std::string& casePath, const std::string& warning) {
   if (!warning.empty())
-    std::fprintf(stderr, "ddaslope: warning: %s: %s\n", casePath.c_str(), withCase(warning, casePath).c_str());
+    std::fprintf(stderr, "ddaslope: warning: %s: %s\n", casePath.c_str(), warning.c_str());
 }
 
-std::string withCase(std::string message, const std::string& casePath) {
-  const std::string hint = "`ddaslope run CASE ", with = "`ddaslope run " + casePath + " ";
-  std::string out;
-  size_t from = 0;
-  for (size_t at = message.find(hint); at != std::string::npos; at = message.find(hint, from)) {
-    out += message.substr(from, at - from) + with;
-    from = at + hint.size();
-  }
-  return out + message.substr(from);
+std::string shellWord(const std::string& text) {
+  if (!text.empty() && text.find_first_not_of("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789_-./=:,+@%") ==
+                           std::string::npos)
+    return text;
+  std::string quoted = "'";
+  for (char c : text) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return quoted + "'";
 }
 
 }  // namespace ddaslope::cli

@@ -117,10 +117,9 @@ std::unique_ptr<ddaslope::io::ProgressLog> startProgress(const std::string& comm
 
 /// Where a search's --vtk went (text output).
 void printTrialStatesNote(const std::string& dir, int runs);
-/// Verdict warnings go to stderr, so a --json result on stdout stays clean (with the case's path
-/// in their hints, withCase).
+/// Verdict warnings go to stderr, so a --json result on stdout stays clean.
 void warnAboutTrials(const std::string& casePath, const std::string& warning);
-/// A library message's hint `ddaslope run CASE ...` with the user's case path for CASE.
-std::string withCase(std::string message, const std::string& casePath);
+/// `text` as one word of a shell command (quoted if it needs it): a case path in a hint.
+std::string shellWord(const std::string& text);
 
 }  // namespace ddaslope::cli

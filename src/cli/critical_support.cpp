@@ -59,6 +59,7 @@ int supportCurve(const std::string& casePath, const Overrides& o, const ddaslope
   ddaslope::io::PlotSeries series{"F (" + opt.support + ")", {}, {}, true};
   cal::SearchSettings s;
   s.threads = opt.threads;
+  s.caseLabel = shellWord(casePath);
   int runs = 0;
   bool all = true;
   std::vector<double> values, factors, crackXs, noAnswer;  // N/m, F (null: no answer), m
@@ -77,6 +78,7 @@ int supportCurve(const std::string& casePath, const Overrides& o, const ddaslope
       crack = leastSafeCrackOnThisThread(scene, false, 1e-4, read, [&](const ddaslope::model::Scene& at) {
         cal::SearchSettings one;
         one.threads = 1;
+        one.caseLabel = shellWord(casePath);
         const cal::FactorOfSafetyResult r = cal::factorOfSafety(at, {}, 1e-4, one);
         return crackValueOf(r);
       }, crackRuns);
@@ -223,7 +225,7 @@ int supportCommand(const std::string& casePath, const Overrides& o, ddaslope::mo
                    casePath.c_str(), b.id.c_str(), b.stiffness, b.stiffness * failure / 1e3, failure);
     }
   }
-  warnAboutTrials(casePath, cal::smallMotionWarning(r.trials, "support"));
+  warnAboutTrials(casePath, cal::smallMotionWarning(r.trials, "support", shellWord(casePath)));
   return r.found ? kExitOk : kExitNonConvergence;
 }
 

@@ -33,6 +33,7 @@ ddaslope::calibration::FactorOfSafetyResult factorFor(const ddaslope::model::Sce
   s.threads = opt.threads;
   s.progress = std::move(progress);
   s.trialStart = trialStartOf(opt.trialStart);
+  s.caseLabel = shellWord(casePath);
   recordTrialStates(s, opt.vtkDir, scene);
   if (pictures) *pictures = std::make_unique<MechanismPictures>(s, scene);
   return ddaslope::calibration::factorOfSafety(scene, joints, opt.width, s);
@@ -217,14 +218,14 @@ int fosCommand(const std::string& casePath, const Overrides& o, const FosOptions
   const auto log = startProgress("fos", opt.progress, opt.json);
   std::unique_ptr<MechanismPictures> pictures;
   const auto r = factorFor(scene, casePath, opt, ddaslope::io::sinkOf(log.get()), &pictures);
-  const std::string message = withCase(r.message, casePath);
+  const std::string& message = r.message;
   log->finish(r.found, r.found ? "F " + std::to_string(r.factor) : message);
   const std::vector<std::string> drawn =
       r.found ? pictures->write(opt.outDir, casePath, "F", r.stableEnd, r.failingEnd) : std::vector<std::string>{};
   // Said on stderr and kept in fos.json, so that a report carries them.
   std::vector<std::string> warnings;
-  for (std::string w : {ddaslope::calibration::smallMotionWarning(r.trials, "F"), slightBendNote(scene), notchWarning(scene), dtWarning})
-    if (!w.empty()) warnings.push_back(withCase(std::move(w), casePath));
+  for (std::string w : {ddaslope::calibration::smallMotionWarning(r.trials, "F", shellWord(casePath)), slightBendNote(scene), notchWarning(scene), dtWarning})
+    if (!w.empty()) warnings.push_back(std::move(w));
   {
     ddaslope::io::JsonRecord j;
     // No answer, no number: the bracket and the message say what is known.

@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <map>
+#include <optional>
 #include <fstream>
 #include <sstream>
 #include <vector>
@@ -110,6 +111,8 @@ struct Analysis {
   std::string kind, file;
   json result;
   std::string answer;
+  std::vector<std::string> columns;  ///< a sweep's or curve's: its points' columns, in the CSV's order
+  std::string note;                  ///< other results in the folder, not reported
 };
 
 /// Where the answer's tension crack was, for the headline: the least safe position a search found,
@@ -120,7 +123,7 @@ std::string crackText(const json& r) {
   if (!t.contains("x") || !t["x"].is_number()) return "";
   char text[160];
   const double x = t["x"].get<double>();
-  if (!t.contains("position_found")) std::snprintf(text, sizeof text, "; tension crack at x = %.4g m", x);
+  if (!t.contains("position_found") || !t["position_found"].is_boolean()) std::snprintf(text, sizeof text, "; tension crack at x = %.4g m", x);
   else if (t["position_found"].get<bool>())
     std::snprintf(text, sizeof text, "; least safe tension crack at x = %.4g m%s", x,
                   t.value("position_fails", false) ? ", where the slope fails at every value tried" : "");
@@ -141,10 +144,15 @@ Analysis curveOf(const fs::path& file, const std::string& kind) {
     if (!l.empty() && l.back() == ',') f.emplace_back();
     return f;
   };
-  if (!std::getline(in, line)) throw InputError(file.string(), "", "expected a CSV header line, found an empty file");
+  const auto next = [&] {
+    if (!std::getline(in, line)) return false;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    return true;
+  };
+  if (!next() || line.empty()) throw InputError(file.string(), "line 1", "expected the CSV's header, found an empty line");
   header = split(line);
   json points = json::array();
-  for (int row = 2; std::getline(in, line); ++row) {
+  for (int row = 2; next(); ++row) {
     if (line.empty()) continue;
     const std::vector<std::string> f = split(line);
     if (f.size() != header.size())
@@ -156,9 +164,16 @@ Analysis curveOf(const fs::path& file, const std::string& kind) {
       const double v = std::strtod(f[i].c_str(), &end);
       p[header[i]] = f[i].empty() ? json() : end && *end == '\0' ? json(v) : json(f[i]);
     }
+    if (!p[header[0]].is_number())
+      throw InputError(file.string(), "line " + std::to_string(row) + ", " + header[0],
+                       "expected the value swept (a number), found \"" + f[0] + "\"");
     points.push_back(p);
   }
-  Analysis a{kind, file.filename().string(), json{{"points", points}}, ""};
+  // ddaslope writes at least two points: fewer is a cut-off file.
+  if (points.size() < 2)
+    throw InputError(file.string(), "", "expected a row per point (at least 2), found " + std::to_string(points.size()) +
+                                            ": a cut-off file; run the sweep or curve again");
+  Analysis a{kind, file.filename().string(), json{{"points", points}}, "", header, ""};
   // The swept value (first column) and the answer (second): their spans, and the points without one.
   double lo = INFINITY, hi = -INFINITY, vlo = INFINITY, vhi = -INFINITY;
   int none = 0;
@@ -170,8 +185,7 @@ Analysis curveOf(const fs::path& file, const std::string& kind) {
     else ++none;
   }
   char text[512];
-  if (points.empty()) std::snprintf(text, sizeof text, "no points");
-  else if (vlo > vhi)
+  if (vlo > vhi)
     std::snprintf(text, sizeof text, "%zu points of %s from %.6g to %.6g: none gave %s", points.size(), header[0].c_str(),
                   lo, hi, header.size() > 1 ? header[1].c_str() : "a value");
   else
@@ -182,11 +196,49 @@ Analysis curveOf(const fs::path& file, const std::string& kind) {
   return a;
 }
 
+/// The sweep or curve CSV in the folder, if it was written after every single result there (a
+/// folder that several commands wrote into): the newest analysis is the one reported.
+std::optional<std::pair<std::string, std::string>> newerCurve(const fs::path& dir) {
+  static const std::vector<std::pair<std::string, std::string>> curves = {
+      {"fos_sweep.csv", "Factor of safety over a sweep (fos --sweep)"},
+      {"critical_curve.csv", "Critical strength curve (critical --curve)"},
+      {"support_curve.csv", "Support curve (critical --solve support --curve)"}};
+  std::optional<std::pair<std::string, std::string>> newest;
+  fs::file_time_type when{};
+  for (const auto& c : curves)
+    if (fs::exists(dir / c.first) && (!newest || fs::last_write_time(dir / c.first) > when))
+      newest = c, when = fs::last_write_time(dir / c.first);
+  if (!newest) return std::nullopt;
+  for (const char* single : {"fos.json", "critical.json", "result.json", "summary.json"})
+    if (fs::exists(dir / single) && fs::last_write_time(dir / single) > when) return std::nullopt;
+  return newest;
+}
+
+/// Results in the folder other than `reported` (several commands wrote into it).
+std::string otherResults(const fs::path& dir, const std::string& reported) {
+  std::string others;
+  for (const char* f : {"fos.json", "critical.json", "result.json", "summary.json", "fos_sweep.csv", "critical_curve.csv",
+                        "support_curve.csv"})
+    if (f != reported && fs::exists(dir / f)) others += std::string(others.empty() ? "" : ", ") + f;
+  return others.empty() ? "" : "the folder also holds " + others + " (older, not in this report: give each analysis a "
+                                                                   "folder of its own with --out)";
+}
+
+Analysis identifyOne(const fs::path& dir);
+
 Analysis identify(const fs::path& dir) {
+  Analysis a;
+  if (const auto curve = newerCurve(dir)) a = curveOf(dir / curve->first, curve->second);
+  else a = identifyOne(dir);
+  a.note = otherResults(dir, a.file);
+  return a;
+}
+
+Analysis identifyOne(const fs::path& dir) {
   Analysis a;
   char text[512];
   if (fs::exists(dir / "fos.json")) {
-    a = {"Factor of safety (fos)", "fos.json", readJson(dir / "fos.json"), ""};
+    a = {"Factor of safety (fos)", "fos.json", readJson(dir / "fos.json"), "", {}, ""};
     const json& r = a.result;
     if (r.value("found", false))
       std::snprintf(text, sizeof text, "F = %.4f: stable at %.4f, failing at %.4f (%d forward runs)",
@@ -196,11 +248,11 @@ Analysis identify(const fs::path& dir) {
       std::snprintf(text, sizeof text, "no factor of safety found: %s", r.value("message", "").c_str());
     a.answer = text + crackText(r);
   } else if (fs::exists(dir / "critical.json")) {
-    a = {"Critical strength (critical)", "critical.json", readJson(dir / "critical.json"), ""};
+    a = {"Critical strength (critical)", "critical.json", readJson(dir / "critical.json"), "", {}, ""};
     const json& r = a.result;
     const std::string solve = r.value("solve", "");
     if (solve == "seismic-coefficient") a.kind = "Yield seismic coefficient (critical --solve seismic-coefficient)";
-    else if (solve == "support") a.kind = "Support or load that holds the slope (critical --solve support)";
+    else if (solve == "support") a.kind = "Support or load for a factor of safety (critical --solve support)";
     else if (solve == "jrc") a.kind = "Critical JRC (critical --solve jrc)";
     // The other strength, held while this one was solved for.
     char held[64] = "";
@@ -209,19 +261,28 @@ Analysis identify(const fs::path& dir) {
     // Seismic coefficients and supports belong to the slope, not to one joint.
     const std::string joint = r.value("joint", "");
     const std::string of = joint.empty() ? "" : " of joint " + joint;
+    // A support's quantity and the F it holds the slope at; a seismic coefficient's direction.
+    std::string what = "critical " + solve + of + held;
+    if (solve == "support" && r.contains("support") && r["support"].is_string()) {
+      char at[96] = "";
+      if (r.contains("target_factor_of_safety") && r["target_factor_of_safety"].is_number())
+        std::snprintf(at, sizeof at, " at F = %.4g", number(r, "target_factor_of_safety"));
+      what = r.value("quantity", std::string("size")) + " of " + r["support"].get<std::string>() + at;
+    }
+    if (solve == "seismic-coefficient" && r.contains("direction") && r["direction"].is_string())
+      what = "yield seismic coefficient k_y along " + r["direction"].get<std::string>();
     if (r.value("found", false) && r.contains("bracket") && r["bracket"].size() == 2 && r["bracket"][0].is_number() &&
         r["bracket"][1].is_number())
-      std::snprintf(text, sizeof text, "critical %s%s%s = %.6g %s: failing at %.6g, stable at %.6g",
-                    r.value("solve", "").c_str(), of.c_str(), held, number(r, "critical"), r.value("unit", "").c_str(),
-                    r["bracket"][0].get<double>(), r["bracket"][1].get<double>());
+      std::snprintf(text, sizeof text, "%s = %.6g %s: failing at %.6g, stable at %.6g", what.c_str(),
+                    number(r, "critical"), r.value("unit", "").c_str(), r["bracket"][0].get<double>(),
+                    r["bracket"][1].get<double>());
     else if (r.value("found", false))
-      std::snprintf(text, sizeof text, "critical %s%s%s = %.6g %s", r.value("solve", "").c_str(), of.c_str(), held,
-                    number(r, "critical"), r.value("unit", "").c_str());
+      std::snprintf(text, sizeof text, "%s = %.6g %s", what.c_str(), number(r, "critical"), r.value("unit", "").c_str());
     else
       std::snprintf(text, sizeof text, "no critical value found: %s", r.value("message", "").c_str());
     a.answer = text + crackText(r);
   } else if (fs::exists(dir / "result.json")) {
-    a = {"Back-analysis (backanalyse)", "result.json", readJson(dir / "result.json"), ""};
+    a = {"Back-analysis (backanalyse)", "result.json", readJson(dir / "result.json"), "", {}, ""};
     std::string estimate;
     if (a.result.contains("estimate"))
       for (const auto& [k, v] : a.result["estimate"].items()) estimate += k + " = " + scalar(v) + ", ";
@@ -230,7 +291,7 @@ Analysis identify(const fs::path& dir) {
   } else if (fs::exists(dir / "summary.json")) {
     json r = readJson(dir / "summary.json");
     if (r.contains("probability_of_failure")) {
-      a = {"Probability of failure (probability)", "summary.json", r, ""};
+      a = {"Probability of failure (probability)", "summary.json", r, "", {}, ""};
       // A bound or β the summary leaves null (no failing sample; Pf of 0 or 1) is said in words.
       const auto shown = [](const json& v, const char* none) {
         if (!v.is_number()) return std::string(none);
@@ -245,7 +306,7 @@ Analysis identify(const fs::path& dir) {
                     shown(r.value("reliability_index", json()), pf == 0 ? "unbounded (no sample fails)" : "-∞ (every sample fails)").c_str());
       a.answer = text;
     } else if (r.contains("steps")) {
-      a = {"Forward run (run)", "summary.json", r, ""};
+      a = {"Forward run (run)", "summary.json", r, "", {}, ""};
       std::snprintf(text, sizeof text, "%s: %d steps to t = %.4g s", r.value("status", "").c_str(),
                     r.value("steps", 0), number(r, "time"));
       a.answer = text;
@@ -258,12 +319,6 @@ Analysis identify(const fs::path& dir) {
     }
   }
   if (a.kind.empty()) {
-    // Sweeps and curves write a CSV of their points and its picture.
-    for (const auto& [file, kind] : std::vector<std::pair<std::string, std::string>>{
-             {"fos_sweep.csv", "Factor of safety over a sweep (fos --sweep)"},
-             {"critical_curve.csv", "Critical strength curve (critical --curve)"},
-             {"support_curve.csv", "Support curve (critical --solve support --curve)"}})
-      if (fs::exists(dir / file)) return curveOf(dir / file, kind);
     throw InputError(dir.string(), "",
                      "expected a folder written by run, fos, critical, backanalyse or probability (summary.json, "
                      "fos.json, critical.json, result.json, fos_sweep.csv, critical_curve.csv or support_curve.csv), "
@@ -272,11 +327,19 @@ Analysis identify(const fs::path& dir) {
   return a;
 }
 
-/// The pictures of the folder, the answer's first: mechanism, then snapshots, then the rest.
-std::vector<fs::path> pictures(const fs::path& dir) {
+/// The pictures of the analysis reported (`file`), the answer's first: mechanism, then snapshots,
+/// then the rest. A sweep's or curve's picture belongs to it alone.
+std::vector<fs::path> pictures(const fs::path& dir, const std::string& file) {
+  static const std::vector<std::string> curves = {"fos_sweep.png", "critical_curve.png", "support_curve.png"};
+  const std::string own = fs::path(file).replace_extension(".png").string();
+  const bool curve = std::find(curves.begin(), curves.end(), own) != curves.end();
   std::vector<fs::path> png;
-  for (const auto& e : fs::directory_iterator(dir))
-    if (e.is_regular_file() && e.path().extension() == ".png") png.push_back(e.path());
+  for (const auto& e : fs::directory_iterator(dir)) {
+    const std::string name = e.path().filename().string();
+    const bool ofACurve = std::find(curves.begin(), curves.end(), name) != curves.end();
+    if (e.is_regular_file() && e.path().extension() == ".png" && (curve ? name == own : !ofACurve))
+      png.push_back(e.path());
+  }
   const auto rank = [](const fs::path& p) {
     const std::string n = p.filename().string();
     return n.rfind("mechanism", 0) == 0 ? 0 : n.rfind("snapshot", 0) == 0 ? 1 : 2;
@@ -393,6 +456,7 @@ int reportCommand(const std::string& dirText, const std::string& outFile) {
   h << "<h1>" << escape(title) << "</h1>\n";
   if (r.contains("description")) h << "<p>" << escape(r["description"].get<std::string>()) << "</p>\n";
   h << "<p class=\"answer\">" << escape(a.answer) << "</p>\n";
+  if (!a.note.empty()) h << "<p class=\"warnings\">" << escape(a.note) << "</p>\n";
   if (r.contains("message") && r["message"].is_string() && !r["message"].get<std::string>().empty())
     h << "<p>" << escape(r["message"].get<std::string>()) << "</p>\n";
   if (r.contains("warnings") && r["warnings"].is_array() && !r["warnings"].empty()) {
@@ -404,7 +468,7 @@ int reportCommand(const std::string& dirText, const std::string& outFile) {
     h << "<h2>Settings in force</h2>"
       << (r["settings"].is_string() ? "<p>" + escape(r["settings"].get<std::string>()) + "</p>" : render(r["settings"]))
       << "\n";
-  const std::vector<fs::path> png = pictures(dir);
+  const std::vector<fs::path> png = pictures(dir, a.file);
   if (!png.empty()) {
     h << "<h2>Pictures</h2>\n";
     for (const auto& p : png) {
@@ -421,7 +485,20 @@ int reportCommand(const std::string& dirText, const std::string& outFile) {
       << trials << "\n";
     rest.erase("trials");
   }
-  h << "<h2>Result (" << escape(a.file) << ")</h2>\n" << render(rest) << "\n";
+  if (!a.columns.empty()) {
+    // A sweep's or curve's points, in the CSV's own column order.
+    h << "<h2>Points (" << escape(a.file) << ")</h2>\n<table class=\"rows\"><tr>";
+    for (const auto& c : a.columns) h << "<th>" << escape(c) << "</th>";
+    h << "</tr>";
+    for (const json& p : r["points"]) {
+      h << "<tr>";
+      for (const auto& c : a.columns) h << "<td>" << scalar(p.contains(c) ? p.at(c) : json()) << "</td>";
+      h << "</tr>";
+    }
+    h << "</table>\n";
+  } else {
+    h << "<h2>Result (" << escape(a.file) << ")</h2>\n" << render(rest) << "\n";
+  }
   h << "<p style=\"font-size:.8em;color:#777\">Written by ddaslope report from " << escape(dir.string())
     << ". Every number above is the one the analysis wrote.</p>\n</body></html>\n";
   const std::string out = outFile.empty() ? (dir / "report.html").string() : outFile;
@@ -432,8 +509,9 @@ int reportCommand(const std::string& dirText, const std::string& outFile) {
     if (!f.flush()) throw InputError(out, "", "cannot write the report");
   }
   fs::rename(temporary, out);
-  std::printf("%s: %s\n  %s\n  wrote %s (%zu pictures embedded)\n", dirText.c_str(), a.kind.c_str(), a.answer.c_str(),
-              out.c_str(), png.size());
+  std::printf("%s: %s\n  %s\n", dirText.c_str(), a.kind.c_str(), a.answer.c_str());
+  if (!a.note.empty()) std::printf("  %s\n", a.note.c_str());
+  std::printf("  wrote %s (%zu %s embedded)\n", out.c_str(), png.size(), png.size() == 1 ? "picture" : "pictures");
   return kExitOk;
 }
 

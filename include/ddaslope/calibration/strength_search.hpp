@@ -59,6 +59,8 @@ struct SearchSettings {
   /// (stage 1) with its own strengths, as all trials do when F = 1 fails (docs/calibration.md,
   /// "Where a trial starts").
   TrialStart trialStart = TrialStart::Held;
+  /// How messages' hints name the case (`ddaslope run CASE --at-fos ...`): the CLI gives its path.
+  std::string caseLabel = "CASE";
 };
 
 struct CriticalResult {

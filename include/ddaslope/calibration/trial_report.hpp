@@ -25,6 +25,7 @@ void appendReview(io::JsonRecord& j, const TrialReview& review);
 constexpr double kSmallFailureMotion = 0.01;
 
 /// The warning for such trials (empty if none), naming the value as `valueLabel` ("F", "c", "φ").
-std::string smallMotionWarning(const std::vector<TrialRecord>& trials, const std::string& valueLabel);
+std::string smallMotionWarning(const std::vector<TrialRecord>& trials, const std::string& valueLabel,
+                               const std::string& caseLabel = "CASE");
 
 }  // namespace ddaslope::calibration
