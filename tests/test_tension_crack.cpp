@@ -273,40 +273,38 @@ TEST(TensionCrack, SweepsAndCurvesSearchTheirPointsCracks) {
 // A probability study runs every sample with the crack where the case puts it (a search per
 // sample would cost 18 searches): it says so.
 TEST(TensionCrack, AStudySaysItsCrackStaysPut) {
-  const std::string study = clitest::writeTemp("crack_study.json", R"({"case": ")" + std::string(DDASLOPE_SOURCE_DIR) +
-      R"(/cases/planar_failure_crack.json", "probability": {"samples": 4, "seed": 1, "inputs": [
-      {"path": "joints.sliding_plane.cohesion", "distribution": "lognormal", "mean": 25000, "sd": 3000}]}})");
   const std::string out = std::filesystem::temp_directory_path() / ("crack_study_" + std::to_string(::getpid()));
-  std::string err;
-  EXPECT_EQ(clitest::runCli("probability " + study + " --quiet --out " + out, &err), 0) << err;
+  // What a study of `caseFile` sampling `input` (one JSON object) says on stderr; it must succeed.
+  const auto notesOf = [&](const std::string& name, const std::string& caseFile, int samples, const std::string& input) {
+    const std::string study = clitest::writeTemp(name, R"({"case": ")" + caseFile + R"(", "probability": {"samples": )" +
+                                                           std::to_string(samples) + R"(, "seed": 1, "inputs": [)" +
+                                                           input + "]}}");
+    std::string err;
+    EXPECT_EQ(clitest::runCli("probability " + study + " --quiet --out " + out, &err), 0) << err;
+    std::filesystem::remove_all(out);
+    return err;
+  };
+  const std::string shipped = std::string(DDASLOPE_SOURCE_DIR) + "/cases/planar_failure_crack.json";
+  const std::string cohesion =
+      R"({"path": "joints.sliding_plane.cohesion", "distribution": "lognormal", "mean": 25000, "sd": 3000})";
+  std::string err = notesOf("crack_study.json", shipped, 4, cohesion);
   EXPECT_NE(err.find("the tension crack stays at x = -20 m (section.tension_crack.x) in every run"), std::string::npos)
       << err;
-  std::filesystem::remove_all(out);
   // A study that samples the crack's x itself moves it run by run, and says that instead.
-  const std::string moving = clitest::writeTemp("crack_study_x.json", R"({"case": ")" + std::string(DDASLOPE_SOURCE_DIR) +
-      R"(/cases/planar_failure_crack.json", "probability": {"samples": 4, "seed": 1, "inputs": [
-      {"path": "section.tension_crack.x", "distribution": "uniform", "min": -24, "max": -16}]}})");
-  EXPECT_EQ(clitest::runCli("probability " + moving + " --quiet --out " + out, &err), 0) << err;
+  err = notesOf("crack_study_x.json", shipped, 4,
+                R"({"path": "section.tension_crack.x", "distribution": "uniform", "min": -24, "max": -16})");
   EXPECT_EQ(err.find("stays at x"), std::string::npos) << err;
   EXPECT_NE(err.find("the tension crack is where each run's section.tension_crack.x puts it"), std::string::npos) << err;
-  std::filesystem::remove_all(out);
   // So does one that samples the depth of a crack placed by its depth.
   nlohmann::json byDepth = crackCase();
   byDepth["section"]["tension_crack"] = {{"depth", 6}, {"search", {-26, -12}}};
   const std::string depthCase = clitest::writeTemp("crack_by_depth.json", byDepth.dump());
-  const std::string deeper = clitest::writeTemp("crack_study_depth.json", R"({"case": ")" + depthCase +
-      R"(", "probability": {"samples": 4, "seed": 1, "inputs": [
-      {"path": "section.tension_crack.depth", "distribution": "uniform", "min": 5, "max": 8}]}})");
-  EXPECT_EQ(clitest::runCli("probability " + deeper + " --quiet --out " + out, &err), 0) << err;
+  err = notesOf("crack_study_depth.json", depthCase, 4,
+                R"({"path": "section.tension_crack.depth", "distribution": "uniform", "min": 5, "max": 8})");
   EXPECT_NE(err.find("the tension crack is where each run's section.tension_crack.depth puts it"), std::string::npos) << err;
-  std::filesystem::remove_all(out);
   // One that samples something else says the crack stays where its depth puts it.
-  const std::string still = clitest::writeTemp("crack_study_depth_still.json", R"({"case": ")" + depthCase +
-      R"(", "probability": {"samples": 2, "seed": 1, "inputs": [
-      {"path": "joints.sliding_plane.cohesion", "distribution": "lognormal", "mean": 25000, "sd": 3000}]}})");
-  EXPECT_EQ(clitest::runCli("probability " + still + " --quiet --out " + out, &err), 0) << err;
+  err = notesOf("crack_study_depth_still.json", depthCase, 2, cohesion);
   EXPECT_NE(err.find("(where section.tension_crack.depth puts it) in every run"), std::string::npos) << err;
-  std::filesystem::remove_all(out);
 }
 
 // The position search alone, on a curve like the slope's (a minimum with a cubic lean, values

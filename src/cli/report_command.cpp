@@ -196,30 +196,35 @@ Analysis curveOf(const fs::path& file, const std::string& kind) {
   return a;
 }
 
+/// The result files of single analyses, and of sweeps and curves (a CSV of points, and its
+/// picture beside it with the same name) with their titles.
+const std::vector<std::string> kSingleResults = {"fos.json", "critical.json", "result.json", "summary.json"};
+const std::vector<std::pair<std::string, std::string>> kCurveResults = {
+    {"fos_sweep.csv", "Factor of safety over a sweep (fos --sweep)"},
+    {"critical_curve.csv", "Critical strength curve (critical --curve)"},
+    {"support_curve.csv", "Support curve (critical --solve support --curve)"}};
+
 /// The sweep or curve CSV in the folder, if it was written after every single result there (a
 /// folder that several commands wrote into): the newest analysis is the one reported.
 std::optional<std::pair<std::string, std::string>> newerCurve(const fs::path& dir) {
-  static const std::vector<std::pair<std::string, std::string>> curves = {
-      {"fos_sweep.csv", "Factor of safety over a sweep (fos --sweep)"},
-      {"critical_curve.csv", "Critical strength curve (critical --curve)"},
-      {"support_curve.csv", "Support curve (critical --solve support --curve)"}};
   std::optional<std::pair<std::string, std::string>> newest;
   fs::file_time_type when{};
-  for (const auto& c : curves)
+  for (const auto& c : kCurveResults)
     if (fs::exists(dir / c.first) && (!newest || fs::last_write_time(dir / c.first) > when))
       newest = c, when = fs::last_write_time(dir / c.first);
   if (!newest) return std::nullopt;
-  for (const char* single : {"fos.json", "critical.json", "result.json", "summary.json"})
+  for (const auto& single : kSingleResults)
     if (fs::exists(dir / single) && fs::last_write_time(dir / single) > when) return std::nullopt;
   return newest;
 }
 
 /// Results in the folder other than `reported` (several commands wrote into it).
 std::string otherResults(const fs::path& dir, const std::string& reported) {
+  std::vector<std::string> files = kSingleResults;
+  for (const auto& c : kCurveResults) files.push_back(c.first);
   std::string others;
-  for (const char* f : {"fos.json", "critical.json", "result.json", "summary.json", "fos_sweep.csv", "critical_curve.csv",
-                        "support_curve.csv"})
-    if (f != reported && fs::exists(dir / f)) others += std::string(others.empty() ? "" : ", ") + f;
+  for (const auto& f : files)
+    if (f != reported && fs::exists(dir / f)) others += (others.empty() ? "" : ", ") + f;
   return others.empty() ? "" : "the folder also holds " + others + " (older, not in this report: give each analysis a "
                                                                    "folder of its own with --out)";
 }
@@ -330,14 +335,16 @@ Analysis identifyOne(const fs::path& dir) {
 /// The pictures of the analysis reported (`file`), the answer's first: mechanism, then snapshots,
 /// then the rest. A sweep's or curve's picture belongs to it alone.
 std::vector<fs::path> pictures(const fs::path& dir, const std::string& file) {
-  static const std::vector<std::string> curves = {"fos_sweep.png", "critical_curve.png", "support_curve.png"};
-  const std::string own = fs::path(file).replace_extension(".png").string();
-  const bool curve = std::find(curves.begin(), curves.end(), own) != curves.end();
+  const auto pictureOf = [](const std::string& csv) { return fs::path(csv).replace_extension(".png").string(); };
+  const auto ofACurve = [&](const std::string& name) {
+    return std::any_of(kCurveResults.begin(), kCurveResults.end(), [&](const auto& c) { return pictureOf(c.first) == name; });
+  };
+  const std::string own = pictureOf(file);
+  const bool curve = ofACurve(own);
   std::vector<fs::path> png;
   for (const auto& e : fs::directory_iterator(dir)) {
     const std::string name = e.path().filename().string();
-    const bool ofACurve = std::find(curves.begin(), curves.end(), name) != curves.end();
-    if (e.is_regular_file() && e.path().extension() == ".png" && (curve ? name == own : !ofACurve))
+    if (e.is_regular_file() && e.path().extension() == ".png" && (curve ? name == own : !ofACurve(name)))
       png.push_back(e.path());
   }
   const auto rank = [](const fs::path& p) {
