@@ -1,12 +1,14 @@
 #!/bin/sh
 # Users' workloads (issue #42): a factor of safety of each shipped real slope, with the figures a
 # search's cost is made of: forward runs, steps summed over its trials (after t = 0, and before it:
-# the equilibrium's static and settling steps), wall time; and F, which
+# the equilibrium's static and settling steps), wall time, runs made ahead of need and not used
+# (their steps are not in the sums); and F, which
 # must not change when the search gets faster. Prints one CSV line per case and setting.
 #
 #   bench/searches.sh [BUILD_DIR] [THREADS] [EXTRA --set ARGUMENTS...]
 #   bench/searches.sh build 2                                   # as shipped
 #   bench/searches.sh build 2 --set analysis.early_rest=false   # without early rest
+#   bench/searches.sh build 2 --no-look-ahead                   # no trial run ahead of need
 #
 # Time nothing else while it runs (2 cores).
 set -eu
@@ -14,7 +16,7 @@ build=${1:-build}
 threads=${2:-2}
 [ $# -ge 2 ] && shift 2 || shift $#
 here=$(cd "$(dirname "$0")/.." && pwd)
-echo "case,factor_of_safety,forward_runs,steps,equilibrium_steps,early_rest_trials,wall_s"
+echo "case,factor_of_safety,forward_runs,steps,equilibrium_steps,early_rest_trials,wall_s,runs_ahead_unused"
 for case in vajont jiufengershan goodman_bray_toppling toppling_slope stepped_toppling bilinear_slab chair_slide planar_failure; do
   out=$(mktemp)
   start=$(date +%s.%N)
@@ -28,7 +30,7 @@ trials = d.get("trials", [])
 steps = sum(t["steps"] for t in trials)
 before = sum(t["equilibrium_steps"] for t in trials)
 early = sum(1 for t in trials if t.get("early_rest"))
-print(f"{case},{d['factor_of_safety']},{d['forward_runs']},{steps},{before},{early},{end - start:.2f}")
+print(f"{case},{d['factor_of_safety']},{d['forward_runs']},{steps},{before},{early},{end - start:.2f},{d.get('runs_ahead_unused', '')}")
 PY
   rm -f "$out"
 done

@@ -1,8 +1,20 @@
 #include "ddaslope/calibration/bisection.hpp"
 
+#include <algorithm>
+#include <atomic>
+#include <bit>
 #include <cmath>
+#include <condition_variable>
+#include <exception>
+#include <limits>
+#include <map>
+#include <memory>
+#include <mutex>
 #include <sstream>
+#include <thread>
+#include <tuple>
 
+#include "ddaslope/core/cancellation.hpp"
 #include "ddaslope/core/task_farm.hpp"
 
 namespace ddaslope::calibration {
@@ -15,28 +27,26 @@ std::vector<bool> evaluateAll(const std::function<bool(double)>& stableAt, const
   return {out.begin(), out.end()};
 }
 
-BisectionResult narrowBracket(const std::function<bool(double)>& stableAt, double stable, double failing,
-                              double width, int threads) {
-  BisectionResult r;
-  const int k = std::max(1, threads);
-  while (std::abs(failing - stable) > width) {
-    std::vector<double> trial;
-    for (int i = 1; i <= k; ++i) trial.push_back(stable + (failing - stable) * i / (k + 1));
-    const std::vector<bool> ok = evaluateAll(stableAt, trial, k);
-    r.runs += k;
-    ++r.rounds;
-    // The new bracket lies between the last stable trial and the first failing one.
-    double s = stable, f = failing;
-    for (int i = 0; i < k; ++i) {
-      if (!ok[i]) {
-        f = trial[i];
-        break;
-      }
-      s = trial[i];
-    }
-    stable = s;
-    failing = f;
+namespace {
+
+/// A round's k equally spaced interior values of [stable, failing].
+std::vector<double> roundValues(double stable, double failing, int k) {
+  std::vector<double> values;
+  for (int i = 1; i <= k; ++i) values.push_back(stable + (failing - stable) * i / (k + 1));
+  return values;
+}
+
+/// The bracket after a round: between the last stable value and the first failing one.
+std::pair<double, double> afterRound(const std::vector<double>& values, const std::vector<bool>& ok, double stable,
+                                     double failing) {
+  for (size_t i = 0; i < values.size(); ++i) {
+    if (!ok[i]) return {stable, values[i]};
+    stable = values[i];
   }
+  return {stable, failing};
+}
+
+BisectionResult bracketed(BisectionResult r, double stable, double failing) {
   r.bracketed = true;
   r.stableEnd = stable;
   r.failingEnd = failing;
@@ -44,8 +54,355 @@ BisectionResult narrowBracket(const std::function<bool(double)>& stableAt, doubl
   return r;
 }
 
+}  // namespace
+
+BisectionResult narrowBracket(const std::function<bool(double)>& stableAt, double stable, double failing,
+                              double width, int threads) {
+  BisectionResult r;
+  const int k = std::max(1, threads);
+  while (std::abs(failing - stable) > width) {
+    const std::vector<double> values = roundValues(stable, failing, k);
+    const std::vector<bool> ok = evaluateAll(stableAt, values, k);
+    r.runs += k;
+    ++r.rounds;
+    std::tie(stable, failing) = afterRound(values, ok, stable, failing);
+  }
+  return bracketed(r, stable, failing);
+}
+
+namespace {
+
+/// The state narrowAhead's threads share, under its mutex.
+class AheadRounds {
+ public:
+  AheadRounds(const LookAheadVerdict& v, double stable, double failing, double width, int k)
+      : v_(v), stable_(stable), failing_(failing), width_(width), k_(k) {
+    nextRound();
+  }
+
+  /// One thread's share: runs the values the rounds need, or may need, until the narrowing ends.
+  void work() {
+    std::unique_lock<std::mutex> lock(mutex_);
+    for (;;) {
+      if (finished_) return;
+      double x = 0;
+      bool ahead = false;
+      if (!pick(x, ahead)) {
+        idle_.wait(lock);
+        continue;
+      }
+      auto run = std::make_shared<Run>();
+      run->ahead = ahead;
+      runs_[x] = run;
+      if (ahead) ++result_.runsAhead;
+      lock.unlock();
+      bool stable = false, cancelled = false;
+      std::exception_ptr error;
+      try {
+        const CancellationScope scope(run->cancel);
+        stable = v_.run(x);
+      } catch (const Cancelled&) {
+        cancelled = true;
+      } catch (...) {
+        error = std::current_exception();
+      }
+      lock.lock();
+      if (cancelled) {
+        const auto at = runs_.find(x);
+        if (at != runs_.end() && at->second == run) runs_.erase(at);
+      } else {
+        run->done = true;
+        run->stable = stable;
+        run->error = error;
+      }
+      try {
+        settle();
+      } catch (...) {
+        // Taking a trial failed (its record or progress report): end here, as an error of a run.
+        if (!error_) error_ = std::current_exception();
+        finished_ = true;
+        for (auto& [value, other] : runs_) other->cancel = true;
+      }
+      idle_.notify_all();
+    }
+  }
+
+  BisectionResult result() {
+    if (error_) std::rethrow_exception(error_);
+    return bracketed(result_, stable_, failing_);
+  }
+
+ private:
+  struct Run {
+    std::atomic<bool> cancel{false};
+    bool ahead = false;
+    bool done = false;
+    bool stable = false;
+    std::exception_ptr error;
+  };
+
+  void nextRound() {
+    round_.clear();
+    if (std::abs(failing_ - stable_) > width_) round_ = roundValues(stable_, failing_, k_);
+    finished_ = round_.empty();
+  }
+
+  bool done(double x) const {
+    const auto at = runs_.find(x);
+    return at != runs_.end() && at->second->done;
+  }
+
+  /// The next round's values for every outcome of the round's unfinished trials, the outcomes
+  /// in which more of them fail first (a trial that outlasts the others of its round is most
+  /// often a failing one creeping near the answer), each round's values from its failing end.
+  std::vector<double> mayNeed() const {
+    std::vector<size_t> open;
+    for (size_t i = 0; i < round_.size(); ++i)
+      if (!done(round_[i])) open.push_back(i);
+    std::vector<double> values;
+    if (open.size() > 6) return values;
+    std::vector<unsigned> outcomes;
+    for (unsigned m = 0; m < (1u << open.size()); ++m) outcomes.push_back(m);
+    std::stable_sort(outcomes.begin(), outcomes.end(),
+                     [](unsigned a, unsigned b) { return std::popcount(a) < std::popcount(b); });
+    for (const unsigned m : outcomes) {
+      std::vector<bool> ok(round_.size());
+      for (size_t i = 0, j = 0; i < round_.size(); ++i)
+        ok[i] = j < open.size() && open[j] == i ? (m >> j++) & 1u : runs_.at(round_[i])->stable;
+      const auto [s, f] = afterRound(round_, ok, stable_, failing_);
+      if (std::abs(f - s) <= width_) continue;
+      const std::vector<double> next = roundValues(s, f, k_);
+      for (auto x = next.rbegin(); x != next.rend(); ++x)
+        if (std::find(values.begin(), values.end(), *x) == values.end()) values.push_back(*x);
+    }
+    return values;
+  }
+
+  /// A value to run: the round's first not started, else one the next round may need; a
+  /// round's values from its failing end, whose trials (failing slowly near the answer) take
+  /// longest.
+  bool pick(double& x, bool& ahead) const {
+    for (auto value = round_.rbegin(); value != round_.rend(); ++value)
+      if (!runs_.count(*value)) {
+        x = *value, ahead = false;
+        return true;
+      }
+    for (const double value : mayNeed())
+      if (!runs_.count(value)) {
+        x = value, ahead = true;
+        return true;
+      }
+    return false;
+  }
+
+  /// Takes every round whose trials have all finished, then cancels the runs no round can need.
+  void settle() {
+    while (!finished_ && takeRound()) nextRound();
+    std::vector<double> keep = round_;
+    if (!finished_) {
+      const std::vector<double> next = mayNeed();
+      keep.insert(keep.end(), next.begin(), next.end());
+    }
+    for (auto& [x, run] : runs_)
+      if (!run->done && std::find(keep.begin(), keep.end(), x) == keep.end()) run->cancel = true;
+  }
+
+  /// Takes the round if all its trials have finished: hands them to the verdict, in order, and
+  /// narrows the bracket. An error of one of them ends the narrowing.
+  bool takeRound() {
+    std::vector<bool> ok;
+    for (const double x : round_)
+      if (!done(x)) return false;
+    for (const double x : round_) {
+      const Run& run = *runs_.at(x);
+      if (run.error) {
+        error_ = run.error;
+        finished_ = true;
+        return false;
+      }
+      ok.push_back(run.stable);
+    }
+    for (const double x : round_) {
+      v_.take(x);
+      if (runs_.at(x)->ahead) ++result_.runsAheadUsed;
+      runs_.erase(x);
+    }
+    result_.runs += k_;
+    ++result_.rounds;
+    std::tie(stable_, failing_) = afterRound(round_, ok, stable_, failing_);
+    return true;
+  }
+
+  const LookAheadVerdict& v_;
+  double stable_, failing_, width_;
+  int k_;
+  std::mutex mutex_;
+  std::condition_variable idle_;
+  std::vector<double> round_;
+  std::map<double, std::shared_ptr<Run>> runs_;
+  bool finished_ = false;
+  std::exception_ptr error_;
+  BisectionResult result_;
+};
+
+}  // namespace
+
+BisectionResult narrowAhead(const LookAheadVerdict& verdict, double stable, double failing, double width,
+                            int threads) {
+  const int k = std::max(1, threads);
+  if (k == 1)
+    return narrowBracket(
+        [&](double x) {
+          const bool ok = verdict.run(x);
+          verdict.take(x);
+          return ok;
+        },
+        stable, failing, width, 1);
+  AheadRounds rounds(verdict, stable, failing, width, k);
+  std::vector<std::thread> pool;
+  for (int t = 1; t < k; ++t) pool.emplace_back([&] { rounds.work(); });
+  rounds.work();
+  for (std::thread& t : pool) t.join();
+  return rounds.result();
+}
+
+struct AheadRunner::State {
+  struct Run {
+    std::atomic<bool> cancel{false};
+    bool ahead = false;
+    bool done = false;
+    bool stable = false;
+    std::exception_ptr error;
+  };
+
+  explicit State(const LookAheadVerdict& v) : v(v) {}
+
+  /// Makes the run of x (the caller holds no lock); records its outcome under the lock.
+  void execute(double x, const std::shared_ptr<Run>& run, std::unique_lock<std::mutex>& lock) {
+    lock.unlock();
+    bool ok = false, cancelled = false;
+    std::exception_ptr error;
+    try {
+      const CancellationScope scope(run->cancel);
+      ok = v.run(x);
+    } catch (const Cancelled&) {
+      cancelled = true;
+    } catch (...) {
+      error = std::current_exception();
+    }
+    lock.lock();
+    if (cancelled) {
+      const auto at = runs.find(x);
+      if (at != runs.end() && at->second == run) runs.erase(at);
+    } else {
+      run->done = true;
+      run->stable = ok;
+      run->error = error;
+    }
+    changed.notify_all();
+  }
+
+  bool wanted(double x) const {
+    return x == taking || std::find(hoped.begin(), hoped.end(), x) != hoped.end();
+  }
+
+  /// A spare thread: runs hoped values until the runner closes.
+  void help() {
+    std::unique_lock<std::mutex> lock(mutex);
+    for (;;) {
+      if (closing) return;
+      const auto next = std::find_if(hoped.begin(), hoped.end(), [&](double x) { return !runs.count(x); });
+      if (next == hoped.end()) {
+        changed.wait(lock);
+        continue;
+      }
+      const double x = *next;
+      auto run = std::make_shared<Run>();
+      run->ahead = true;
+      runs[x] = run;
+      ++ahead;
+      execute(x, run, lock);
+    }
+  }
+
+  const LookAheadVerdict& v;
+  std::mutex mutex;
+  std::condition_variable changed;
+  std::map<double, std::shared_ptr<Run>> runs;
+  std::vector<double> hoped;
+  double taking = std::numeric_limits<double>::quiet_NaN();
+  bool closing = false;
+  int ahead = 0, aheadUsed = 0;
+  std::vector<std::thread> helpers;
+};
+
+AheadRunner::AheadRunner(const LookAheadVerdict& verdict, int threads) : state_(std::make_unique<State>(verdict)) {
+  for (int t = 1; t < threads; ++t) state_->helpers.emplace_back([s = state_.get()] { s->help(); });
+}
+
+AheadRunner::~AheadRunner() { stop(); }
+
+void AheadRunner::stop() {
+  {
+    const std::lock_guard<std::mutex> lock(state_->mutex);
+    state_->closing = true;
+    for (auto& [x, run] : state_->runs) run->cancel = true;
+  }
+  state_->changed.notify_all();
+  for (std::thread& t : state_->helpers) t.join();
+  state_->helpers.clear();
+}
+
+bool AheadRunner::take(double x, std::vector<double> hoped) {
+  State& s = *state_;
+  std::unique_lock<std::mutex> lock(s.mutex);
+  s.taking = x;
+  s.hoped = std::move(hoped);
+  for (auto& [value, run] : s.runs)
+    if (!run->done && !s.wanted(value)) run->cancel = true;
+  s.changed.notify_all();
+  std::shared_ptr<State::Run> run;
+  for (;;) {
+    const auto at = s.runs.find(x);
+    if (at == s.runs.end()) {
+      // Not run ahead (or stopped before it was wanted again): run it here.
+      run = std::make_shared<State::Run>();
+      s.runs[x] = run;
+      s.execute(x, run, lock);
+      break;
+    }
+    run = at->second;
+    if (run->done) break;
+    s.changed.wait(lock);
+  }
+  s.runs.erase(x);
+  s.taking = std::numeric_limits<double>::quiet_NaN();
+  if (run->error) std::rethrow_exception(run->error);
+  if (run->ahead) ++s.aheadUsed;
+  lock.unlock();
+  s.v.take(x);
+  return run->stable;
+}
+
+int AheadRunner::runsAhead() const {
+  const std::lock_guard<std::mutex> lock(state_->mutex);
+  return state_->ahead;
+}
+
+int AheadRunner::runsAheadUsed() const {
+  const std::lock_guard<std::mutex> lock(state_->mutex);
+  return state_->aheadUsed;
+}
+
 BisectionResult bisect(const std::function<bool(double)>& stableAt, double lo, double hi, double width,
                        int threads) {
+  return bisect(stableAt, lo, hi, width, threads, [&](double stable, double failing, double w, int k) {
+    return narrowBracket(stableAt, stable, failing, w, k);
+  });
+}
+
+BisectionResult bisect(const std::function<bool(double)>& stableAt, double lo, double hi, double width, int threads,
+                       const Narrowing& narrow) {
   const std::vector<bool> ends = evaluateAll(stableAt, {lo, hi}, threads);
   if (ends[0] == ends[1]) {
     BisectionResult r;
@@ -57,7 +414,7 @@ BisectionResult bisect(const std::function<bool(double)>& stableAt, double lo, d
     r.stableEnd = r.failingEnd = r.critical;
     return r;
   }
-  BisectionResult r = narrowBracket(stableAt, ends[0] ? lo : hi, ends[0] ? hi : lo, width, threads);
+  BisectionResult r = narrow(ends[0] ? lo : hi, ends[0] ? hi : lo, width, threads);
   r.runs += 2;
   return r;
 }

@@ -31,12 +31,18 @@ struct CountedVerdict {
   /// search narrows to (≤ 0: 1e-3 of its failing end), for the estimate of the runs left.
   CountedVerdict(std::function<TrialResult(double, double)> v, const SearchSettings& s, const char* quantity,
                  double width)
-      : verdict(std::move(v)), progress(s.progress), quantity(quantity), width(width), perRound(std::max(1, s.threads)) {}
+      : verdict(std::move(v)),
+        progress(s.progress),
+        quantity(quantity),
+        width(width),
+        perRound(std::max(1, s.threads)),
+        lookAhead(s.lookAhead) {}
   std::function<TrialResult(double, double)> verdict;
   io::ProgressSink progress;
   const char* quantity;
   double width;
   int perRound;
+  bool lookAhead;  ///< SearchSettings::lookAhead
   /// The duration factor of the runs being made: 1, or kReRunLength while a review re-runs trials.
   double length = 1;
   std::atomic<int> runs{0};
@@ -46,13 +52,31 @@ struct CountedVerdict {
   int undecidedInARow = 0;
   bool operator()(double x) {
     ++runs;
+    return record(x, verdict(x, length));
+  }
+  /// A run ahead of need (narrowAhead): its outcome is kept aside, and counted and recorded only
+  /// when the search takes it.
+  bool runAhead(double x) {
     TrialResult r = verdict(x, length);
     const std::lock_guard<std::mutex> lock(mutex);
-    undecidedInARow = r.undecided ? undecidedInARow + 1 : 0;
-    trials.push_back({x, r, length > 1});
-    if (progress) report(x, r.stable ? "stable" : r.undecided ? "undecided" : "fails");
-    return r.stable;
+    const bool stable = r.stable;
+    aside[x] = std::move(r);
+    return stable;
   }
+  void take(double x) {
+    ++runs;
+    TrialResult r;
+    {
+      const std::lock_guard<std::mutex> lock(mutex);
+      const auto at = aside.find(x);
+      r = std::move(at->second);
+      aside.erase(at);
+    }
+    record(x, std::move(r));
+  }
+  int runsAheadUnused = 0;  ///< runs made ahead that the search did not take
+  /// Runs made ahead of need and not taken (yet), by value.
+  std::map<double, TrialResult> aside;
   /// The trials by value: the record does not depend on which thread finished first.
   std::vector<TrialRecord> sortedTrials() {
     std::sort(trials.begin(), trials.end(), [](const TrialRecord& a, const TrialRecord& b) {
@@ -62,6 +86,15 @@ struct CountedVerdict {
   }
 
  private:
+  bool record(double x, TrialResult r) {
+    const std::lock_guard<std::mutex> lock(mutex);
+    undecidedInARow = r.undecided ? undecidedInARow + 1 : 0;
+    const bool stable = r.stable;
+    trials.push_back({x, std::move(r), length > 1});
+    if (progress) report(x, stable ? "stable" : trials.back().result.undecided ? "undecided" : "fails");
+    return stable;
+  }
+
   /// The tightest bracket so far (a stable and a failing trial closest together) and the runs a
   /// k-section still needs to narrow it to the width.
   void report(double last, const char* lastVerdict) {
@@ -115,10 +148,49 @@ void copyBracket(const BisectionResult& b, Result& r) {
   r.failingEnd = b.failingEnd;
 }
 
+/// Narrows [stable, failing] to `width` with the search's verdict: looking ahead (narrowAhead)
+/// unless the search was told not to (SearchSettings::lookAhead) or is re-running trials longer.
+BisectionResult narrow(CountedVerdict& v, double stable, double failing, double width, int threads) {
+  if (!v.lookAhead || v.length != 1) return narrowBracket(std::ref(v), stable, failing, width, threads);
+  const BisectionResult b = narrowAhead({[&v](double x) { return v.runAhead(x); }, [&v](double x) { v.take(x); }},
+                                        stable, failing, width, threads);
+  v.runsAheadUnused += b.runsAhead - b.runsAheadUsed;
+  return b;
+}
+
+/// bisect, narrowing as `narrow` does.
+BisectionResult bisectWith(CountedVerdict& v, double lo, double hi, double width, int threads) {
+  return bisect(std::ref(v), lo, hi, width, threads,
+                [&v](double stable, double failing, double w, int k) { return narrow(v, stable, failing, w, k); });
+}
+
+/// A bracketing loop's trials on the search's verdict, run ahead of need (AheadRunner) unless
+/// `narrow` would not look ahead; its unused runs counted when it closes.
+class Bracketing {
+ public:
+  Bracketing(CountedVerdict& v, int threads)
+      : v_(v),
+        verdict_{[&v](double x) { return v.runAhead(x); }, [&v](double x) { v.take(x); }},
+        runner_(verdict_, v.lookAhead && v.length == 1 ? threads : 1) {}
+  ~Bracketing() {
+    runner_.stop();
+    v_.runsAheadUnused += runner_.runsAhead() - runner_.runsAheadUsed();
+  }
+  Bracketing(const Bracketing&) = delete;
+  Bracketing& operator=(const Bracketing&) = delete;
+  /// The verdict at x; the spare threads meanwhile run `hoped`, the values the loop takes next if
+  /// it goes on.
+  bool take(double x, std::vector<double> hoped) { return runner_.take(x, std::move(hoped)); }
+
+ private:
+  CountedVerdict& v_;
+  LookAheadVerdict verdict_;
+  AheadRunner runner_;
+};
+
 /// Narrows a known [stable, failing] bracket to `width` and records it in r.
-void narrowInto(CriticalResult& r, const std::function<bool(double)>& f, double stable, double failing, double width,
-                int threads) {
-  const BisectionResult b = narrowBracket(f, stable, failing, width, threads);
+void narrowInto(CriticalResult& r, CountedVerdict& v, double stable, double failing, double width, int threads) {
+  const BisectionResult b = narrow(v, stable, failing, width, threads);
   copyBracket(b, r);
   r.critical = b.critical;
 }
@@ -127,6 +199,7 @@ void narrowInto(CriticalResult& r, const std::function<bool(double)>& f, double 
 template <class Result>
 Result& account(Result& r, CountedVerdict& v, std::chrono::steady_clock::time_point t0) {
   r.runs = v.runs;
+  r.runsAheadUnused = v.runsAheadUnused;
   r.trials = v.sortedTrials();
   r.wallTime = secondsSince(t0);
   return r;
@@ -240,7 +313,7 @@ void reviewTrials(Result& r, CountedVerdict& v, bool stableBelow, std::pair<doub
     if (changed && std::abs(lfAnyValue - hsValue) > target * (1 + 1e-9)) {
       // Re-runs moved the bracket: narrow it again (never twice between the same ends), review again.
       if (!narrowed.insert({hsValue, lfAnyValue}).second) break;
-      narrowBracket(std::ref(v), hsValue, lfAnyValue, target, threads);
+      narrow(v, hsValue, lfAnyValue, target, threads);
       continue;
     }
     if (end.undecided && lf == INFINITY && !probed) {
@@ -295,22 +368,28 @@ CriticalResult criticalCohesion(const model::Scene& scene, int joint, double fri
   }, s, "c (Pa)", width};
   const std::function<bool(double)> f = std::ref(stableAt);
   CriticalResult r;
-  if (stableAt(0)) {
+  double failing = 0, hi = initialGuess;
+  bool holdsWithout = false;
+  {
+    // Bracket: double the cohesion until the scene holds.
+    Bracketing b(stableAt, s.threads);
+    holdsWithout = b.take(0, {hi, 2 * hi});
+    if (!holdsWithout)
+      while (!b.take(hi, {2 * hi, 4 * hi}) && hi < 1e12 && stableAt.undecidedInARow < 2) {
+        failing = hi;
+        hi *= 2;
+      }
+  }
+  if (holdsWithout) {
     r.found = true;
     r.message = "stable without cohesion at this friction angle";
   } else {
-    // Bracket: double the cohesion until the scene holds.
-    double failing = 0, hi = initialGuess;
-    while (!stableAt(hi) && hi < 1e12 && stableAt.undecidedInARow < 2) {
-      failing = hi;
-      hi *= 2;
-    }
     if (stableAt.undecidedInARow >= 2) {
       r.message = kUndecidedBracket;
     } else if (hi >= 1e12) {
       r.message = "fails even with a cohesion of 1e12 Pa: strength cannot hold this scene";
     } else {
-      narrowInto(r, f, hi, failing, width, s.threads);
+      narrowInto(r, stableAt, hi, failing, width, s.threads);
     }
   }
   reviewTrials(r, stableAt, false, {0.0, 1e12}, width, s.threads, [&](double stable, double failing) {
@@ -330,7 +409,7 @@ CriticalResult criticalFriction(const model::Scene& scene, int joint, double coh
     trial.joints[joint].frictionAngle = degToRad(phiDeg);
     return judgeStability(trial, s.verdict, held ? &*held : nullptr, endOf(s, phiDeg));
   }, s, "φ (°)", width};
-  const BisectionResult b = bisect(std::ref(stableAt), 0.0, 89.9, width, s.threads);
+  const BisectionResult b = bisectWith(stableAt, 0.0, 89.9, width, s.threads);
   CriticalResult r;
   copyBracket(b, r);
   r.critical = b.critical;
@@ -359,7 +438,7 @@ CriticalResult criticalJrc(const model::Scene& scene, int joint, double width, c
     return judgeStability(trial, s.verdict, held ? &*held : nullptr, endOf(s, jrc));
   }, s, "JRC", width};
   constexpr double kLargest = 20;
-  const BisectionResult b = bisect(std::ref(stableAt), 0.0, kLargest, width, s.threads);
+  const BisectionResult b = bisectWith(stableAt, 0.0, kLargest, width, s.threads);
   CriticalResult r;
   copyBracket(b, r);
   r.critical = b.critical;
@@ -391,30 +470,38 @@ CriticalResult criticalSeismicCoefficient(const model::Scene& scene, int directi
   const std::function<bool(double)> f = std::ref(stableAt);
   constexpr double kFirst = 0.05, kLargest = 2.0;
   CriticalResult r;
-  if (!stableAt(0)) {
+  const auto next = [&](double k) { return std::min(2 * k, kLargest); };
+  double stable = 0, k = kFirst;
+  bool holdsWithout = false;
+  {
+    // Bracket: double k_h until the slope fails.
+    Bracketing b(stableAt, s.threads);
+    holdsWithout = b.take(0, {k, next(k)});
+    if (holdsWithout)
+      while (b.take(k, {next(k), next(next(k))})) {
+        stable = k;
+        if (k >= kLargest) break;
+        k = next(k);
+      }
+  }
+  if (!holdsWithout) {
     r.message = stableAt.undecidedInARow > 0 ? "undecided without seismic loading (k_h = 0): a small motion that "
                                                "neither grew nor stopped; no yield acceleration can be bracketed"
                                              : "the slope fails without seismic loading (k_h = 0): it has no yield acceleration";
   } else {
-    double stable = 0, k = kFirst;
-    while (stableAt(k)) {
-      stable = k;
-      if (k >= kLargest) break;
-      k = std::min(2 * k, kLargest);
-    }
     if (stable >= kLargest) {
       r.message = std::string("stable up to k_h = 2 along ") + (direction > 0 ? "+x" : "-x") +
                   ": does the slope face the other way (--direction)?";
       r.stableEnd = stable;
     } else {
       if (width > 0) {
-        narrowInto(r, f, stable, k, width, s.threads);
+        narrowInto(r, stableAt, stable, k, width, s.threads);
       } else {
         // To a fraction of k_y itself: narrow, and again while the bracket is wider than that of
         // its new failing end (a small k_y is found in a bracket that began at 0.05).
         double failing = k;
         do {
-          narrowInto(r, f, stable, failing, relativeWidth * failing, s.threads);
+          narrowInto(r, stableAt, stable, failing, relativeWidth * failing, s.threads);
           stable = r.stableEnd;
           failing = r.failingEnd;
         } while (r.found && failing - stable > relativeWidth * failing * (1 + 1e-9));
@@ -442,15 +529,30 @@ CriticalResult criticalSupport(const model::Scene& scene, const std::string& id,
   CriticalResult r;
   constexpr double kLargest = 1e12;
   const model::SupportQuantity quantity = scene.supportQuantity(id);
-  const bool holdsWithout = stableAt(0);
-  if (holdsWithout && quantity.kind == model::SupportQuantity::Kind::Load) {
-    // A load the slope stands without: how large may it grow (a surcharge, a berm)?
-    r.largestThatHolds = true;
-    double stable = 0, hi = quantity.value;
-    while (stableAt(hi) && hi < kLargest && stableAt.undecidedInARow < 2) {
-      stable = hi;
-      hi *= 2;
+  const bool load = quantity.kind == model::SupportQuantity::Kind::Load;
+  const double own = quantity.value;
+  // The first value a bracketing doubles from: a load's own, or a support's (1e5 N/m without one).
+  double hi = load ? own : own > 0 && std::isfinite(own) ? own : 1e5;
+  double stable = 0, failing = 0;
+  bool holdsWithout = false;
+  {
+    Bracketing b(stableAt, s.threads);
+    holdsWithout = b.take(0, {hi, 2 * hi});
+    if (holdsWithout && load) {
+      // A load the slope stands without: how large may it grow (a surcharge, a berm)?
+      while (b.take(hi, {2 * hi, 4 * hi}) && hi < kLargest && stableAt.undecidedInARow < 2) {
+        stable = hi;
+        hi *= 2;
+      }
+    } else if (!holdsWithout) {
+      while (!b.take(hi, {2 * hi, 4 * hi}) && hi < kLargest && stableAt.undecidedInARow < 2) {
+        failing = hi;
+        hi *= 2;
+      }
     }
+  }
+  if (holdsWithout && load) {
+    r.largestThatHolds = true;
     if (stableAt.undecidedInARow >= 2) {
       r.message = kUndecidedBracket;
     } else if (hi >= kLargest) {
@@ -458,7 +560,7 @@ CriticalResult criticalSupport(const model::Scene& scene, const std::string& id,
       r.critical = r.stableEnd = stable;
       r.message = "holds under every load tried, up to 1e12 N/m: this load does not push the slope towards failure";
     } else {
-      narrowInto(r, std::ref(stableAt), stable, hi, width > 0 ? width : 1e-3 * hi, s.threads);
+      narrowInto(r, stableAt, stable, hi, width > 0 ? width : 1e-3 * hi, s.threads);
     }
     reviewTrials(r, stableAt, true, {0.0, kLargest}, width > 0 ? width : 1e-3 * r.failingEnd, s.threads,
                  [&](double stable, double failing) {
@@ -470,19 +572,13 @@ CriticalResult criticalSupport(const model::Scene& scene, const std::string& id,
     r.found = true;
     r.message = "stable without it at this factor of safety";
   } else {
-    const double own = quantity.value;
-    double failing = 0, hi = own > 0 && std::isfinite(own) ? own : 1e5;
-    while (!stableAt(hi) && hi < kLargest && stableAt.undecidedInARow < 2) {
-      failing = hi;
-      hi *= 2;
-    }
     if (stableAt.undecidedInARow >= 2) {
       r.message = kUndecidedBracket;
     } else if (hi >= kLargest) {
       r.message = "fails even with 1e12 N/m: no support of this kind holds the slope at this factor of safety";
     } else {
       const double w = width > 0 ? width : 1e-3 * hi;
-      narrowInto(r, std::ref(stableAt), hi, failing, w, s.threads);
+      narrowInto(r, stableAt, hi, failing, w, s.threads);
     }
   }
   reviewTrials(r, stableAt, false, {0.0, kLargest}, width > 0 ? width : 1e-3 * r.stableEnd, s.threads,
@@ -605,16 +701,20 @@ FactorOfSafetyResult factorOfSafetyOf(const std::function<TrialResult(double, do
     atOne = stableAt(f);
     (atOne ? stable : failing) = f;
   }
-  for (int k = 0; k < 40 && (stable == 0 || failing == 0) && stableAt.undecidedInARow < 2; ++k) {
-    f = atOne ? f * 1.5 : f / 1.5;
-    (stableAt(f) ? stable : failing) = f;
+  {
+    Bracketing b(stableAt, s.threads);
+    const auto next = [&](double x) { return atOne ? x * 1.5 : x / 1.5; };
+    for (int k = 0; k < 40 && (stable == 0 || failing == 0) && stableAt.undecidedInARow < 2; ++k) {
+      f = next(f);
+      (b.take(f, {next(f), next(next(f))}) ? stable : failing) = f;
+    }
   }
   if (stable == 0 || failing == 0) {
     r.message = stableAt.undecidedInARow >= 2 ? kUndecidedBracket
                 : stable == 0                 ? failsAtEveryFactor(s.caseLabel)
                                               : "stable at every reduction factor tried (up to 1.5^40)";
   } else {
-    const BisectionResult b = narrowBracket(std::ref(stableAt), stable, failing, width, s.threads);
+    const BisectionResult b = narrow(stableAt, stable, failing, width, s.threads);
     copyBracket(b, r);
     r.factor = b.critical;
     r.rounds = b.rounds;

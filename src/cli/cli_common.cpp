@@ -261,6 +261,7 @@ std::string settingsLine(const ddaslope::model::Scene& scene) {
 void recordTrialStates(calibration::SearchSettings& s, const std::string& dir, const model::Scene& scene) {
   if (dir.empty() || processRank() != 0) return;
   auto recorder = std::make_shared<io::VtkRecorder>(dir, scene);
+  s.lookAhead = false;
   s.finalStates = [recorder](double value, const solver::Simulation& sim, const calibration::TrialResult& r) {
     char label[32];
     std::snprintf(label, sizeof label, "%.12g", value);

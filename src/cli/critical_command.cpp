@@ -39,6 +39,7 @@ int curveCommand(const std::string& casePath, const Overrides& o, const ddaslope
   const auto log = startProgress("critical --curve", opt.progress, opt.json);
   ddaslope::calibration::SearchSettings s;
   s.threads = opt.threads;
+  s.lookAhead = !opt.noLookAhead;
   s.progress = ddaslope::io::sinkOf(log.get());
   const auto t0 = std::chrono::steady_clock::now();
   const std::unique_ptr<ddaslope::TaskFarm> farm = ddaslope::makeTaskFarm(opt.threads);
@@ -136,6 +137,7 @@ int jrcCommand(const std::string& casePath, const Overrides& o, ddaslope::model:
   const auto log = startProgress("critical --solve jrc", opt.progress, opt.json);
   ddaslope::calibration::SearchSettings s;
   s.threads = opt.threads;
+  s.lookAhead = !opt.noLookAhead;
   s.progress = ddaslope::io::sinkOf(log.get());
   recordTrialStates(s, opt.vtkDir, scene);
   const auto r = ddaslope::calibration::criticalJrc(scene, joint, width, s);
@@ -145,7 +147,8 @@ int jrcCommand(const std::string& casePath, const Overrides& o, ddaslope::model:
     j.set("case", casePath).set("joint", opt.joint).set("solve", opt.solve).set("found", r.found);
     j.set("critical", r.found ? r.critical : NAN).set("unit", "JRC");
     j.set("bracket", bracketField(r.found, r.failingEnd, r.stableEnd));
-    j.set("forward_runs", totalRuns(r.runs, crack)).set("wall_time_s", totalWallTime(r.wallTime, crack));
+    j.set("forward_runs", totalRuns(r.runs, crack)).set("runs_ahead_unused", r.runsAheadUnused);
+    j.set("wall_time_s", totalWallTime(r.wallTime, crack));
     j.set("message", r.message).set("settings", settingsLine(scene));
     ddaslope::calibration::appendReview(j, r.review);
     ddaslope::calibration::appendTrials(j, r.trials, "jrc");
@@ -216,6 +219,7 @@ int seismicCoefficientCommand(const std::string& casePath, const Overrides& o, d
   const auto log = startProgress("critical --solve seismic-coefficient", opt.progress, opt.json);
   ddaslope::calibration::SearchSettings s;
   s.threads = opt.threads;
+  s.lookAhead = !opt.noLookAhead;
   s.progress = ddaslope::io::sinkOf(log.get());
   recordTrialStates(s, opt.vtkDir, scene);
   std::vector<std::pair<std::string, ddaslope::calibration::CriticalResult>> results;
@@ -230,7 +234,8 @@ int seismicCoefficientCommand(const std::string& casePath, const Overrides& o, d
   const auto& [direction, r] = results[best];
   int runs = 0;
   double wall = 0;
-  for (const auto& [d, x] : results) runs += x.runs, wall += x.wallTime;
+  int ahead = 0;
+  for (const auto& [d, x] : results) runs += x.runs, ahead += x.runsAheadUnused, wall += x.wallTime;
   const std::string runsText = forwardRunsText(runs, crack);
   wall = totalWallTime(wall, crack);
   {
@@ -239,7 +244,8 @@ int seismicCoefficientCommand(const std::string& casePath, const Overrides& o, d
     j.set("found", r.found).set("critical", r.found ? r.critical : NAN).set("unit", "g");
     j.set("failing_at", r.found ? r.failingEnd : NAN).set("stable_at", r.found ? r.stableEnd : NAN);
     j.set("bracket", bracketField(r.found, r.failingEnd, r.stableEnd));
-    j.set("forward_runs", totalRuns(runs, crack)).set("wall_time_s", wall).set("message", r.message);
+    j.set("forward_runs", totalRuns(runs, crack)).set("runs_ahead_unused", ahead);
+    j.set("wall_time_s", wall).set("message", r.message);
     j.set("settings", settingsLine(searched));
     ddaslope::calibration::appendReview(j, r.review);
     ddaslope::calibration::appendTrials(j, r.trials, "k_h");
@@ -291,6 +297,7 @@ int criticalCommand(const std::string& casePath, const Overrides& o, const Criti
   const auto log = startProgress("critical", opt.progress, opt.json);
   ddaslope::calibration::SearchSettings s;
   s.threads = opt.threads;
+  s.lookAhead = !opt.noLookAhead;
   s.progress = ddaslope::io::sinkOf(log.get());
   recordTrialStates(s, opt.vtkDir, scene);
   const ddaslope::model::JointProperties jp = scene.joints[joint];  // a copy: a crack search reloads the scene
@@ -338,7 +345,8 @@ int criticalCommand(const std::string& casePath, const Overrides& o, const Criti
     if (cohesion) j.set("friction_angle_deg", phi); else j.set("cohesion_pa", c);
     j.set("critical", r.found ? r.critical : NAN).set("unit", unit).set("bracket", bracketField(r.found, r.failingEnd, r.stableEnd));
     // The totals, the crack search's included (its own in tension_crack).
-    j.set("forward_runs", totalRuns(r.runs, crack)).set("wall_time_s", totalWallTime(r.wallTime, crack));
+    j.set("forward_runs", totalRuns(r.runs, crack)).set("runs_ahead_unused", r.runsAheadUnused);
+    j.set("wall_time_s", totalWallTime(r.wallTime, crack));
     j.set("message", r.message).set("settings", settingsLine(scene));
     ddaslope::calibration::appendReview(j, r.review);
     ddaslope::calibration::appendTrials(j, r.trials, cohesion ? "cohesion_pa" : "friction_angle_deg");
@@ -404,6 +412,7 @@ void addCriticalOptions(CLI::App* cmd, std::string& casePath, Overrides& overrid
                   "support's bracket)")
       ->check(finiteIn(1e-6, 1e12, "a width in [1e-6, 1e12]"));
   cmd->add_option("--threads", opt.threads, "forward runs at once")->capture_default_str()->check(CLI::Range(1, 256));
+  cmd->add_flag("--no-look-ahead", opt.noLookAhead, "run no trial ahead of need: with several threads, the threads a round leaves idle otherwise run the trials the next round may need (the same trials and answer, sooner; docs/calibration.md)");
   addModelOptions(cmd, overrides);
   cmd->add_flag("--json", opt.json, "print the result as JSON");
   addProgressOptions(cmd, opt.progress);

@@ -25,6 +25,7 @@ struct CriticalOptions {
   std::string vtkDir;      ///< every trial's final state as a VTK series (recordTrialStates)
   std::string support;     ///< --solve support: the support or load sized
   double targetFactor = 1;  ///< --solve support: the factor of safety it must give
+  bool noLookAhead = false;  ///< calibration::SearchSettings::lookAhead off
 };
 
 /// Registers the subcommand's options on `cmd` (its case, the model options into `overrides`, …).

@@ -59,6 +59,7 @@ int supportCurve(const std::string& casePath, const Overrides& o, const ddaslope
   ddaslope::io::PlotSeries series{"F (" + opt.support + ")", {}, {}, true};
   cal::SearchSettings s;
   s.threads = opt.threads;
+  s.lookAhead = !opt.noLookAhead;
   s.caseLabel = shellWord(casePath);
   int runs = 0;
   bool all = true;
@@ -177,7 +178,8 @@ int supportCommand(const std::string& casePath, const Overrides& o, ddaslope::mo
     j.set("critical", r.found ? r.critical : NAN).set("unit", "N/m");
     j.set("per_support_n", r.found ? r.critical * q.spacing : NAN).set("spacing_m", q.spacing);
     j.set("bracket", bracketField(r.found, r.failingEnd, r.stableEnd));
-    j.set("forward_runs", totalRuns(r.runs, crack)).set("wall_time_s", totalWallTime(r.wallTime, crack));
+    j.set("forward_runs", totalRuns(r.runs, crack)).set("runs_ahead_unused", r.runsAheadUnused);
+    j.set("wall_time_s", totalWallTime(r.wallTime, crack));
     j.set("message", r.message).set("settings", settingsLine(scene));
     cal::appendReview(j, r.review);
     cal::appendTrials(j, r.trials, "value_n_per_m");

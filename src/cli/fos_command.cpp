@@ -33,6 +33,7 @@ ddaslope::calibration::FactorOfSafetyResult factorFor(const ddaslope::model::Sce
   s.threads = opt.threads;
   s.progress = std::move(progress);
   s.trialStart = trialStartOf(opt.trialStart);
+  s.lookAhead = !opt.noLookAhead;
   s.caseLabel = shellWord(casePath);
   recordTrialStates(s, opt.vtkDir, scene);
   if (pictures) *pictures = std::make_unique<MechanismPictures>(s, scene);
@@ -233,6 +234,7 @@ int fosCommand(const std::string& casePath, const Overrides& o, const FosOptions
     j.set("bracket", bracketField(r.found, r.stableEnd, r.failingEnd)).set("width", opt.width);
     // The totals, the crack search's included (its own in tension_crack).
     j.set("forward_runs", totalRuns(r.runs, crack)).set("rounds", r.rounds);
+    j.set("runs_ahead_unused", r.runsAheadUnused);
     j.set("wall_time_s", totalWallTime(r.wallTime, crack)).set("message", message);
     j.set("settings", settingsLine(scene)).set("trial_start", ddaslope::calibration::name(r.trialStart));
     ddaslope::calibration::appendReview(j, r.review);
@@ -288,6 +290,7 @@ void addFosOptions(CLI::App* cmd, std::string& casePath, Overrides& overrides, F
       ->capture_default_str();
   cmd->add_option("--vtk", opt.vtkDir, "write each trial's final state as a VTK series in this folder (ParaView)");
   addTrialStartOption(cmd, opt.trialStart);
+  cmd->add_flag("--no-look-ahead", opt.noLookAhead, "run no trial ahead of need: with several threads, the threads a round leaves idle otherwise run the trials the next round may need (the same trials and answer, sooner; docs/calibration.md)");
   addModelOptions(cmd, overrides);
   cmd->add_flag("--json", opt.json, "print the result as JSON");
   addProgressOptions(cmd, opt.progress);

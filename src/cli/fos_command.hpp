@@ -20,6 +20,7 @@ struct FosOptions {
   ProgressOptions progress;
   std::string vtkDir;  ///< every trial's final state as a VTK series (recordTrialStates)
   std::string trialStart = "held";  ///< settled or held (calibration::TrialStart)
+  bool noLookAhead = false;         ///< calibration::SearchSettings::lookAhead off
 };
 
 /// Registers the subcommand's options on `cmd` (its case, the model options into `overrides`, …).

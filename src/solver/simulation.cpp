@@ -11,6 +11,7 @@
 
 #include "ddaslope/assembly/block_terms.hpp"
 #include "ddaslope/contact/contact_law.hpp"
+#include "ddaslope/core/cancellation.hpp"
 #include "ddaslope/core/errors.hpp"
 #include "stopwatch.hpp"
 
@@ -144,6 +145,7 @@ bool Simulation::finished() const {
 }
 
 void Simulation::checkDeadline() const {
+  throwIfCancelled();  // a step is the cancellation point of a run no longer needed
   if (!deadline_ || std::chrono::steady_clock::now() < *deadline_) return;
   std::ostringstream why;
   why << "stopped at t = " << time_ << " s after " << stats_.steps << " steps"

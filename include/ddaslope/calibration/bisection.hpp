@@ -2,6 +2,7 @@
 // Narrowing a bracket between a stable and a failing trial (bisection, or k-section when
 // several forward runs can be evaluated at once).
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -14,6 +15,8 @@ struct BisectionResult {
   double failingEnd = 0;   ///< the bracket end that fails
   int runs = 0;            ///< forward runs spent
   int rounds = 0;          ///< narrowing rounds
+  int runsAhead = 0;       ///< runs started ahead of need (narrowAhead), used or not
+  int runsAheadUsed = 0;   ///< of those, the runs the narrowing took
   std::string message;
 };
 
@@ -28,8 +31,57 @@ std::vector<bool> evaluateAll(const std::function<bool(double)>& stableAt, const
 BisectionResult narrowBracket(const std::function<bool(double)>& stableAt, double stable, double failing,
                               double width, int threads = 1);
 
+/// A verdict whose runs may be made ahead of need. `run(x)` makes the forward run at x, on any
+/// thread, keeps its outcome and returns whether it is stable; it may unwind with Cancelled
+/// (core/cancellation.hpp) when the run is no longer wanted. `take(x)` hands the outcome of a
+/// finished run(x) to the search (to record it); it is called once for every value the narrowing
+/// uses, round by round, in the order of the round's values. Outcomes never taken are the
+/// owner's to forget.
+struct LookAheadVerdict {
+  std::function<bool(double)> run;
+  std::function<void(double)> take;
+};
+
+/// narrowBracket's rounds, values, verdicts and result, with the threads a round leaves idle
+/// (its other trials finished, one still running) making the trials the next round may need:
+/// those of every outcome of the trials still running, the outcome where they fail first. A run
+/// ahead is taken only if its round comes, so the narrowing uses, and hands to `take`, exactly
+/// the trials narrowBracket would; a run whose round cannot come any more is cancelled.
+BisectionResult narrowAhead(const LookAheadVerdict& verdict, double stable, double failing, double width,
+                            int threads);
+
+/// Trials taken one at a time, as a bracketing loop takes them (c × 2 until the slope holds), with
+/// the spare threads running ahead the values the loop hopes to take next. `take(x, hoped)` gives
+/// the verdict at x, handed to the verdict's `take`: from a run made ahead, or made now on the
+/// calling thread. The spare threads then run the `hoped` values not yet run, in order; a run
+/// of a value neither taken nor hoped any more is stopped. The loop takes the same trials, in the
+/// same order, as without the runner. Runs still going when the runner is destroyed are stopped.
+class AheadRunner {
+ public:
+  /// `threads`: the calling thread and threads − 1 spare ones (1: no run ahead).
+  AheadRunner(const LookAheadVerdict& verdict, int threads);
+  ~AheadRunner();
+  AheadRunner(const AheadRunner&) = delete;
+  AheadRunner& operator=(const AheadRunner&) = delete;
+  bool take(double x, std::vector<double> hoped);
+  /// Stops the runs still going and the spare threads (the destructor does it too).
+  void stop();
+  int runsAhead() const;      ///< runs the spare threads started
+  int runsAheadUsed() const;  ///< of those, the runs taken
+
+ private:
+  struct State;
+  std::unique_ptr<State> state_;
+};
+
 /// Evaluates both ends, then narrows. Exactly one end must be stable.
 BisectionResult bisect(const std::function<bool(double)>& stableAt, double lo, double hi, double width,
                        int threads = 1);
+
+/// A narrowing with narrowBracket's arguments after the verdict (narrowAhead bound to one).
+using Narrowing = std::function<BisectionResult(double stable, double failing, double width, int threads)>;
+/// bisect, narrowing with `narrow`.
+BisectionResult bisect(const std::function<bool(double)>& stableAt, double lo, double hi, double width, int threads,
+                       const Narrowing& narrow);
 
 }  // namespace ddaslope::calibration

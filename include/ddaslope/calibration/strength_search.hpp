@@ -52,6 +52,11 @@ struct SearchSettings {
   /// seismic coefficient), from the trial's own thread (a search's --vtk). Not passed on to the
   /// searches of criticalCurve.
   std::function<void(double value, const solver::Simulation&, const TrialResult&)> finalStates;
+  /// While a round's last trial runs, the threads its other trials freed run the trials the next
+  /// round may need (calibration/bisection.hpp, narrowAhead): the same trials and answer, sooner.
+  /// Off when every trial's final state is written, since a run the search does not use must
+  /// leave no file.
+  bool lookAhead = true;
   /// Strength reduction (factorOfSafety): where each trial's equilibrium starts. Settled: from the
   /// rest the trial at the case's own strengths (F = 1) found, when that trial stands, as the
   /// strength reduction of FLAC and UDEC starts from the model in equilibrium; a trial then only
@@ -73,6 +78,9 @@ struct CriticalResult {
   double stableEnd = 0;     ///< bracket end that holds
   double failingEnd = 0;    ///< bracket end that fails
   int runs = 0;
+  /// Runs made ahead of need (SearchSettings::lookAhead) that the search did not use, stopped
+  /// or finished: threads' time spent, not counted in `runs` nor recorded as trials.
+  int runsAheadUnused = 0;
   double wallTime = 0;      ///< s
   TrialReview review;
   std::vector<TrialRecord> trials;  ///< every forward run, by value
@@ -140,6 +148,9 @@ struct FactorOfSafetyResult {
   TrialStart trialStart = TrialStart::Held;
   int runs = 0;
   int rounds = 0;
+  /// Runs made ahead of need (SearchSettings::lookAhead) that the search did not use, stopped
+  /// or finished: threads' time spent, not counted in `runs` nor recorded as trials.
+  int runsAheadUnused = 0;
   double wallTime = 0;
   TrialReview review;
   std::vector<TrialRecord> trials;  ///< every forward run, by value

@@ -390,7 +390,8 @@ class Simulation {
   RunStatistics stats_;
   /// analysis.wall_clock_limit as a deadline from construction (equilibrium included), or none.
   std::optional<std::chrono::steady_clock::time_point> deadline_;
-  /// Throws BudgetExceededError once the deadline has passed.
+  /// Throws BudgetExceededError once the deadline has passed, and Cancelled once the thread's
+  /// cancellation scope (core/cancellation.hpp) is told to stop.
   void checkDeadline() const;
   std::function<void(const std::string&)> log_;
   std::function<void(const char*, int, int)> equilibriumProgress_;

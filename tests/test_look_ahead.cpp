@@ -1,0 +1,327 @@
+// Narrowing a bracket with runs ahead of need (calibration/bisection.hpp, narrowAhead): threads a
+// round leaves idle run the trials the next round may need, and the narrowing takes exactly the
+// trials, and gives exactly the bracket, of the k-section without them (narrowBracket). The
+// reference is that k-section itself, on verdicts whose answers are known by construction.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cstring>
+#include <chrono>
+#include <map>
+#include <mutex>
+#include <cmath>
+#include <functional>
+#include <random>
+#include <set>
+#include <thread>
+
+#include "ddaslope/calibration/bisection.hpp"
+#include "ddaslope/calibration/strength_search.hpp"
+#include "ddaslope/core/cancellation.hpp"
+#include "ddaslope/core/errors.hpp"
+
+using namespace ddaslope;
+using calibration::BisectionResult;
+
+namespace {
+
+/// A verdict for a narrowing: stable below a threshold, except inside optional "islands" of
+/// failure below it and of stability above it (verdicts that are not monotone, as DDA's near a
+/// critical strength may be); each run sleeps a time of its own, so threads finish out of order.
+struct Landscape {
+  double threshold = 0.5;
+  std::vector<std::pair<double, double>> islands;
+  std::map<double, int> sleepMicros;
+  int defaultSleep = 200;
+  bool stableAt(double x) const {
+    bool stable = x < threshold;
+    for (const auto& [a, b] : islands)
+      if (x >= a && x <= b) stable = !stable;
+    return stable;
+  }
+  int sleepAt(double x) const {
+    // Deterministic per value: a hash of its bits.
+    const auto at = sleepMicros.find(x);
+    if (at != sleepMicros.end()) return at->second;
+    std::uint64_t bits;
+    std::memcpy(&bits, &x, sizeof bits);
+    bits ^= bits >> 29;
+    bits *= 0xbf58476d1ce4e5b9ULL;
+    bits ^= bits >> 32;
+    return defaultSleep * static_cast<int>(bits % 8);
+  }
+};
+
+/// A run: sleeps in slices of 100 µs, each a cancellation point, as a simulation's steps are.
+bool run(const Landscape& l, double x) {
+  const auto end = std::chrono::steady_clock::now() + std::chrono::microseconds(l.sleepAt(x));
+  while (std::chrono::steady_clock::now() < end) {
+    throwIfCancelled();
+    std::this_thread::sleep_for(std::chrono::microseconds(100));
+  }
+  return l.stableAt(x);
+}
+
+struct Narrowed {
+  BisectionResult result;
+  std::vector<double> taken;  ///< values in the order handed to `take`
+  int cancelled = 0;
+};
+
+Narrowed lookingAhead(const Landscape& l, double stable, double failing, double width, int threads) {
+  Narrowed n;
+  std::mutex m;
+  std::set<double> finished;
+  calibration::LookAheadVerdict v;
+  v.run = [&](double x) {
+    try {
+      const bool ok = run(l, x);
+      const std::lock_guard<std::mutex> lock(m);
+      finished.insert(x);
+      return ok;
+    } catch (const Cancelled&) {
+      const std::lock_guard<std::mutex> lock(m);
+      ++n.cancelled;
+      throw;
+    }
+  };
+  v.take = [&](double x) {
+    const std::lock_guard<std::mutex> lock(m);
+    EXPECT_TRUE(finished.count(x)) << "took " << x << " before its run finished";
+    n.taken.push_back(x);
+  };
+  n.result = calibration::narrowAhead(v, stable, failing, width, threads);
+  return n;
+}
+
+/// The k-section's rounds: the values of each, in order.
+std::vector<double> kSectionValues(const Landscape& l, double stable, double failing, double width, int threads,
+                                   BisectionResult& r) {
+  std::mutex m;
+  std::vector<double> values;
+  r = calibration::narrowBracket(
+      [&](double x) {
+        {
+          const std::lock_guard<std::mutex> lock(m);
+          values.push_back(x);
+        }
+        return l.stableAt(x);
+      },
+      stable, failing, width, threads);
+  // A round's values ran at once, in any order: sort each round.
+  for (size_t i = 0; i < values.size(); i += static_cast<size_t>(threads))
+    std::sort(values.begin() + static_cast<long>(i), values.begin() + static_cast<long>(i + static_cast<size_t>(threads)));
+  return values;
+}
+
+}  // namespace
+
+// On 300 landscapes (monotone and not, thresholds and islands drawn at random, run times of 0 to
+// 1.4 ms), with 2, 3 and 4 threads: the trials taken, round by round in order, are the
+// k-section's, and so are the bracket, its ends, the runs and the rounds, to the last bit.
+TEST(LookAhead, TakesTheKSectionsTrialsAndGivesItsBracket) {
+  std::mt19937 rng(20261206);
+  std::uniform_real_distribution<double> u(0, 1);
+  int aheadUsed = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    Landscape l;
+    l.threshold = 0.05 + 0.9 * u(rng);
+    if (trial % 3 != 0) {
+      const double a = u(rng), b = a + 0.05 * u(rng);
+      l.islands.push_back({a, b});
+    }
+    const int threads = 2 + trial % 3;
+    const double width = 1e-3 * (1 + 9 * u(rng));
+    BisectionResult reference;
+    const std::vector<double> values = kSectionValues(l, 0, 1, width, threads, reference);
+    const Narrowed n = lookingAhead(l, 0, 1, width, threads);
+    ASSERT_EQ(n.taken, values) << "trial " << trial;
+    EXPECT_EQ(n.result.stableEnd, reference.stableEnd) << trial;
+    EXPECT_EQ(n.result.failingEnd, reference.failingEnd) << trial;
+    EXPECT_EQ(n.result.critical, reference.critical) << trial;
+    EXPECT_EQ(n.result.runs, reference.runs) << trial;
+    EXPECT_EQ(n.result.rounds, reference.rounds) << trial;
+    EXPECT_TRUE(n.result.bracketed);
+    EXPECT_LE(n.result.runsAheadUsed, n.result.runsAhead);
+    aheadUsed += n.result.runsAheadUsed;
+  }
+  EXPECT_GT(aheadUsed, 0) << "no run ahead was ever used";
+}
+
+// Round 1 of [0, 1] with two threads tries 1/3 (5 ms, stable) and 2/3 (50 ms). While 2/3 runs, the
+// idle thread starts the next round assuming 2/3 fails: 5/9 first, a run of 10 s. 2/3 is stable,
+// so that round cannot come: the run ahead is cancelled (it would otherwise hold the narrowing for
+// 10 s) and never taken, and the narrowing goes on in [2/3, 1], as the k-section does.
+TEST(LookAhead, ARunWhoseRoundCannotComeIsCancelledAndNotTaken) {
+  Landscape l;
+  l.threshold = 0.9;
+  l.defaultSleep = 100;
+  l.sleepMicros[1.0 / 3] = 5000;
+  l.sleepMicros[2.0 / 3] = 50000;
+  // The round [1/3, 2/3] would try 4/9 and 5/9, computed as the narrowing computes them.
+  const double fourNinths = 1.0 / 3 + (2.0 / 3 - 1.0 / 3) * 1 / 3;
+  const double fiveNinths = 1.0 / 3 + (2.0 / 3 - 1.0 / 3) * 2 / 3;
+  l.sleepMicros[fourNinths] = l.sleepMicros[fiveNinths] = 10000000;
+  const Narrowed n = lookingAhead(l, 0, 1, 0.01, 2);
+  BisectionResult reference;
+  EXPECT_EQ(n.taken, kSectionValues(l, 0, 1, 0.01, 2, reference));
+  EXPECT_EQ(n.result.stableEnd, reference.stableEnd);
+  EXPECT_EQ(n.result.failingEnd, reference.failingEnd);
+  EXPECT_GE(n.cancelled, 1) << "the run at 5/9 was not stopped";
+  EXPECT_EQ(std::count(n.taken.begin(), n.taken.end(), fiveNinths), 0);
+  EXPECT_EQ(std::count(n.taken.begin(), n.taken.end(), fourNinths), 0);
+  EXPECT_GE(n.result.runsAhead, 1);
+}
+
+// An error in a run the narrowing takes reaches the caller; one in a run ahead that it never
+// takes does not (that round never came, so neither did its error).
+TEST(LookAhead, OnlyTheErrorsOfRunsTakenReachTheCaller) {
+  calibration::LookAheadVerdict v;
+  // Round 1 of [0, 1]: 1/3 fails at once, so the round's bracket is [0, 1/3] whatever 2/3 says;
+  // 2/3 is slow. The idle thread runs ahead in [0, 1/3] and meets the error at 2/9 there.
+  v.run = [](double x) {
+    if (x == 2.0 / 3) std::this_thread::sleep_for(std::chrono::milliseconds(200));
+    if (x > 0.2 && x < 0.25) throw InputError("case.json", "joints.a.cohesion", "expected ≥ 0, found -1");
+    return x < 0.1;
+  };
+  v.take = [](double) {};
+  EXPECT_THROW(calibration::narrowAhead(v, 0, 1, 0.01, 2), InputError);
+  // The same error at 8/9, where only a run ahead assuming 2/3 stable goes (after 4/9 and 5/9,
+  // which assume it fails): 2/3 fails, and 8/9 is never taken.
+  v.run = [](double x) {
+    if (x == 2.0 / 3) std::this_thread::sleep_for(std::chrono::milliseconds(200));
+    if (x > 0.85) throw InputError("case.json", "joints.a.cohesion", "expected ≥ 0, found -1");
+    return x < 0.5;
+  };
+  const BisectionResult r = calibration::narrowAhead(v, 0, 1, 0.01, 2);
+  EXPECT_TRUE(r.bracketed);
+  EXPECT_GE(r.runsAhead, 3) << "the run ahead at 8/9 was not made";
+  EXPECT_LE(r.stableEnd, 0.5);
+  EXPECT_GT(r.failingEnd, 0.5);
+}
+
+// A search with look-ahead and without: the same factor of safety, bracket, runs and trials, on
+// a verdict of known answer whose trials near it are slow (as DDA's failing trials are).
+TEST(LookAhead, AStrengthReductionSearchIsTheSameWithAndWithout) {
+  for (const double critical : {1.1224, 0.8, 2.7}) {
+    const auto verdict = [critical](double f, double) {
+      calibration::TrialResult r;
+      r.stable = f < critical;
+      r.rule = r.stable ? calibration::VerdictRule::AtRest : calibration::VerdictRule::PassedDisplacement;
+      const double near = std::abs(f - critical);
+      std::this_thread::sleep_for(std::chrono::microseconds(static_cast<int>(200 + 100 / (near + 0.01))));
+      return r;
+    };
+    calibration::SearchSettings with, without;
+    with.threads = without.threads = 2;
+    without.lookAhead = false;
+    const auto a = calibration::factorOfSafetyOf(verdict, 0.005, with);
+    const auto b = calibration::factorOfSafetyOf(verdict, 0.005, without);
+    ASSERT_TRUE(a.found && b.found) << a.message << b.message;
+    EXPECT_EQ(a.factor, b.factor) << critical;
+    EXPECT_EQ(a.stableEnd, b.stableEnd);
+    EXPECT_EQ(a.failingEnd, b.failingEnd);
+    EXPECT_EQ(a.runs, b.runs);
+    EXPECT_EQ(b.runsAheadUnused, 0);
+    ASSERT_EQ(a.trials.size(), b.trials.size());
+    for (size_t i = 0; i < a.trials.size(); ++i) EXPECT_EQ(a.trials[i].value, b.trials[i].value);
+    EXPECT_NEAR(a.factor, critical, 0.005);
+  }
+}
+
+namespace {
+
+/// A bracketing loop as the searches write theirs: double x from `first` until the verdict
+/// turns stable (or 40 doublings), taking each trial through `take`.
+std::vector<double> doublingLoop(const std::function<bool(double, std::vector<double>)>& take, double first) {
+  std::vector<double> taken;
+  double x = first;
+  for (int k = 0; k < 40; ++k) {
+    taken.push_back(x);
+    if (take(x, {2 * x, 4 * x})) break;
+    x *= 2;
+  }
+  return taken;
+}
+
+}  // namespace
+
+// The same loop with the runner and without, on 200 landscapes (monotone and not) with 1, 2 and 3
+// threads: the same trials taken in the same order, each after its run finished.
+TEST(LookAhead, ABracketingLoopTakesTheSameTrialsWithTheRunner) {
+  std::mt19937 rng(6122026);
+  std::uniform_real_distribution<double> u(0, 1);
+  int used = 0;
+  for (int trial = 0; trial < 200; ++trial) {
+    Landscape l;
+    // "Stable" here means the loop may stop: stable at or above the threshold.
+    l.threshold = std::pow(2.0, 1 + 12 * u(rng));
+    if (trial % 2) l.islands.push_back({l.threshold * 0.25, l.threshold * 0.3});
+    const auto holds = [&](double x) { return !l.stableAt(x); };
+    const std::vector<double> reference = doublingLoop([&](double x, std::vector<double>) { return holds(x); }, 1);
+    const int threads = 1 + trial % 3;
+    std::mutex m;
+    std::set<double> finished;
+    std::vector<double> taken;
+    calibration::LookAheadVerdict v;
+    v.run = [&](double x) {
+      run(l, x);
+      const std::lock_guard<std::mutex> lock(m);
+      finished.insert(x);
+      return holds(x);
+    };
+    v.take = [&](double x) {
+      const std::lock_guard<std::mutex> lock(m);
+      EXPECT_TRUE(finished.count(x)) << "took " << x << " before its run finished";
+      taken.push_back(x);
+    };
+    calibration::AheadRunner runner(v, threads);
+    const std::vector<double> looped = doublingLoop([&](double x, std::vector<double> hoped) {
+      return runner.take(x, std::move(hoped));
+    }, 1);
+    runner.stop();
+    EXPECT_EQ(looped, reference) << trial;
+    EXPECT_EQ(taken, reference) << trial;
+    if (threads == 1) {
+      EXPECT_EQ(runner.runsAhead(), 0);
+    }
+    used += runner.runsAheadUsed();
+  }
+  EXPECT_GT(used, 0) << "no run ahead was ever used";
+}
+
+// A loop that stops while a run ahead of 10 s is going: stopping the runner stops that run (it
+// would otherwise hold the caller 10 s), and an error met by a run never taken stays there.
+TEST(LookAhead, ARunnerStopsItsRunsAheadAndKeepsTheirErrors) {
+  std::atomic<int> cancelled{0};
+  calibration::LookAheadVerdict v;
+  v.run = [&](double x) {
+    if (x == 3) throw InputError("case.json", "joints.a.cohesion", "expected ≥ 0, found -1");
+    if (x == 2) {
+      try {
+        for (int i = 0; i < 100000; ++i) {
+          throwIfCancelled();
+          std::this_thread::sleep_for(std::chrono::microseconds(100));
+        }
+      } catch (const Cancelled&) {
+        ++cancelled;
+        throw;
+      }
+    }
+    return true;
+  };
+  v.take = [](double) {};
+  {
+    calibration::AheadRunner runner(v, 3);
+    // While 1 runs here (at once), the spare threads start 2 (long) and 3 (an error).
+    EXPECT_TRUE(runner.take(1, {2, 3}));
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    runner.stop();
+    EXPECT_EQ(cancelled.load(), 1) << "the run at 2 was not stopped";
+    EXPECT_EQ(runner.runsAheadUsed(), 0);
+  }
+  // Taken, the error reaches the caller.
+  calibration::AheadRunner runner(v, 2);
+  EXPECT_THROW(runner.take(3, {}), InputError);
+}
