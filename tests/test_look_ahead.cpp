@@ -149,54 +149,97 @@ TEST(LookAhead, TakesTheKSectionsTrialsAndGivesItsBracket) {
   EXPECT_GT(aheadUsed, 0) << "no run ahead was ever used";
 }
 
-// Round 1 of [0, 1] with two threads tries 1/3 (5 ms, stable) and 2/3 (50 ms). While 2/3 runs, the
-// idle thread starts the next round assuming 2/3 fails: 5/9 first, a run of 10 s. 2/3 is stable,
-// so that round cannot come: the run ahead is cancelled (it would otherwise hold the narrowing for
-// 10 s) and never taken, and the narrowing goes on in [2/3, 1], as the k-section does.
+/// Waits (30 s at most: a test that would hang fails instead) until `flag` is set.
+void waitFor(const std::atomic<bool>& flag) {
+  const auto end = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+  while (!flag && std::chrono::steady_clock::now() < end) std::this_thread::sleep_for(std::chrono::microseconds(200));
+}
+
+/// Runs until cancelled (30 s at most), a cancellation point every 100 µs; counts the stop.
+void runUntilCancelled(std::atomic<int>& cancelled) {
+  try {
+    const auto end = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+    while (std::chrono::steady_clock::now() < end) {
+      throwIfCancelled();
+      std::this_thread::sleep_for(std::chrono::microseconds(100));
+    }
+  } catch (const Cancelled&) {
+    ++cancelled;
+    throw;
+  }
+}
+
+// Round 1 of [0, 1] with two threads tries 1/3 and 2/3 (stable below 0.9). The trial at 1/3 ends
+// at once; the thread it frees starts the next round assuming 2/3 fails, with 5/9, a run that
+// would last 30 s; only then does 2/3 end, stable. That round cannot come: the run at 5/9 is
+// stopped and never taken, and the narrowing goes on in [2/3, 1] as the k-section does.
 TEST(LookAhead, ARunWhoseRoundCannotComeIsCancelledAndNotTaken) {
+  const double fourNinths = 1.0 / 3 + (2.0 / 3 - 1.0 / 3) * 1 / 3;  // as the narrowing computes them
+  const double fiveNinths = 1.0 / 3 + (2.0 / 3 - 1.0 / 3) * 2 / 3;
+  std::atomic<bool> aheadBegun{false};
+  std::atomic<int> cancelled{0};
+  std::mutex m;
+  std::vector<double> taken;
+  calibration::LookAheadVerdict v;
+  v.run = [&](double x) {
+    if (x == fiveNinths || x == fourNinths) {
+      aheadBegun = true;
+      runUntilCancelled(cancelled);
+    }
+    if (x == 2.0 / 3) waitFor(aheadBegun);
+    return x < 0.9;
+  };
+  v.take = [&](double x) {
+    const std::lock_guard<std::mutex> lock(m);
+    taken.push_back(x);
+  };
+  const BisectionResult r = calibration::narrowAhead(v, 0, 1, 0.01, 2);
   Landscape l;
   l.threshold = 0.9;
-  l.defaultSleep = 100;
-  l.sleepMicros[1.0 / 3] = 5000;
-  l.sleepMicros[2.0 / 3] = 50000;
-  // The round [1/3, 2/3] would try 4/9 and 5/9, computed as the narrowing computes them.
-  const double fourNinths = 1.0 / 3 + (2.0 / 3 - 1.0 / 3) * 1 / 3;
-  const double fiveNinths = 1.0 / 3 + (2.0 / 3 - 1.0 / 3) * 2 / 3;
-  l.sleepMicros[fourNinths] = l.sleepMicros[fiveNinths] = 10000000;
-  const Narrowed n = lookingAhead(l, 0, 1, 0.01, 2);
   BisectionResult reference;
-  EXPECT_EQ(n.taken, kSectionValues(l, 0, 1, 0.01, 2, reference));
-  EXPECT_EQ(n.result.stableEnd, reference.stableEnd);
-  EXPECT_EQ(n.result.failingEnd, reference.failingEnd);
-  EXPECT_GE(n.cancelled, 1) << "the run at 5/9 was not stopped";
-  EXPECT_EQ(std::count(n.taken.begin(), n.taken.end(), fiveNinths), 0);
-  EXPECT_EQ(std::count(n.taken.begin(), n.taken.end(), fourNinths), 0);
-  EXPECT_GE(n.result.runsAhead, 1);
+  EXPECT_EQ(taken, kSectionValues(l, 0, 1, 0.01, 2, reference));
+  EXPECT_EQ(r.stableEnd, reference.stableEnd);
+  EXPECT_EQ(r.failingEnd, reference.failingEnd);
+  EXPECT_EQ(cancelled.load(), 1) << "the run at 5/9 was not stopped";
+  EXPECT_EQ(std::count(taken.begin(), taken.end(), fiveNinths), 0);
+  EXPECT_EQ(std::count(taken.begin(), taken.end(), fourNinths), 0);
+  EXPECT_GE(r.runsAhead, 1);
 }
 
 // An error in a run the narrowing takes reaches the caller; one in a run ahead that it never
 // takes does not (that round never came, so neither did its error).
 TEST(LookAhead, OnlyTheErrorsOfRunsTakenReachTheCaller) {
+  const double twoNinths = 0 + (1.0 / 3 - 0) * 2 / 3;
+  const double eightNinths = 2.0 / 3 + (1 - 2.0 / 3) * 2 / 3;
+  std::atomic<bool> reached{false};
   calibration::LookAheadVerdict v;
-  // Round 1 of [0, 1]: 1/3 fails at once, so the round's bracket is [0, 1/3] whatever 2/3 says;
-  // 2/3 is slow. The idle thread runs ahead in [0, 1/3] and meets the error at 2/9 there.
-  v.run = [](double x) {
-    if (x == 2.0 / 3) std::this_thread::sleep_for(std::chrono::milliseconds(200));
-    if (x > 0.2 && x < 0.25) throw InputError("case.json", "joints.a.cohesion", "expected ≥ 0, found -1");
+  v.take = [](double) {};
+  // Round 1 of [0, 1]: 1/3 fails at once, so the next bracket is [0, 1/3] whatever 2/3 says; the
+  // freed thread runs 2/9 there ahead, which meets an error, and 2/3 ends after that began.
+  v.run = [&](double x) {
+    if (x == twoNinths) {
+      reached = true;
+      throw InputError("case.json", "joints.a.cohesion", "expected ≥ 0, found -1");
+    }
+    if (x == 2.0 / 3) waitFor(reached);
     return x < 0.1;
   };
-  v.take = [](double) {};
   EXPECT_THROW(calibration::narrowAhead(v, 0, 1, 0.01, 2), InputError);
-  // The same error at 8/9, where only a run ahead assuming 2/3 stable goes (after 4/9 and 5/9,
-  // which assume it fails): 2/3 fails, and 8/9 is never taken.
-  v.run = [](double x) {
-    if (x == 2.0 / 3) std::this_thread::sleep_for(std::chrono::milliseconds(200));
-    if (x > 0.85) throw InputError("case.json", "joints.a.cohesion", "expected ≥ 0, found -1");
+  // The same error at 8/9, where only a run ahead assuming 2/3 stable goes (after 5/9 and 4/9,
+  // which assume it fails): 2/3 then fails, and 8/9 is never taken.
+  reached = false;
+  v.run = [&](double x) {
+    if (x == eightNinths) {
+      reached = true;
+      throw InputError("case.json", "joints.a.cohesion", "expected ≥ 0, found -1");
+    }
+    if (x == 2.0 / 3) waitFor(reached);
     return x < 0.5;
   };
   const BisectionResult r = calibration::narrowAhead(v, 0, 1, 0.01, 2);
+  EXPECT_TRUE(reached) << "the run ahead at 8/9 was not made";
   EXPECT_TRUE(r.bracketed);
-  EXPECT_GE(r.runsAhead, 3) << "the run ahead at 8/9 was not made";
+  EXPECT_GE(r.runsAhead, 3);
   EXPECT_LE(r.stableEnd, 0.5);
   EXPECT_GT(r.failingEnd, 0.5);
 }
@@ -204,6 +247,7 @@ TEST(LookAhead, OnlyTheErrorsOfRunsTakenReachTheCaller) {
 // A search with look-ahead and without: the same factor of safety, bracket, runs and trials, on
 // a verdict of known answer whose trials near it are slow (as DDA's failing trials are).
 TEST(LookAhead, AStrengthReductionSearchIsTheSameWithAndWithout) {
+  int ahead = 0;
   for (const double critical : {1.1224, 0.8, 2.7}) {
     const auto verdict = [critical](double f, double) {
       calibration::TrialResult r;
@@ -223,11 +267,19 @@ TEST(LookAhead, AStrengthReductionSearchIsTheSameWithAndWithout) {
     EXPECT_EQ(a.stableEnd, b.stableEnd);
     EXPECT_EQ(a.failingEnd, b.failingEnd);
     EXPECT_EQ(a.runs, b.runs);
-    EXPECT_EQ(b.runsAheadUnused, 0);
+    EXPECT_EQ(a.rounds, b.rounds);
+    EXPECT_EQ(a.review.reruns, b.review.reruns);
+    EXPECT_EQ(b.runsAhead, 0);
     ASSERT_EQ(a.trials.size(), b.trials.size());
-    for (size_t i = 0; i < a.trials.size(); ++i) EXPECT_EQ(a.trials[i].value, b.trials[i].value);
+    for (size_t i = 0; i < a.trials.size(); ++i) {
+      EXPECT_EQ(a.trials[i].value, b.trials[i].value);
+      EXPECT_EQ(a.trials[i].result.stable, b.trials[i].result.stable);
+    }
     EXPECT_NEAR(a.factor, critical, 0.005);
+    ahead += a.runsAhead;
   }
+  // Rounds whose trials take unequal times leave a thread idle, which runs ahead.
+  EXPECT_GT(ahead, 0) << "no trial was run ahead";
 }
 
 namespace {
@@ -291,32 +343,30 @@ TEST(LookAhead, ABracketingLoopTakesTheSameTrialsWithTheRunner) {
   EXPECT_GT(used, 0) << "no run ahead was ever used";
 }
 
-// A loop that stops while a run ahead of 10 s is going: stopping the runner stops that run (it
-// would otherwise hold the caller 10 s), and an error met by a run never taken stays there.
+// A loop that stops while a run ahead is going: stopping the runner stops that run (it would
+// otherwise hold the caller 30 s), and an error met by a run never taken stays there.
 TEST(LookAhead, ARunnerStopsItsRunsAheadAndKeepsTheirErrors) {
   std::atomic<int> cancelled{0};
+  std::atomic<bool> begun{false}, erred{false};
   calibration::LookAheadVerdict v;
   v.run = [&](double x) {
-    if (x == 3) throw InputError("case.json", "joints.a.cohesion", "expected ≥ 0, found -1");
+    if (x == 3) {
+      erred = true;
+      throw InputError("case.json", "joints.a.cohesion", "expected ≥ 0, found -1");
+    }
     if (x == 2) {
-      try {
-        for (int i = 0; i < 100000; ++i) {
-          throwIfCancelled();
-          std::this_thread::sleep_for(std::chrono::microseconds(100));
-        }
-      } catch (const Cancelled&) {
-        ++cancelled;
-        throw;
-      }
+      begun = true;
+      runUntilCancelled(cancelled);
     }
     return true;
   };
   v.take = [](double) {};
   {
     calibration::AheadRunner runner(v, 3);
-    // While 1 runs here (at once), the spare threads start 2 (long) and 3 (an error).
+    // While 1 runs here, the spare threads start 2 (long) and 3 (an error).
     EXPECT_TRUE(runner.take(1, {2, 3}));
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    waitFor(begun);
+    waitFor(erred);
     runner.stop();
     EXPECT_EQ(cancelled.load(), 1) << "the run at 2 was not stopped";
     EXPECT_EQ(runner.runsAheadUsed(), 0);

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "ddaslope/calibration/strength_search.hpp"
+#include "ddaslope/calibration/verdict.hpp"
 #include "ddaslope/io/case_reader.hpp"
 #include "ddaslope/solver/simulation.hpp"
 #include <filesystem>
@@ -88,6 +89,52 @@ double lateAcceleration(const BoltRecord& r) {
 constexpr double kMass = 2600 * 2.0;  // the 2 × 1 m block (kg/m)
 
 }  // namespace
+
+// Early rest (calibration/verdict.hpp) with a support: a bolt's law does not depend on time, so a
+// block it holds stops early with the verdict of its whole run. The A4 block pulls 9.43 kN/m down
+// the slope beyond its friction (m a, a = 1.813 m/s²). A bolt of 20 kN/m capacity holds it at the
+// static stretch m a / k = 9.4 mm, where the initial equilibrium brings it: the run stops as rest
+// before its duration, as stable as the whole run. One of 5 kN/m yields: from rest, the block
+// stretches it elastically, s = s0 (1 − cos ωt) with s0 = m a / k and ω = √(k/m), until k s
+// reaches the capacity, then slides on at (9.43 − 5) kN/m / m = 0.85 m/s² under its constant
+// pull. Both runs pass the 0.1 m failure displacement at that closed form's 0.434 s, and neither
+// stops as rest.
+TEST(EarlyRest, ABoltedBlockStopsEarlyWithTheWholeRunsVerdict) {
+  const double pull = kMass * scenes::slidingAcceleration(InclineSpec{});
+  ASSERT_NEAR(pull, 9428, 10);
+  for (const double capacity : {2e4, 5e3}) {
+    model::Scene s = boltedIncline(1e6, capacity, model::SupportFailure::Yield);
+    s.settings.duration = 2;
+    const bool holds = capacity > pull;
+    // Brought to rest first only where it holds: the yielding bolt's block would pass the
+    // threshold while the scene settles (rule (0)), before any run could stop early.
+    s.settings.initialEquilibrium = holds;
+    calibration::VerdictSettings v;
+    v.failureDisplacement = 0.1;
+    s.settings.earlyRest = false;
+    const calibration::TrialResult whole = calibration::judgeStability(s, v);
+    s.settings.earlyRest = true;
+    const calibration::TrialResult early = calibration::judgeStability(s, v);
+    EXPECT_EQ(whole.stable, holds) << capacity << ": " << whole.reason;
+    EXPECT_EQ(early.stable, holds) << capacity << ": " << early.reason;
+    EXPECT_EQ(early.rule, whole.rule) << capacity;
+    EXPECT_EQ(early.earlyRest, holds) << capacity;
+    EXPECT_FALSE(whole.earlyRest);
+    if (holds) {
+      EXPECT_LT(early.timeReached, 0.5 * s.settings.duration);
+    } else {
+      const double k = 1e6, w = std::sqrt(k / kMass), s0 = pull / k;
+      const double t1 = std::acos(1 - capacity / k / s0) / w, v1 = s0 * w * std::sin(w * t1);
+      const double a2 = (pull - capacity) / kMass;
+      const double passes = t1 + (-v1 + std::sqrt(v1 * v1 + 2 * a2 * (0.1 - capacity / k))) / a2;
+      ASSERT_NEAR(passes, 0.434, 0.001);
+      EXPECT_EQ(early.rule, calibration::VerdictRule::PassedDisplacement);
+      // Within 1 %: steps of 1 ms, and the threshold is met by the block's farthest point, which
+      // its slight rotation carries ahead of its centre.
+      EXPECT_NEAR(early.timeReached, passes, 0.01 * passes);
+    }
+  }
+}
 
 // A passive bolt's force is k × elongation while it holds (Hooke's law; the elongation is the
 // slip, the bolt lying along it), stays at its capacity once reached (perfectly plastic), and the

@@ -10,7 +10,9 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <set>
 #include <sstream>
+#include <system_error>
 #include <thread>
 #include <tuple>
 
@@ -260,7 +262,11 @@ BisectionResult narrowAhead(const LookAheadVerdict& verdict, double stable, doub
         stable, failing, width, 1);
   AheadRounds rounds(verdict, stable, failing, width, k);
   std::vector<std::thread> pool;
-  for (int t = 1; t < k; ++t) pool.emplace_back([&] { rounds.work(); });
+  try {
+    for (int t = 1; t < k; ++t) pool.emplace_back([&] { rounds.work(); });
+  } catch (const std::system_error&) {
+    // No thread to start: the ones started share the rounds (a round's trials then run in turn).
+  }
   rounds.work();
   for (std::thread& t : pool) t.join();
   return rounds.result();
@@ -311,7 +317,8 @@ struct AheadRunner::State {
     std::unique_lock<std::mutex> lock(mutex);
     for (;;) {
       if (closing) return;
-      const auto next = std::find_if(hoped.begin(), hoped.end(), [&](double x) { return !runs.count(x); });
+      const auto next =
+          std::find_if(hoped.begin(), hoped.end(), [&](double x) { return !runs.count(x) && !taken.count(x); });
       if (next == hoped.end()) {
         changed.wait(lock);
         continue;
@@ -330,6 +337,7 @@ struct AheadRunner::State {
   std::condition_variable changed;
   std::map<double, std::shared_ptr<Run>> runs;
   std::vector<double> hoped;
+  std::set<double> taken;  ///< values taken: never run again
   double taking = std::numeric_limits<double>::quiet_NaN();
   bool closing = false;
   int ahead = 0, aheadUsed = 0;
@@ -337,7 +345,11 @@ struct AheadRunner::State {
 };
 
 AheadRunner::AheadRunner(const LookAheadVerdict& verdict, int threads) : state_(std::make_unique<State>(verdict)) {
-  for (int t = 1; t < threads; ++t) state_->helpers.emplace_back([s = state_.get()] { s->help(); });
+  try {
+    for (int t = 1; t < threads; ++t) state_->helpers.emplace_back([s = state_.get()] { s->help(); });
+  } catch (const std::system_error&) {
+    // No thread to start: the spare threads started run ahead (none: every trial runs when taken).
+  }
 }
 
 AheadRunner::~AheadRunner() { stop(); }
@@ -376,6 +388,7 @@ bool AheadRunner::take(double x, std::vector<double> hoped) {
     s.changed.wait(lock);
   }
   s.runs.erase(x);
+  s.taken.insert(x);
   s.taking = std::numeric_limits<double>::quiet_NaN();
   if (run->error) std::rethrow_exception(run->error);
   if (run->ahead) ++s.aheadUsed;

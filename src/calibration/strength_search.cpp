@@ -74,7 +74,8 @@ struct CountedVerdict {
     }
     record(x, std::move(r));
   }
-  int runsAheadUnused = 0;  ///< runs made ahead that the search did not take
+  int runsAhead = 0;        ///< runs made ahead of need
+  int runsAheadUnused = 0;  ///< of those, the runs the search did not take
   /// Runs made ahead of need and not taken (yet), by value.
   std::map<double, TrialResult> aside;
   /// The trials by value: the record does not depend on which thread finished first.
@@ -154,6 +155,7 @@ BisectionResult narrow(CountedVerdict& v, double stable, double failing, double 
   if (!v.lookAhead || v.length != 1) return narrowBracket(std::ref(v), stable, failing, width, threads);
   const BisectionResult b = narrowAhead({[&v](double x) { return v.runAhead(x); }, [&v](double x) { v.take(x); }},
                                         stable, failing, width, threads);
+  v.runsAhead += b.runsAhead;
   v.runsAheadUnused += b.runsAhead - b.runsAheadUsed;
   return b;
 }
@@ -174,6 +176,7 @@ class Bracketing {
         runner_(verdict_, v.lookAhead && v.length == 1 ? threads : 1) {}
   ~Bracketing() {
     runner_.stop();
+    v_.runsAhead += runner_.runsAhead();
     v_.runsAheadUnused += runner_.runsAhead() - runner_.runsAheadUsed();
   }
   Bracketing(const Bracketing&) = delete;
@@ -199,6 +202,7 @@ void narrowInto(CriticalResult& r, CountedVerdict& v, double stable, double fail
 template <class Result>
 Result& account(Result& r, CountedVerdict& v, std::chrono::steady_clock::time_point t0) {
   r.runs = v.runs;
+  r.runsAhead = v.runsAhead;
   r.runsAheadUnused = v.runsAheadUnused;
   r.trials = v.sortedTrials();
   r.wallTime = secondsSince(t0);

@@ -167,10 +167,11 @@ void judgeAllWindows(const PointPaths& paths, const std::vector<std::string>& na
   }
 }
 
-/// Whether the scene can change by itself: no ground motion record, load rates, water level
-/// series or supports (whose states are judged apart from the contacts').
+/// Whether the scene can change by itself: no ground motion record, load rates or water level
+/// series. (A support's law does not depend on time: like a contact, it changes only by changing
+/// state, which rule (2) watches.)
 bool timeInvariant(const model::Scene& s) {
-  if (s.seismic.ground.active() || !s.water.seriesTimes.empty() || !s.supports.empty()) return false;
+  if (s.seismic.ground.active() || !s.water.seriesTimes.empty()) return false;
   for (const model::PointLoad& l : s.pointLoads)
     if (l.rate.squaredNorm() > 0) return false;
   return true;
@@ -264,12 +265,12 @@ TrialResult judgeStability(const model::Scene& scene, const VerdictSettings& set
   for (int b : watch.blocks) blockNames.push_back("block " + scene.blocks[static_cast<size_t>(b)].id);
   std::vector<Vec2> start;  // monitor positions at t = 0, after the equilibrium
   PointPaths monitorPath(0), blockPath(scene.settings.duration / 64);
-  // Early rest (verdict.hpp): the contact state changes so far at each block sample.
+  // Early rest (verdict.hpp): the contact and support state changes so far at each block sample.
   const bool earlyRest = scene.settings.earlyRest && timeInvariant(scene);
   std::vector<long> changesAt;
   const auto changes = [&] {
     const solver::RunStatistics& st = sim.statistics();
-    return st.stickSlipChanges + st.openCloseChanges + st.frozenSteps + st.cycles + st.cuts;
+    return st.stickSlipChanges + st.openCloseChanges + st.supportStateChanges + st.frozenSteps + st.cycles + st.cuts;
   };
   const auto record = [&] {
     std::vector<Vec3> p;

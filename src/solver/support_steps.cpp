@@ -74,6 +74,7 @@ void Simulation::commitPoints(const Attempt& a) {
     // The work the blocks did on it over the step (exact for a linear spring or a constant force).
     b.work += 0.5 * (b.force + force) * (e - before[k]);
     b.plasticElongation = model::plasticElongationAfter(b, state, e);
+    if (state != b.state) ++stats_.supportStateChanges;
     b.state = state;
     b.force = force;
   }

@@ -78,8 +78,10 @@ struct CriticalResult {
   double stableEnd = 0;     ///< bracket end that holds
   double failingEnd = 0;    ///< bracket end that fails
   int runs = 0;
-  /// Runs made ahead of need (SearchSettings::lookAhead) that the search did not use, stopped
-  /// or finished: threads' time spent, not counted in `runs` nor recorded as trials.
+  /// Runs made ahead of need (SearchSettings::lookAhead), and of those the ones the search did
+  /// not use, stopped or finished: threads' time spent, not counted in `runs` nor recorded as
+  /// trials. Both depend on the threads' timing; nothing else in the result does.
+  int runsAhead = 0;
   int runsAheadUnused = 0;
   double wallTime = 0;      ///< s
   TrialReview review;
@@ -148,8 +150,10 @@ struct FactorOfSafetyResult {
   TrialStart trialStart = TrialStart::Held;
   int runs = 0;
   int rounds = 0;
-  /// Runs made ahead of need (SearchSettings::lookAhead) that the search did not use, stopped
-  /// or finished: threads' time spent, not counted in `runs` nor recorded as trials.
+  /// Runs made ahead of need (SearchSettings::lookAhead), and of those the ones the search did
+  /// not use, stopped or finished: threads' time spent, not counted in `runs` nor recorded as
+  /// trials. Both depend on the threads' timing; nothing else in the result does.
+  int runsAhead = 0;
   int runsAheadUnused = 0;
   double wallTime = 0;
   TrialReview review;

@@ -45,14 +45,14 @@ namespace ddaslope::calibration {
 /// **Early rest** (analysis.early_rest, on by default): a run stops as stable before its duration
 /// once it cannot change by itself. Checked from an eighth of the duration on, at each of the 64
 /// samples of the blocks' paths, with windows the quarters of the time so far: (1) nothing in the
-/// scene changes with time (no ground motion record, load rates, water level series or supports);
-/// (2) no contact changed state, slid or was held frozen over the last two windows; (3) every
-/// monitor's and free block's net motion over each of them is under 1e-3 of the resting
-/// speed's floor, and not growing; (4) the contacts' reserve (Simulation::stateReserve: the least
-/// displacement that would open, close or let slide one of them) is at least ten times the
-/// largest excursion of any point over those windows. Then every contact stays as it is, the
-/// scene is an elastic system settling under constant loads (Newmark γ = 1 dissipates), and the
-/// end-of-run verdict could only be "at rest".
+/// scene changes with time (no ground motion record, load rates or water level series); (2) no
+/// contact or support changed state, and no step was cut or held contacts frozen, over the last
+/// two windows; (3) every monitor and free block is still: its net motion over each window is
+/// round-off noise (within 5× its scatter about a smooth path, the scatter under 1e-3 of the
+/// end-of-run floor), or its last window's motion, grown to the end of the run by a doubling every
+/// window (or faster if it grew faster), stays under half the floor rule (b) applies at the end.
+/// Then every contact and support stays as it is, the scene is an elastic system at rest under
+/// constant loads, and the end-of-run verdict could only be "at rest".
 struct VerdictSettings {
   /// m; ≤ 0: 1e-3 of the model half-size w0.
   double failureDisplacement = 0;

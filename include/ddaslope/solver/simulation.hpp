@@ -75,6 +75,7 @@ struct RunStatistics {
   /// Contact state changes between open-close iterates (the profile of sudden loading, docs/performance.md):
   /// between locked and sliding, and between open and closed (locked or sliding).
   long stickSlipChanges = 0;
+  long supportStateChanges = 0;  ///< accepted steps' changes of a support's state (elastic, yielded, slack, broken)
   long openCloseChanges = 0;
   /// Block pairs whose contacts the narrow phase reused from an earlier search, and pairs it
   /// searched (contact/pair_cache.hpp), summed over the detections.
