@@ -236,6 +236,7 @@ std::string settingsLine(const ddaslope::model::Scene& scene) {
   std::snprintf(buf, sizeof buf, ", %s-system path (%s%d unknowns)", large ? "large" : "small",
                 s.systemPath == ddaslope::model::SystemPath::Auto ? "auto: " : "analysis.system_path; ", unknowns);
   line += buf;
+  if (!s.factorUpdates) line += ", factor refactorised at every state change (analysis.factor_updates)";
   // The seismic loading a result was found under: F and critical strengths under a record or a
   // coefficient are not the static ones.
   const ddaslope::model::SeismicLoad& q = scene.seismic;

@@ -453,7 +453,7 @@ void readAnalysis(const Reader& r, const json& doc, model::Scene& s) {
                     "settle_dynamically", "early_rest",
                     "equilibrium_max_steps", "edge_parallel_tolerance", "initial_contact_tolerance",
                     "contact_state_tolerance", "contact_treatment", "failure_displacement", "resting_speed", "preset",
-                    "blocks", "strain_damping", "joint_end_offset", "system_path"});
+                    "blocks", "strain_damping", "joint_end_offset", "system_path", "factor_updates"});
   model::AnalysisSettings& st = s.settings;
   st.duration = r.numberIn(r.required(a, p, "duration"), p + ".duration", 0, limits::kMaxDuration, true, false,
                            "a duration in (0, 1e6] s");
@@ -476,6 +476,7 @@ void readAnalysis(const Reader& r, const json& doc, model::Scene& s) {
   st.rigidBlocks = r.choice(a, p, "blocks", "deformable", {"deformable", "rigid"}) == "rigid";
   const std::string path = r.choice(a, p, "system_path", "auto", {"auto", "small", "large"});
   st.systemPath = path == "small" ? model::SystemPath::Small : path == "large" ? model::SystemPath::Large : model::SystemPath::Auto;
+  st.factorUpdates = r.choice(a, p, "factor_updates", "on", {"on", "off"}) == "on";
   st.failureDisplacement = r.optionalIn(a, p, "failure_displacement", 0, 0, 1e6, false, false, "a distance ≥ 0 m (0: 1e-3 of w0)");
   st.jointEndOffset = r.optionalIn(a, p, "joint_end_offset", -1, 0, 1e6, false, false,
                                   "a distance ≥ 0 m (absent: automatic)");

@@ -254,7 +254,8 @@ void writeSummary(const fs::path& dir, const model::Scene& scene, const RunOptio
                    {"system_path", s.systemPath == model::SystemPath::Auto    ? "auto"
                                    : s.systemPath == model::SystemPath::Small ? "small"
                                                                               : "large"},
-                   {"system_path_in_force", model::largeSystemPath(s, scene.freeUnknowns()) ? "large" : "small"}};
+                   {"system_path_in_force", model::largeSystemPath(s, scene.freeUnknowns()) ? "large" : "small"},
+                   {"factor_updates", s.factorUpdates ? "on" : "off"}};
   const fs::path tmp = dir / "summary.json.tmp";
   {
     std::ofstream out(tmp);

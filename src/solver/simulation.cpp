@@ -115,6 +115,7 @@ int Simulation::unknownsPerBlock() const { return scene_.settings.rigidBlocks ? 
 
 bool Simulation::largeSystem() const { return model::largeSystemPath(scene_.settings, unknownsPerBlock() * nActive_); }
 
+
 std::pair<double, int> Simulation::fastestBlock(const Attempt& a) const {
   double worst = 0;
   int which = -1;

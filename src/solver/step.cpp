@@ -93,10 +93,11 @@ void Simulation::updatePattern(const std::vector<Contact>& contacts) {
 }
 
 void Simulation::configureSolver(StepState& s) {
-  // A large system's factor follows the contact state changes by low-rank update/downdate
-  // (solver/factor_springs.hpp) instead of being redone; small systems refactorise, which is
-  // cheap there and keeps the round-off that the shipped cases' documented results carry.
-  s.followFactor = factorFollowing_ && largeSystem();
+  // The factor follows the contact state changes by low-rank update/downdate
+  // (solver/factor_springs.hpp) instead of being redone, unless the case asks for a
+  // refactorisation at every change (analysis.factor_updates = "off": the same results to
+  // round-off, slower; the round-off of figures made before the updates were the default).
+  s.followFactor = factorFollowing_ && scene_.settings.factorUpdates;
   // Nested dissection orders a large wall's factor with less fill than AMD and a shallower tree,
   // whose paths each update/downdate of a spring walks. Small systems keep AMD, and their round-off.
   linearSolver_.setOrdering(s.followFactor ? FillOrdering::NestedDissection : FillOrdering::MinimumDegree);

@@ -8,13 +8,12 @@ enum class AnalysisMode { Dynamic, Static };
 enum class PlaneMode { Strain, Stress };
 /// How the two vertex-to-edge halves of an edge-to-edge contact are judged (docs/contact-model.md).
 enum class ContactTreatment { Edge, Vertex };
-/// How the linear system is solved while contact states change (docs/accuracy.md, "Small and
-/// large systems"). small: every state change refactorises the matrix (minimum-degree ordering),
-/// and each iterate is solved to round-off. large: the factor follows state changes by low-rank
-/// update/downdate (nested-dissection ordering), iterates are judged at a residual of 1e-8 with a
-/// few conjugate-gradient iterations on a stale factor, small law violations of cycling contacts
-/// are held while the scene settles, and the static relaxation of the initial equilibrium is
-/// skipped for dynamic settling. auto: large from kLargeSystemMinUnknowns unknowns.
+/// How a scene settles (docs/accuracy.md, "Small and large systems"). small: the initial
+/// equilibrium relaxes statically before it settles dynamically, and the contact law holds
+/// strictly throughout. large: small law violations of cycling contacts are held while the scene
+/// settles, and the static relaxation of the initial equilibrium is skipped for dynamic settling.
+/// auto: large from kLargeSystemMinUnknowns unknowns. (How the linear systems are solved is
+/// AnalysisSettings::factorUpdates.)
 enum class SystemPath { Auto, Small, Large };
 
 /// Unknowns (6 per deformable block, 3 per rigid one) from which `auto` takes the large-system
@@ -112,11 +111,19 @@ struct AnalysisSettings {
   /// bonded, and its spring's zero is at the initial gap.
   double initialContactTolerance = 1e-6;
   SystemPath systemPath = SystemPath::Auto;
+  /// Whether the factor follows the contacts' state changes (docs/accuracy.md, "Small and large
+  /// systems"): by low-rank update/downdate with nested-dissection ordering, products with K
+  /// from its terms, and iterates judged at a residual of 1e-8 until one changes no state, which
+  /// is solved to round-off (the same results as refactorising, round-off apart, sooner). Off:
+  /// every state change refactorises (minimum-degree ordering) and each iterate is solved to
+  /// round-off, as small systems were solved before (analysis.factor_updates = "off").
+  bool factorUpdates = true;
 };
 
 /// Whether a scene of `unknowns` free unknowns takes the large-system path under these settings.
 inline bool largeSystemPath(const AnalysisSettings& s, int unknowns) {
   return s.systemPath == SystemPath::Large || (s.systemPath == SystemPath::Auto && unknowns >= kLargeSystemMinUnknowns);
 }
+
 
 }  // namespace ddaslope::model
