@@ -102,12 +102,12 @@ class Reader {
   std::string choice(const json& j, const std::string& path, const std::string& key,
                      const std::string& def, const std::set<std::string>& options) const {
     if (!j.contains(key)) return def;
-    const std::string v = string(j.at(key), join(path, key));
-    if (!options.count(v)) {
-      std::string list;
-      for (const auto& o : options) list += (list.empty() ? "" : ", ") + o;
-      fail(join(path, key), "expected one of " + list + ", found \"" + v + "\"");
-    }
+    std::string list;
+    for (const auto& o : options) list += (list.empty() ? "" : ", ") + o;
+    const json& value = j.at(key);
+    if (!value.is_string()) fail(join(path, key), "expected one of " + list + " (a string), found " + typeName(value));
+    const std::string v = value.get<std::string>();
+    if (!options.count(v)) fail(join(path, key), "expected one of " + list + ", found \"" + v + "\"");
     return v;
   }
   /// A name that appears in output headers and file names (history.csv columns, summary.json):

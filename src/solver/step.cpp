@@ -99,7 +99,8 @@ void Simulation::configureSolver(StepState& s) {
   // round-off, slower; the round-off of figures made before the updates were the default).
   s.followFactor = factorFollowing_ && scene_.settings.factorUpdates;
   // Nested dissection orders a large wall's factor with less fill than AMD and a shallower tree,
-  // whose paths each update/downdate of a spring walks. Small systems keep AMD, and their round-off.
+  // whose paths each update/downdate of a spring walks. A factor made again at every change keeps
+  // AMD, and the round-off of the figures made so.
   linearSolver_.setOrdering(s.followFactor ? FillOrdering::NestedDissection : FillOrdering::MinimumDegree);
   // Every system substitutes with a simplicial copy of its factor: a small system's supernodes
   // are a few columns wide, and the reference BLAS calls a supernodal solve makes for each cost
@@ -108,9 +109,9 @@ void Simulation::configureSolver(StepState& s) {
   linearSolver_.setPanelSolves(s.followFactor && panelSolves_);
   // The right-hand side is a sum of forces that nearly cancel in a scene at rest (weights against
   // contact preloads and stresses: in a large wall the terms are some eight orders of magnitude
-  // above their sum), so it is known only to the round-off of those terms. A large system's solve
-  // stops there instead of at a residual 1e-12 of the sum, which only conjugate-gradient
-  // iterations on round-off would reach. Small systems keep the strict rule and their results.
+  // above their sum), so it is known only to the round-off of those terms. A solve on a followed
+  // factor stops there instead of at a residual 1e-12 of the sum, which only conjugate-gradient
+  // iterations on round-off would reach. Refactorising at every change keeps the strict rule.
   s.residualAtRoundOff = s.followFactor;
   // With that looser target a factor far from K (an equilibrium's) would converge within the
   // small systems' budget of CG iterations, which it misses at the strict target (and is then
@@ -156,8 +157,8 @@ void Simulation::assembleContactTerms(StepState& s) {
     }
   }
   addSupportTerms(s);
-  // A large system assembles K only if a factorisation asks for it; a small one at once, and
-  // multiplies by the assembled K, whose round-off the shipped cases' documented results carry.
+  // With factor updates K is assembled only if a factorisation asks for it (products come from
+  // its terms); refactorising at every change assembles it at once and multiplies by it.
   if (s.stiffnessChanged) {
     if (s.followFactor)
       s.lazySystem.changed();

@@ -152,7 +152,7 @@ struct Simulation::StepState {
   std::vector<Vec6> blockF, blockMagnitude;
 
   // The solver's path (configureSolver).
-  bool followFactor = false;        ///< the factor follows the contact springs (large systems)
+  bool followFactor = false;        ///< the factor follows the contact springs (analysis.factor_updates)
   bool residualAtRoundOff = false;  ///< solves stop at the round-off of b's terms
   FactorBlockTerms blockTerms;      ///< the block terms of this step's K
   assembly::SystemTerms terms;

@@ -52,8 +52,8 @@ bool Simulation::judgeSupports(StepState& s) {
     state = next;
     changed = true;
   }
-  // A large system's factor follows the contact springs only: a support that changes its spring
-  // leaves the factor to be made again.
+  // A followed factor follows the contact springs only: a support that changes its spring leaves
+  // the factor to be made again.
   if (changed && s.followFactor) factorSprings_.invalidate();
   return changed;
 }

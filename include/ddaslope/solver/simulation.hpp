@@ -35,7 +35,7 @@ namespace ddaslope::solver {
 struct PhaseTimes {
   double broadPhase = 0, contacts = 0, assembly = 0, factorisation = 0, solve = 0,
          stateChecks = 0, update = 0;
-  double factorUpdate = 0;  ///< the factor following contact state changes (large systems)
+  double factorUpdate = 0;  ///< the factor following contact state changes (factor updates)
 };
 
 struct StepRecord {
@@ -61,7 +61,7 @@ struct RunStatistics {
   bool gaveWayWhileSettling = false;  ///< stages 2–3 ended as a block passed stopSettlingPast()'s limit
   int symbolicAnalyses = 0;
   long factorisations = 0;         ///< numeric Cholesky factorisations
-  long factorUpdates = 0;          ///< low-rank factor updates that replaced one (large systems)
+  long factorUpdates = 0;          ///< low-rank factor updates that replaced one (factor updates)
   long factorColumns = 0;          ///< rank-one terms (springs switched on or off) they applied
   long linearSolves = 0;           ///< systems solved (one per open-close iteration)
   long cgIterations = 0;           ///< conjugate-gradient iterations on a reused factor
@@ -164,9 +164,9 @@ class Simulation {
   void setEquilibriumProgress(std::function<void(const char* stage, int step, int budget)> progress) {
     equilibriumProgress_ = std::move(progress);
   }
-  /// On (the default): a large system's factor follows its contact state changes by
-  /// update/downdate. Off: a large system's steps solve as a small system's do (tryStep), every
-  /// such change refactorising, for comparisons in the bench (--refactorise-only) and the tests.
+  /// On (the default): the factor follows the contact state changes by update/downdate when the
+  /// case's analysis.factor_updates asks for it. Off: every such change refactorises, whatever the
+  /// case says, for comparisons in the bench (--refactorise-only) and the tests.
   void setFactorFollowing(bool on) { factorFollowing_ = on; }
   /// On (the default): a block pair's narrow-phase decisions are reused while its blocks move less
   /// than the search certified (contact/pair_cache.hpp). Off: every pair is searched at every
@@ -175,7 +175,7 @@ class Simulation {
   /// Diagnostics: each solve's first substitution also repeated at once and both timed
   /// (LinearSolver::setCacheProbe; RunStatistics::probe*). The run is unchanged.
   void setSolveCacheProbe(bool on) { linearSolver_.setCacheProbe(on); }
-  /// On (the default): large systems substitute with the factor's panels, rounded or exact, once
+  /// On (the default): followed factors substitute with their panels, rounded or exact, once
   /// they pay (solver/panel_factor.hpp). Off: with CHOLMOD's double-precision factor only, for
   /// comparisons in the bench (--double-factor-only) and the tests.
   void setPanelSolves(bool on) { panelSolves_ = on; }
@@ -211,8 +211,8 @@ class Simulation {
 
   // The run around the step (simulation.cpp).
   void markActiveBlocks(const std::vector<bool>& held);
-  /// A system of the size whose factor follows the contacts (≥ 1000 unknowns; the shipped cases
-  /// have at most 28 blocks): its static steps and factorisations are what a step costs.
+  /// A system of the size that settles by the large-system path (analysis.system_path: ≥ 1000
+  /// unknowns unless the case says; the shipped cases have at most 28 blocks).
   bool largeSystem() const;
   /// Unknowns per block in K: 6, or 3 for rigid blocks.
   int unknownsPerBlock() const;
@@ -381,7 +381,7 @@ class Simulation {
   std::vector<std::pair<int, int>> lastCouplings_;  ///< block pairs of the contacts matrix_'s pattern was made for
   bool panelSolves_ = true;
   LinearSolver linearSolver_;
-  FactorSprings factorSprings_;  ///< the contact springs the factor holds (large systems only)
+  FactorSprings factorSprings_;  ///< the contact springs the factor holds (with factor updates)
   bool factorFollowing_ = true;
   contact::PairCache pairCache_;
   bool pairCacheOn_ = true;
