@@ -1,5 +1,5 @@
 #!/bin/sh
-# Users' critical-value searches (issue #42): critical cohesion and friction, the support or load
+# Users' critical-value searches: critical cohesion and friction, the support or load
 # for a factor of safety, and the yield seismic coefficient, on shipped cases, with what a search's
 # cost is made of: forward runs, runs made ahead of need and not used, wall time; and the answer,
 # which must not change when the search gets faster. Prints one CSV line per search.

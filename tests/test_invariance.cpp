@@ -347,23 +347,27 @@ TEST(Invariance, RoundedCoordinatesAreStraightWithinTheTouchingTolerance) {
   EXPECT_NEAR(fos(s), f0, 0.01 * f0);
 }
 
-// Factor updates (analysis.factor_updates, on by default) change how the same linear systems are
-// solved, not the contact law or the settling: round-off apart, the same trials. On the small
-// shipped slopes F is the same grid point of the search with the updates and without (measured:
-// equal on all eight shipped slopes, docs/performance.md); allowed here one bracket width
-// (0.005), the most a verdict that round-off tips could move it. Refactorising at every change,
-// the sliding block keeps its closed form a = g(sin α − cos α tan φ) within 0.5 % (benchmarks.md
-// A2), and the settings line says the case asked for it.
-TEST(Invariance, FactorUpdatesLeaveTheFactorOfSafety) {
+namespace {
+
+/// F of four small shipped slopes with an analysis setting at each of two values: (case, F at
+/// `first`, F at `second`).
+std::vector<std::tuple<std::string, double, double>> smallSlopesUnder(const std::string& setting, const std::string& first,
+                                                                     const std::string& second) {
+  std::vector<std::tuple<std::string, double, double>> out;
   for (const char* name : {"planar_failure.json", "toppling_slope.json", "stepped_toppling.json", "bilinear_slab.json"}) {
     const std::string path = kCases + name;
-    const double off = fos(io::readCase(path, {io::CaseOverride::name("analysis.factor_updates", "off")}));
-    const double on = fos(io::readCase(path, {io::CaseOverride::name("analysis.factor_updates", "on")}));
-    EXPECT_NEAR(on, off, 0.005) << name;
+    out.emplace_back(name, fos(io::readCase(path, {io::CaseOverride::name(setting, first)})),
+                     fos(io::readCase(path, {io::CaseOverride::name(setting, second)})));
   }
+  return out;
+}
+
+/// A block sliding on 40° with φ = 20°, its settings changed by `set`, moves a t²/2 in 1 s with
+/// a = g(sin α − cos α tan φ) (benchmarks.md A2), within 0.5 %.
+void slidesAsTheClosedForm(const std::function<void(model::AnalysisSettings&)>& set) {
   model::InclineSpec spec{40, 10, 5, 20, 0, 2000, 10};
   model::Scene incline = model::makeInclineScene(spec);
-  incline.settings.factorUpdates = false;
+  set(incline.settings);
   const io::RunOutcome o = io::runScene(incline, {});
   ASSERT_TRUE(o.completed) << o.failure;
   model::Expectation e;
@@ -372,6 +376,21 @@ TEST(Invariance, FactorUpdatesLeaveTheFactorOfSafety) {
   e.time = 1.0;
   const double a = model::slidingAcceleration(spec);
   EXPECT_NEAR(io::measure(o.trace, e), a / 2, 0.005 * a / 2);
+}
+
+}  // namespace
+
+// Factor updates (analysis.factor_updates, on by default) change how the same linear systems are
+// solved, not the contact law or the settling: round-off apart, the same trials. On the small
+// shipped slopes F is the same grid point of the search with the updates and without (measured:
+// equal on all eight shipped slopes, docs/performance.md); allowed here one bracket width
+// (0.005), the most a verdict that round-off tips could move it. Refactorising at every change,
+// the sliding block keeps its closed form a = g(sin α − cos α tan φ) within 0.5 % (benchmarks.md
+// A2), and the settings line says the case asked for it.
+TEST(Invariance, FactorUpdatesLeaveTheFactorOfSafety) {
+  for (const auto& [name, off, on] : smallSlopesUnder("analysis.factor_updates", "off", "on"))
+    EXPECT_NEAR(on, off, 0.005) << name;
+  slidesAsTheClosedForm([](model::AnalysisSettings& a) { a.factorUpdates = false; });
   std::string err;
   const std::string out =
       clitest::captureCli("fos " + kCases + "planar_failure.json --quiet --set analysis.factor_updates=off", &err);
@@ -385,23 +404,9 @@ TEST(Invariance, FactorUpdatesLeaveTheFactorOfSafety) {
 // 1 % of the small-system path, and the sliding block its closed form a = g(sin α − cos α tan φ) within 0.5 %
 // (benchmarks.md A2). The settings line names the path in force and why.
 TEST(Invariance, FactorOfSafetyDoesNotDependOnTheSolverPath) {
-  for (const char* name : {"planar_failure.json", "toppling_slope.json", "stepped_toppling.json", "bilinear_slab.json"}) {
-    const std::string path = kCases + name;
-    const double small = fos(io::readCase(path, {io::CaseOverride::name("analysis.system_path", "small")}));
-    const double large = fos(io::readCase(path, {io::CaseOverride::name("analysis.system_path", "large")}));
+  for (const auto& [name, small, large] : smallSlopesUnder("analysis.system_path", "small", "large"))
     EXPECT_NEAR(large, small, 0.01 * small) << name;
-  }
-  model::InclineSpec spec{40, 10, 5, 20, 0, 2000, 10};
-  model::Scene incline = model::makeInclineScene(spec);
-  incline.settings.systemPath = model::SystemPath::Large;
-  const io::RunOutcome o = io::runScene(incline, {});
-  ASSERT_TRUE(o.completed) << o.failure;
-  model::Expectation e;
-  e.monitor = "centre";
-  e.quantity = "displacement";
-  e.time = 1.0;
-  const double a = model::slidingAcceleration(spec);
-  EXPECT_NEAR(io::measure(o.trace, e), a / 2, 0.005 * a / 2);
+  slidesAsTheClosedForm([](model::AnalysisSettings& a) { a.systemPath = model::SystemPath::Large; });
   std::string err;
   const std::string out = clitest::captureCli("fos " + kCases + "planar_failure.json --quiet", &err);
   EXPECT_NE(out.find("small-system path (auto: 6 unknowns)"), std::string::npos) << out;

@@ -63,6 +63,37 @@ bool run(const Landscape& l, double x) {
   return l.stableAt(x);
 }
 
+/// A look-ahead verdict that records its runs: each runs `verdict` (sleeping as `run` does),
+/// counts the ones stopped, and checks that a value is taken only after its run finished.
+struct RecordingVerdict {
+  explicit RecordingVerdict(const Landscape& l, std::function<bool(double)> verdict) {
+    v.run = [this, &l, verdict = std::move(verdict)](double x) {
+      try {
+        run(l, x);
+      } catch (const Cancelled&) {
+        const std::lock_guard<std::mutex> lock(m);
+        ++cancelled;
+        throw;
+      }
+      const std::lock_guard<std::mutex> lock(m);
+      finished.insert(x);
+      return verdict(x);
+    };
+    v.take = [this](double x) {
+      const std::lock_guard<std::mutex> lock(m);
+      EXPECT_TRUE(finished.count(x)) << "took " << x << " before its run finished";
+      taken.push_back(x);
+    };
+  }
+  RecordingVerdict(const RecordingVerdict&) = delete;
+  RecordingVerdict& operator=(const RecordingVerdict&) = delete;
+  calibration::LookAheadVerdict v;
+  std::mutex m;
+  std::set<double> finished;
+  std::vector<double> taken;  ///< values in the order handed to `take`
+  int cancelled = 0;
+};
+
 struct Narrowed {
   BisectionResult result;
   std::vector<double> taken;  ///< values in the order handed to `take`
@@ -70,28 +101,11 @@ struct Narrowed {
 };
 
 Narrowed lookingAhead(const Landscape& l, double stable, double failing, double width, int threads) {
+  RecordingVerdict r(l, [&l](double x) { return l.stableAt(x); });
   Narrowed n;
-  std::mutex m;
-  std::set<double> finished;
-  calibration::LookAheadVerdict v;
-  v.run = [&](double x) {
-    try {
-      const bool ok = run(l, x);
-      const std::lock_guard<std::mutex> lock(m);
-      finished.insert(x);
-      return ok;
-    } catch (const Cancelled&) {
-      const std::lock_guard<std::mutex> lock(m);
-      ++n.cancelled;
-      throw;
-    }
-  };
-  v.take = [&](double x) {
-    const std::lock_guard<std::mutex> lock(m);
-    EXPECT_TRUE(finished.count(x)) << "took " << x << " before its run finished";
-    n.taken.push_back(x);
-  };
-  n.result = calibration::narrowAhead(v, stable, failing, width, threads);
+  n.result = calibration::narrowAhead(r.v, stable, failing, width, threads);
+  n.taken = r.taken;
+  n.cancelled = r.cancelled;
   return n;
 }
 
@@ -313,28 +327,14 @@ TEST(LookAhead, ABracketingLoopTakesTheSameTrialsWithTheRunner) {
     const auto holds = [&](double x) { return !l.stableAt(x); };
     const std::vector<double> reference = doublingLoop([&](double x, std::vector<double>) { return holds(x); }, 1);
     const int threads = 1 + trial % 3;
-    std::mutex m;
-    std::set<double> finished;
-    std::vector<double> taken;
-    calibration::LookAheadVerdict v;
-    v.run = [&](double x) {
-      run(l, x);
-      const std::lock_guard<std::mutex> lock(m);
-      finished.insert(x);
-      return holds(x);
-    };
-    v.take = [&](double x) {
-      const std::lock_guard<std::mutex> lock(m);
-      EXPECT_TRUE(finished.count(x)) << "took " << x << " before its run finished";
-      taken.push_back(x);
-    };
-    calibration::AheadRunner runner(v, threads);
+    RecordingVerdict r(l, holds);
+    calibration::AheadRunner runner(r.v, threads);
     const std::vector<double> looped = doublingLoop([&](double x, std::vector<double> hoped) {
       return runner.take(x, std::move(hoped));
     }, 1);
     runner.stop();
     EXPECT_EQ(looped, reference) << trial;
-    EXPECT_EQ(taken, reference) << trial;
+    EXPECT_EQ(r.taken, reference) << trial;
     if (threads == 1) {
       EXPECT_EQ(runner.runsAhead(), 0);
     }

@@ -74,6 +74,42 @@ BisectionResult narrowBracket(const std::function<bool(double)>& stableAt, doubl
 
 namespace {
 
+/// A run of a look-ahead verdict, by value: its cancellation flag and, once done, its outcome.
+struct AheadRun {
+  std::atomic<bool> cancel{false};
+  bool ahead = false;  ///< started ahead of need
+  bool done = false;
+  bool stable = false;
+  std::exception_ptr error;
+};
+using AheadRuns = std::map<double, std::shared_ptr<AheadRun>>;
+
+/// Makes `run` of x with `lock` released, then records its outcome under it: a stopped run leaves
+/// `runs` (it may be started again), a finished one keeps its verdict or its error.
+void execute(const LookAheadVerdict& v, double x, const std::shared_ptr<AheadRun>& run, AheadRuns& runs,
+             std::unique_lock<std::mutex>& lock) {
+  lock.unlock();
+  bool stable = false, cancelled = false;
+  std::exception_ptr error;
+  try {
+    const CancellationScope scope(run->cancel);
+    stable = v.run(x);
+  } catch (const Cancelled&) {
+    cancelled = true;
+  } catch (...) {
+    error = std::current_exception();
+  }
+  lock.lock();
+  if (cancelled) {
+    const auto at = runs.find(x);
+    if (at != runs.end() && at->second == run) runs.erase(at);
+  } else {
+    run->done = true;
+    run->stable = stable;
+    run->error = error;
+  }
+}
+
 /// The state narrowAhead's threads share, under its mutex.
 class AheadRounds {
  public:
@@ -93,30 +129,11 @@ class AheadRounds {
         idle_.wait(lock);
         continue;
       }
-      auto run = std::make_shared<Run>();
+      auto run = std::make_shared<AheadRun>();
       run->ahead = ahead;
       runs_[x] = run;
       if (ahead) ++result_.runsAhead;
-      lock.unlock();
-      bool stable = false, cancelled = false;
-      std::exception_ptr error;
-      try {
-        const CancellationScope scope(run->cancel);
-        stable = v_.run(x);
-      } catch (const Cancelled&) {
-        cancelled = true;
-      } catch (...) {
-        error = std::current_exception();
-      }
-      lock.lock();
-      if (cancelled) {
-        const auto at = runs_.find(x);
-        if (at != runs_.end() && at->second == run) runs_.erase(at);
-      } else {
-        run->done = true;
-        run->stable = stable;
-        run->error = error;
-      }
+      execute(v_, x, run, runs_, lock);
       try {
         settle();
       } catch (...) {
@@ -135,14 +152,6 @@ class AheadRounds {
   }
 
  private:
-  struct Run {
-    std::atomic<bool> cancel{false};
-    bool ahead = false;
-    bool done = false;
-    bool stable = false;
-    std::exception_ptr error;
-  };
-
   void nextRound() {
     round_.clear();
     if (std::abs(failing_ - stable_) > width_) round_ = roundValues(stable_, failing_, k_);
@@ -216,7 +225,7 @@ class AheadRounds {
     for (const double x : round_)
       if (!done(x)) return false;
     for (const double x : round_) {
-      const Run& run = *runs_.at(x);
+      const AheadRun& run = *runs_.at(x);
       if (run.error) {
         error_ = run.error;
         finished_ = true;
@@ -241,7 +250,7 @@ class AheadRounds {
   std::mutex mutex_;
   std::condition_variable idle_;
   std::vector<double> round_;
-  std::map<double, std::shared_ptr<Run>> runs_;
+  AheadRuns runs_;
   bool finished_ = false;
   std::exception_ptr error_;
   BisectionResult result_;
@@ -273,38 +282,11 @@ BisectionResult narrowAhead(const LookAheadVerdict& verdict, double stable, doub
 }
 
 struct AheadRunner::State {
-  struct Run {
-    std::atomic<bool> cancel{false};
-    bool ahead = false;
-    bool done = false;
-    bool stable = false;
-    std::exception_ptr error;
-  };
-
   explicit State(const LookAheadVerdict& v) : v(v) {}
 
-  /// Makes the run of x (the caller holds no lock); records its outcome under the lock.
-  void execute(double x, const std::shared_ptr<Run>& run, std::unique_lock<std::mutex>& lock) {
-    lock.unlock();
-    bool ok = false, cancelled = false;
-    std::exception_ptr error;
-    try {
-      const CancellationScope scope(run->cancel);
-      ok = v.run(x);
-    } catch (const Cancelled&) {
-      cancelled = true;
-    } catch (...) {
-      error = std::current_exception();
-    }
-    lock.lock();
-    if (cancelled) {
-      const auto at = runs.find(x);
-      if (at != runs.end() && at->second == run) runs.erase(at);
-    } else {
-      run->done = true;
-      run->stable = ok;
-      run->error = error;
-    }
+  /// Makes the run of x (the caller holds `lock`, released meanwhile) and wakes the waiters.
+  void execute(double x, const std::shared_ptr<AheadRun>& run, std::unique_lock<std::mutex>& lock) {
+    calibration::execute(v, x, run, runs, lock);
     changed.notify_all();
   }
 
@@ -324,7 +306,7 @@ struct AheadRunner::State {
         continue;
       }
       const double x = *next;
-      auto run = std::make_shared<Run>();
+      auto run = std::make_shared<AheadRun>();
       run->ahead = true;
       runs[x] = run;
       ++ahead;
@@ -335,7 +317,7 @@ struct AheadRunner::State {
   const LookAheadVerdict& v;
   std::mutex mutex;
   std::condition_variable changed;
-  std::map<double, std::shared_ptr<Run>> runs;
+  AheadRuns runs;
   std::vector<double> hoped;
   std::set<double> taken;  ///< values taken: never run again
   double taking = std::numeric_limits<double>::quiet_NaN();
@@ -373,12 +355,12 @@ bool AheadRunner::take(double x, std::vector<double> hoped) {
   for (auto& [value, run] : s.runs)
     if (!run->done && !s.wanted(value)) run->cancel = true;
   s.changed.notify_all();
-  std::shared_ptr<State::Run> run;
+  std::shared_ptr<AheadRun> run;
   for (;;) {
     const auto at = s.runs.find(x);
     if (at == s.runs.end()) {
       // Not run ahead (or stopped before it was wanted again): run it here.
-      run = std::make_shared<State::Run>();
+      run = std::make_shared<AheadRun>();
       s.runs[x] = run;
       s.execute(x, run, lock);
       break;

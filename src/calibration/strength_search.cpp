@@ -74,6 +74,17 @@ struct CountedVerdict {
     }
     record(x, std::move(r));
   }
+  /// Whether the search runs trials ahead of need now: asked to, and not re-running trials longer.
+  bool looksAhead() const { return lookAhead && length == 1; }
+  /// This verdict as the look-ahead machinery calls it (bisection.hpp).
+  LookAheadVerdict ahead() {
+    return {[this](double x) { return runAhead(x); }, [this](double x) { take(x); }};
+  }
+  /// Counts a narrowing's or a bracketing loop's runs made ahead, and the ones it took.
+  void countAhead(int made, int used) {
+    runsAhead += made;
+    runsAheadUnused += made - used;
+  }
   int runsAhead = 0;        ///< runs made ahead of need
   int runsAheadUnused = 0;  ///< of those, the runs the search did not take
   /// Runs made ahead of need and not taken (yet), by value.
@@ -152,11 +163,9 @@ void copyBracket(const BisectionResult& b, Result& r) {
 /// Narrows [stable, failing] to `width` with the search's verdict: looking ahead (narrowAhead)
 /// unless the search was told not to (SearchSettings::lookAhead) or is re-running trials longer.
 BisectionResult narrow(CountedVerdict& v, double stable, double failing, double width, int threads) {
-  if (!v.lookAhead || v.length != 1) return narrowBracket(std::ref(v), stable, failing, width, threads);
-  const BisectionResult b = narrowAhead({[&v](double x) { return v.runAhead(x); }, [&v](double x) { v.take(x); }},
-                                        stable, failing, width, threads);
-  v.runsAhead += b.runsAhead;
-  v.runsAheadUnused += b.runsAhead - b.runsAheadUsed;
+  if (!v.looksAhead()) return narrowBracket(std::ref(v), stable, failing, width, threads);
+  const BisectionResult b = narrowAhead(v.ahead(), stable, failing, width, threads);
+  v.countAhead(b.runsAhead, b.runsAheadUsed);
   return b;
 }
 
@@ -171,13 +180,10 @@ BisectionResult bisectWith(CountedVerdict& v, double lo, double hi, double width
 class Bracketing {
  public:
   Bracketing(CountedVerdict& v, int threads)
-      : v_(v),
-        verdict_{[&v](double x) { return v.runAhead(x); }, [&v](double x) { v.take(x); }},
-        runner_(verdict_, v.lookAhead && v.length == 1 ? threads : 1) {}
+      : v_(v), verdict_(v.ahead()), runner_(verdict_, v.looksAhead() ? threads : 1) {}
   ~Bracketing() {
     runner_.stop();
-    v_.runsAhead += runner_.runsAhead();
-    v_.runsAheadUnused += runner_.runsAhead() - runner_.runsAheadUsed();
+    v_.countAhead(runner_.runsAhead(), runner_.runsAheadUsed());
   }
   Bracketing(const Bracketing&) = delete;
   Bracketing& operator=(const Bracketing&) = delete;
@@ -370,7 +376,6 @@ CriticalResult criticalCohesion(const model::Scene& scene, int joint, double fri
     trial.joints[joint].frictionAngle = degToRad(frictionDeg);
     return judgeStability(trial, s.verdict, held ? &*held : nullptr, endOf(s, c));
   }, s, "c (Pa)", width};
-  const std::function<bool(double)> f = std::ref(stableAt);
   CriticalResult r;
   double failing = 0, hi = initialGuess;
   bool holdsWithout = false;
@@ -471,7 +476,6 @@ CriticalResult criticalSeismicCoefficient(const model::Scene& scene, int directi
     // Told k_h as applied; k = 0 is one trial whatever the direction (not −0 and 0).
     return judgeStability(trial, s.verdict, nullptr, endOf(s, k == 0 ? 0.0 : direction * k));
   }, s, "k_h (g)", width};
-  const std::function<bool(double)> f = std::ref(stableAt);
   constexpr double kFirst = 0.05, kLargest = 2.0;
   CriticalResult r;
   const auto next = [&](double k) { return std::min(2 * k, kLargest); };

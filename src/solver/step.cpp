@@ -96,7 +96,7 @@ void Simulation::configureSolver(StepState& s) {
   // The factor follows the contact state changes by low-rank update/downdate
   // (solver/factor_springs.hpp) instead of being redone, unless the case asks for a
   // refactorisation at every change (analysis.factor_updates = "off": the same results to
-  // round-off, slower; the round-off of figures made before the updates were the default).
+  // round-off, slower).
   s.followFactor = factorFollowing_ && scene_.settings.factorUpdates;
   // Nested dissection orders a large wall's factor with less fill than AMD and a shallower tree,
   // whose paths each update/downdate of a spring walks. A factor made again at every change keeps

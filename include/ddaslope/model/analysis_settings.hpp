@@ -116,7 +116,8 @@ struct AnalysisSettings {
   /// from its terms, and iterates judged at a residual of 1e-8 until one changes no state, which
   /// is solved to round-off (the same results as refactorising, round-off apart, sooner). Off:
   /// every state change refactorises (minimum-degree ordering) and each iterate is solved to
-  /// round-off, as small systems were solved before (analysis.factor_updates = "off").
+  /// round-off (analysis.factor_updates = "off": the round-off of figures docs/accuracy.md says
+  /// were made that way).
   bool factorUpdates = true;
 };
 
