@@ -192,6 +192,54 @@ TEST(SearchReview, ReportsAContradictionItCannotResolve) {
   EXPECT_LT(r.failingEnd, 1.0 + 0.1);
 }
 
+// A trial that moved the failure displacement while it settled was decided by the equilibrium,
+// before t = 0, which the run's length does not enter: the verdict of a run four times longer is
+// the same, step for step (the block on a frictionless base slides 4 cm while it settles, with
+// gravity tilted by 0.01 g). So a review does not re-run such a trial: here a settling failure at
+// F = 0.77-0.79, at any length, contradicts the stable trials above it, and the search reports the
+// same mixed range as when it re-runs a trend failure that stays (the test above), without a
+// forward run for it, saying why.
+TEST(SearchReview, ATrialThatFailedWhileSettlingIsNotRunLonger) {
+  calibration::VerdictSettings settings;
+  settings.failureDisplacement = 0.004;
+  model::Scene scene = blockOnFrictionlessBase(0, 0.01);
+  const TrialResult once = calibration::judgeStability(scene, settings);
+  scene.settings.duration *= calibration::kReRunLength;
+  const TrialResult longer = calibration::judgeStability(scene, settings);
+  ASSERT_EQ(once.rule, calibration::VerdictRule::MovedWhileSettling);
+  EXPECT_EQ(longer.rule, once.rule);
+  EXPECT_EQ(longer.settlingDisplacement, once.settlingDisplacement);
+  EXPECT_EQ(longer.equilibriumSteps, once.equilibriumSteps);
+
+  std::set<double> longerRuns;
+  FakeVerdict v;
+  std::mutex m;
+  v.special = [&](double f, double length, TrialResult& r) {
+    if (f > 0.77 && f < 0.79) r.stable = false, r.rule = calibration::VerdictRule::MovedWhileSettling;
+    if (length > 1) {
+      const std::lock_guard<std::mutex> lock(m);
+      longerRuns.insert(f);
+    }
+    return true;
+  };
+  const auto r = calibration::factorOfSafetyOf(v, 0.005, twoAtOnce());
+  EXPECT_FALSE(r.found);
+  EXPECT_TRUE(r.review.contradiction);
+  for (double f : longerRuns) EXPECT_FALSE(f > 0.77 && f < 0.79) << "re-ran the settling failure at " << f;
+  int settlingFailures = 0;
+  for (const auto& t : r.trials)
+    if (t.value > 0.77 && t.value < 0.79) {
+      ++settlingFailures;
+      EXPECT_FALSE(t.rerun) << t.value;
+    }
+  EXPECT_GE(settlingFailures, 1);
+  EXPECT_EQ(r.review.reruns, static_cast<int>(longerRuns.size()));
+  EXPECT_NE(r.message.find("while it settled"), std::string::npos) << r.message;
+  EXPECT_LT(r.stableEnd, 0.77);
+  EXPECT_GE(r.failingEnd, 1.0);
+  EXPECT_LT(r.failingEnd, 1.0 + 0.1);
+}
+
 // Undecided trials from F = 0.9 to 1.1: the search cannot vouch for more than [stable, failing]
 // around them, looks beyond them for a decided failure, and says so instead of returning a
 // number inside.
