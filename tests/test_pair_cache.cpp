@@ -154,13 +154,14 @@ void expectSameRun(const std::vector<double>& with, const std::vector<double>& w
 
 // The reuse changes nothing but the time: runs with and without it are the same bit for bit. A wall
 // at rest (most pairs reused), the same wall started with full gravity at step 1 (every block
-// moving: pairs searched, certificates running out and anchors renewed), and the toppling slope,
-// whose columns rotate corner over corner through the vertex-to-vertex rules and its ties.
+// moving: pairs searched, certificates running out and anchors renewed, pairs searched without
+// certifying after certificates lapsed unused), and the toppling slope, whose columns rotate
+// corner over corner through the vertex-to-vertex rules and its ties.
 TEST(PairCache, RunsAreTheSameWithAndWithoutIt) {
   for (const bool sudden : {false, true}) {
     SCOPED_TRACE(sudden ? "sudden gravity" : "wall at rest");
     std::vector<std::vector<double>> finals;
-    std::vector<long> reused;
+    std::vector<long> reused, uncertified;
     for (const bool cache : {true, false}) {
       solver::Simulation sim(model::makeAnchorWall(10, sudden));
       sim.setPairCache(cache);
@@ -168,22 +169,28 @@ TEST(PairCache, RunsAreTheSameWithAndWithoutIt) {
       for (int k = 0; k < 30; ++k) sim.advance();
       finals.push_back(stateAfter(sim));
       reused.push_back(sim.statistics().pairsReused);
+      uncertified.push_back(sim.statistics().pairsUncertified);
     }
     expectSameRun(finals[0], finals[1]);
     EXPECT_EQ(reused[1], 0);
     if (!sudden) {
       EXPECT_GT(reused[0], 0) << "a wall at rest reuses its pairs";
+    } else {
+      EXPECT_GT(uncertified[0], 0) << "pairs whose certificates lapse unused search without one for a while";
     }
   }
   std::vector<std::vector<double>> finals;
+  std::vector<long> uncertified;
   for (const bool cache : {true, false}) {
     solver::Simulation sim(io::readCase(DDASLOPE_SOURCE_DIR "/cases/toppling_slope.json"));
     sim.setPairCache(cache);
     sim.bringToEquilibrium();
     for (int k = 0; k < 300; ++k) sim.advance();
     finals.push_back(stateAfter(sim));
+    uncertified.push_back(sim.statistics().pairsUncertified);
   }
   expectSameRun(finals[0], finals[1]);
+  EXPECT_GT(uncertified[0], 0);
 }
 
 // The contact set's update when a scene at rest finds the same contacts again (the keys in the same

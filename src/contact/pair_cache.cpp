@@ -53,10 +53,12 @@ void PairCache::prepare(const Polygons& blocks, const std::vector<BlockPair>& pa
   // run out anchors its blocks anew: searched on the new anchors, its next certificate starts from
   // a drift of 0 (a new pair, or one that could not be certified, is searched as it is).
   previous_.assign(pairs.size(), -1);
+  prior_.assign(pairs.size(), -1);
   size_t old = 0;
   for (size_t k = 0; k < pairs.size(); ++k) {
     while (old < entries_.size() && pairLess(entries_[old].pair, pairs[k])) ++old;
     if (old == entries_.size() || !(entries_[old].pair == pairs[k])) continue;
+    prior_[k] = static_cast<int>(old);
     const size_t a = static_cast<size_t>(pairs[k].a), b = static_cast<size_t>(pairs[k].b);
     if (reanchor[a] || reanchor[b] || !holds(entries_[old])) {
       if (entries_[old].slack > 0) reanchor[a] = reanchor[b] = 1;
@@ -78,7 +80,27 @@ void PairCache::prepare(const Polygons& blocks, const std::vector<BlockPair>& pa
     ++(previous_[k] >= 0 ? reused_ : searched_);
   }
   next_.assign(pairs.size(), Entry{});
-  for (size_t k = 0; k < pairs.size(); ++k) next_[k].pair = pairs[k];
+  waited_ = 0;
+  for (size_t k = 0; k < pairs.size(); ++k) {
+    Entry& e = next_[k];
+    e.pair = pairs[k];
+    // Whether a pair searched anew certifies its search (Entry::reuses), from its last search.
+    e.certified = true;
+    if (previous_[k] >= 0 || prior_[k] < 0) continue;
+    const Entry& last = entries_[static_cast<size_t>(prior_[k])];
+    e.level = last.level;
+    if (last.wait > 0) {
+      e.certified = false;
+      e.wait = static_cast<std::uint8_t>(last.wait - 1);
+    } else if (last.certified && !(last.slack > 0 && last.reuses > 0)) {  // lapsed unused, or not given
+      e.level = static_cast<std::uint8_t>(std::min(last.level + 1, kMaxLevel));
+      e.certified = false;
+      e.wait = static_cast<std::uint8_t>((1 << e.level) - 2);
+    } else if (last.certified) {
+      e.level = 0;
+    }
+    waited_ += !e.certified;
+  }
 }
 
 void PairCache::find(int k, const Polygons& blocks, const NarrowPhaseSettings& s, const Known& known,
@@ -89,6 +111,7 @@ void PairCache::find(int k, const Polygons& blocks, const NarrowPhaseSettings& s
   const std::vector<Vec2>& pb = *blocks[static_cast<size_t>(b)];
   if (const int old = previous_[static_cast<size_t>(k)]; old >= 0) {
     e = entries_[static_cast<size_t>(old)];
+    ++e.reuses;
     for (int q = 0; q < e.count; ++q) {
       const Found f = e.found[q];
       const int v = static_cast<int>((f >> 16) & 0x7fff), edge = static_cast<int>(f & 0xffff);
@@ -98,6 +121,12 @@ void PairCache::find(int k, const Polygons& blocks, const NarrowPhaseSettings& s
     return;
   }
   const size_t first = out.size();
+  if (!e.certified) {
+    // The same contacts as a certified search finds, without a certificate: not reused.
+    findContacts(a, pa, b, pb, s, known, out);
+    e.slack = 0;
+    return;
+  }
   SearchMargin margin;
   findContacts(a, pa, b, pb, s, known, out, &margin);
   const Anchor& anA = anchors_[static_cast<size_t>(a)];

@@ -41,6 +41,7 @@ void Simulation::detectContacts(bool initial) {
     pairCache_.prepare(polygons, pairs, nps, contacts_.keyVersion());
     stats_.pairsReused += pairCache_.reused();
     stats_.pairsSearched += pairCache_.searched();
+    stats_.pairsUncertified += pairCache_.uncertified();
   } else {
     stats_.pairsSearched += static_cast<long>(pairs.size());
   }

@@ -38,6 +38,8 @@ class PairCache {
   /// Pairs reused and searched in the last detection.
   long reused() const { return reused_; }
   long searched() const { return searched_; }
+  /// Of the pairs searched, those searched without a certificate (Entry::reuses).
+  long uncertified() const { return waited_; }
 
  private:
   struct Anchor {
@@ -55,16 +57,26 @@ class PairCache {
     double slack = 0;               ///< 0: not reusable
     int count = 0;
     Found found[kMaxFound];
+    /// Certifying a search costs about as much as the search. A pair whose blocks keep moving
+    /// uses no certificate before it lapses, so such a pair is searched without one for a while:
+    /// after a certificate left unused, 1, then 3, 7 and 15 searches (2^level − 1), then
+    /// certified again; a certificate used once starts the count afresh.
+    bool certified = false;  ///< this search was certified
+    int reuses = 0;          ///< detections that reused this search's contacts
+    std::uint8_t level = 0;  ///< certificates in a row that lapsed unused (at most kMaxLevel)
+    std::uint8_t wait = 0;   ///< searches still to make without certifying
   };
+  static constexpr int kMaxLevel = 4;
   bool holds(const Entry& e) const;
 
   std::vector<Anchor> anchors_;
   std::vector<Entry> entries_;  ///< the last detection's, sorted by pair
   std::vector<Entry> next_;     ///< this detection's, one per pair
   std::vector<int> previous_;   ///< pair k's entry in entries_ if it is reused, or −1
+  std::vector<int> prior_;      ///< pair k's entry in entries_, reused or not, or −1
   long expectedVersion_ = -1;
   double searchDistance_ = -1, sinParallelTolerance_ = -1;
-  long reused_ = 0, searched_ = 0;
+  long reused_ = 0, searched_ = 0, waited_ = 0;
 };
 
 }  // namespace ddaslope::contact

@@ -80,6 +80,9 @@ struct RunStatistics {
   /// Block pairs whose contacts the narrow phase reused from an earlier search, and pairs it
   /// searched (contact/pair_cache.hpp), summed over the detections.
   long pairsReused = 0, pairsSearched = 0;
+  /// Of the pairs searched, those searched without certifying the search (their blocks kept
+  /// moving: contact/pair_cache.hpp, Entry::reuses).
+  long pairsUncertified = 0;
   int maxContacts = 0;
   double maxPenetration = 0;       ///< largest penetration of a closed contact (m)
   PhaseTimes times;
