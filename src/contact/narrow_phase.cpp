@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <vector>
 
 #include "ddaslope/geometry/polygon.hpp"
 #include "narrow_phase_certifier.hpp"
@@ -81,8 +82,7 @@ struct Region {
   double nonEmptySlack() const { return allNonNegativeSlack({box.hi.x() - box.lo.x(), box.hi.y() - box.lo.y()}, 2); }
 };
 
-Region contactRegion(const std::vector<Vec2>& pa, const std::vector<Vec2>& pb, double d) {
-  const geometry::Aabb a = geometry::boundingBox(pa), b = geometry::boundingBox(pb);
+Region contactRegion(const geometry::Aabb& a, const geometry::Aabb& b, double d) {
   const Vec2 margin(d, d);
   return {{a.lo.cwiseMax(b.lo) - margin, a.hi.cwiseMin(b.hi) + margin}};
 }
@@ -91,16 +91,30 @@ void vertexOnEdges(const Poly& V, const Poly& E, const Region& region, const Nar
                    Certifier& cert, std::vector<ContactCandidate>& out) {
   const double minClearance = -s.sinParallelTolerance;
   const double sd = s.searchDistance;
+  // The edges of E that cross the region, found once: a block on a long stepped base meets a few
+  // of its edges. An edge outside is skipped on the same test for every vertex, so its slack is
+  // held once, when the first vertex reaches the edges.
+  thread_local std::vector<int> crossing;
+  crossing.clear();
+  double outsideSlack = INFINITY;
+  for (int e = 0; e < E.n(); ++e) {
+    const Vec2 a = E.at(e), b = E.at(e + 1);
+    if (region.meets(a, b))
+      crossing.push_back(e);
+    else if (cert.on())
+      outsideSlack = std::min(outsideSlack, region.meetsSlack(a, b));
+  }
+  bool outsideHeld = false;
   for (int v = 0; v < V.n(); ++v) {
     const Vec2& p = V.at(v);
     SkipChain vertex(cert);
     if (vertex.skipIf(!region.contains(p), [&] { return region.containsSlack(p); })) continue;
     // A reflex vertex cannot touch an edge from outside.
     if (vertex.skipIf(!V.convex(v), [&] { return convexSlack(V, v, cert); })) continue;
-    for (int e = 0; e < E.n(); ++e) {
+    if (!outsideHeld) cert.hold(outsideSlack), outsideHeld = true;
+    for (const int e : crossing) {
       const Vec2 a = E.at(e), b = E.at(e + 1);
       SkipChain edge(cert);
-      if (edge.skipIf(!region.meets(a, b), [&] { return region.meetsSlack(a, b); })) continue;
       double t;
       const double distance = geometry::distanceToSegment(p, a, b, &t);
       if (edge.skipIf(distance > sd, [&] { return std::abs(distance - sd) / 2; })) continue;
@@ -258,10 +272,12 @@ void vertexToVertex(const Poly& A, const Poly& B, const Region& region, const Na
 
 void findContacts(int a, const std::vector<Vec2>& pa, int b, const std::vector<Vec2>& pb,
                   const NarrowPhaseSettings& s, const std::function<bool(const ContactKey&)>& known,
-                  std::vector<ContactCandidate>& out, SearchMargin* margin) {
+                  std::vector<ContactCandidate>& out, SearchMargin* margin,
+                  const std::array<geometry::Aabb, 2>* boxes) {
   const Poly A{a, pa}, B{b, pb};
   Certifier cert(margin, A, B);
-  const Region region = contactRegion(pa, pb, s.searchDistance);
+  const Region region = boxes ? contactRegion((*boxes)[0], (*boxes)[1], s.searchDistance)
+                              : contactRegion(geometry::boundingBox(pa), geometry::boundingBox(pb), s.searchDistance);
   const bool empty = region.box.lo.x() > region.box.hi.x() || region.box.lo.y() > region.box.hi.y();
   if (cert.on()) cert.hold(region.nonEmptySlack());
   if (empty) return;

@@ -1,6 +1,7 @@
 #include "ddaslope/contact/pair_cache.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace ddaslope::contact {
@@ -104,7 +105,7 @@ void PairCache::prepare(const Polygons& blocks, const std::vector<BlockPair>& pa
 }
 
 void PairCache::find(int k, const Polygons& blocks, const NarrowPhaseSettings& s, const Known& known,
-                     std::vector<ContactCandidate>& out) {
+                     std::vector<ContactCandidate>& out, const std::vector<geometry::Aabb>* boxes) {
   Entry& e = next_[static_cast<size_t>(k)];
   const int a = e.pair.a, b = e.pair.b;
   const std::vector<Vec2>& pa = *blocks[static_cast<size_t>(a)];
@@ -121,14 +122,17 @@ void PairCache::find(int k, const Polygons& blocks, const NarrowPhaseSettings& s
     return;
   }
   const size_t first = out.size();
+  std::array<geometry::Aabb, 2> pairBoxes;
+  if (boxes) pairBoxes = {(*boxes)[static_cast<size_t>(a)], (*boxes)[static_cast<size_t>(b)]};
+  const std::array<geometry::Aabb, 2>* given = boxes ? &pairBoxes : nullptr;
   if (!e.certified) {
     // The same contacts as a certified search finds, without a certificate: not reused.
-    findContacts(a, pa, b, pb, s, known, out);
+    findContacts(a, pa, b, pb, s, known, out, nullptr, given);
     e.slack = 0;
     return;
   }
   SearchMargin margin;
-  findContacts(a, pa, b, pb, s, known, out, &margin);
+  findContacts(a, pa, b, pb, s, known, out, &margin, given);
   const Anchor& anA = anchors_[static_cast<size_t>(a)];
   const Anchor& anB = anchors_[static_cast<size_t>(b)];
   e.epochA = anA.epoch, e.epochB = anB.epoch;

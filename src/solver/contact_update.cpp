@@ -52,10 +52,12 @@ void Simulation::detectContacts(bool initial) {
     for (int k = begin; k < end; ++k) {
       const contact::BlockPair& p = pairs[static_cast<size_t>(k)];
       if (pairCacheOn_)
-        pairCache_.find(k, polygons, nps, known, found[static_cast<size_t>(chunk)]);
-      else
+        pairCache_.find(k, polygons, nps, known, found[static_cast<size_t>(chunk)], &boxes);
+      else {
+        const std::array<geometry::Aabb, 2> pairBoxes{boxes[static_cast<size_t>(p.a)], boxes[static_cast<size_t>(p.b)]};
         contact::findContacts(p.a, scene_.blocks[p.a].vertices, p.b, scene_.blocks[p.b].vertices, nps, known,
-                              found[static_cast<size_t>(chunk)]);
+                              found[static_cast<size_t>(chunk)], nullptr, &pairBoxes);
+      }
     }
   });
   std::vector<contact::ContactCandidate> candidates = std::move(found[0]);

@@ -8,6 +8,7 @@
 
 #include "ddaslope/contact/contact.hpp"
 #include "ddaslope/core/types.hpp"
+#include "ddaslope/geometry/polygon.hpp"
 
 namespace ddaslope::contact {
 
@@ -43,10 +44,12 @@ struct SearchMargin {
 /// Contacts between blocks a and b (both polygons counter-clockwise). A vertex near a vertex
 /// of the other block gives one contact whose entrance edge is the one that best separates
 /// the two corners (Shi's angle rule); `known` lets a tie keep the contact of the last step.
-/// With `margin`, the search also certifies its decisions (SearchMargin).
+/// With `margin`, the search also certifies its decisions (SearchMargin). `boxes`: the two
+/// polygons' bounding boxes (geometry::boundingBox), when the caller has them already.
 void findContacts(int a, const std::vector<Vec2>& pa, int b, const std::vector<Vec2>& pb,
                   const NarrowPhaseSettings& s, const std::function<bool(const ContactKey&)>& known,
-                  std::vector<ContactCandidate>& out, SearchMargin* margin = nullptr);
+                  std::vector<ContactCandidate>& out, SearchMargin* margin = nullptr,
+                  const std::array<geometry::Aabb, 2>* boxes = nullptr);
 
 /// The candidate of vertex v of block a on edge e of block b (one of the contacts findContacts
 /// reports): its gap, ratio and edge-to-edge pairing on the present geometry.

@@ -30,9 +30,10 @@ class PairCache {
   void prepare(const Polygons& blocks, const std::vector<BlockPair>& pairs, const NarrowPhaseSettings& s,
                long knownVersion);
   /// Pair k's contacts, appended to `out` in the order findContacts gives them: reused or searched
-  /// anew. Calls for distinct k may run on different threads.
+  /// anew. Calls for distinct k may run on different threads. `boxes`: the blocks' bounding
+  /// boxes, if the caller has them.
   void find(int k, const Polygons& blocks, const NarrowPhaseSettings& s, const Known& known,
-            std::vector<ContactCandidate>& out);
+            std::vector<ContactCandidate>& out, const std::vector<geometry::Aabb>* boxes = nullptr);
   /// Ends the detection: `knownVersion` identifies the keys it produced.
   void finish(long knownVersion);
   /// Pairs reused and searched in the last detection.
