@@ -49,7 +49,8 @@ TEST_P(ExtremeCase, FiniteBoundedAndClosedForm) {
   EXPECT_LE(r.energyGain, 1e-9 * r.heldPotential) << "energy gained";
   // A near-rigid sliding block loses at least the work of friction, tan φ · W cos α · d
   // (1 % and the shear springs' released energy aside); more only by the integrator's damping of
-  // its elastic vibration (the kilometre block at Δt = 10 ms: +3.8 %). A soft block's base slips
+  // its elastic vibration (the kilometre block at Δt = 10 ms: +4.5 %) and by the strain damping of
+  // the elastic energy a micrometre slide releases (Δt = 1e-6 s: +26 %). A soft block's base slips
   // less than its centre travels, so d does not measure its slip.
   if (GetParam().slides && GetParam().spec.young >= 1e9) {
     EXPECT_GE(r.energyLost, 0.99 * r.frictionWork - r.elasticRelease - 1e-9 * r.heldPotential);
