@@ -375,3 +375,49 @@ TEST(LookAhead, ARunnerStopsItsRunsAheadAndKeepsTheirErrors) {
   calibration::AheadRunner runner(v, 2);
   EXPECT_THROW(runner.take(3, {}), InputError);
 }
+
+// A slope whose F lies just below 1 (a back-analysis of a failure): its trial at F = 1 creeps to
+// the failure displacement and is the slowest of the search, while the trials below it are quick.
+// While it runs, the spare thread runs the trials the search makes next if it fails, from 1/1.5
+// on. The trial at F = 1 here ends only once the trial at 2/3 has run (30 s at most): without the
+// failing branch it would end on its timeout, after the one at 2/3. The search takes the same
+// trials, and gives the same F, as without runs ahead; runs ahead of that branch it did not take
+// are counted unused, and none is left under way.
+TEST(LookAhead, TheFailingBranchRunsWhileTheTrialAtOneCreeps) {
+  for (const double critical : {0.985, 1.3}) {
+    SCOPED_TRACE(critical);
+    std::atomic<bool> twoThirdsRan{false}, twoThirdsBeforeOne{false};
+    std::atomic<int> underWay{0};
+    const auto verdict = [&](double f, double) {
+      ++underWay;
+      calibration::TrialResult r;
+      r.stable = f < critical;
+      r.rule = r.stable ? calibration::VerdictRule::AtRest : calibration::VerdictRule::PassedDisplacement;
+      if (f == 1.0 && critical < 1) {
+        waitFor(twoThirdsRan);
+        twoThirdsBeforeOne = twoThirdsRan.load();
+      }
+      std::this_thread::sleep_for(std::chrono::microseconds(300));
+      if (f == 1.0 / 1.5) twoThirdsRan = true;
+      --underWay;
+      return r;
+    };
+    calibration::SearchSettings with, without;
+    with.threads = without.threads = 2;
+    without.lookAhead = false;
+    const auto a = calibration::factorOfSafetyOf(verdict, 0.005, with);
+    EXPECT_EQ(underWay.load(), 0) << "a run of the branch outlived the search";
+    if (critical < 1) {
+      EXPECT_TRUE(twoThirdsBeforeOne) << "the trial at 2/3 did not run while F = 1 ran";
+    }
+    twoThirdsRan = true;  // the search without runs ahead must not wait
+    const auto b = calibration::factorOfSafetyOf(verdict, 0.005, without);
+    ASSERT_TRUE(a.found && b.found) << a.message << b.message;
+    EXPECT_EQ(a.factor, b.factor);
+    EXPECT_EQ(a.runs, b.runs);
+    ASSERT_EQ(a.trials.size(), b.trials.size());
+    for (size_t i = 0; i < a.trials.size(); ++i) EXPECT_EQ(a.trials[i].value, b.trials[i].value);
+    EXPECT_NEAR(a.factor, critical, 0.005);
+    EXPECT_GE(a.runsAheadUnused, 0);
+  }
+}

@@ -59,12 +59,12 @@ BisectionResult bracketed(BisectionResult r, double stable, double failing) {
 }  // namespace
 
 BisectionResult narrowBracket(const std::function<bool(double)>& stableAt, double stable, double failing,
-                              double width, int threads) {
+                              double width, int threads, bool inTurn) {
   BisectionResult r;
   const int k = std::max(1, threads);
   while (std::abs(failing - stable) > width) {
     const std::vector<double> values = roundValues(stable, failing, k);
-    const std::vector<bool> ok = evaluateAll(stableAt, values, k);
+    const std::vector<bool> ok = evaluateAll(stableAt, values, inTurn ? 1 : k);
     r.runs += k;
     ++r.rounds;
     std::tie(stable, failing) = afterRound(values, ok, stable, failing);

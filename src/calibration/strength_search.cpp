@@ -5,6 +5,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <condition_variable>
 #include <mutex>
 #include <limits>
 #include <map>
@@ -15,6 +16,7 @@
 
 #include "ddaslope/calibration/bisection.hpp"
 #include "ddaslope/core/byte_record.hpp"
+#include "ddaslope/core/cancellation.hpp"
 #include "ddaslope/core/types.hpp"
 
 namespace ddaslope::calibration {
@@ -54,13 +56,34 @@ struct CountedVerdict {
     ++runs;
     return record(x, verdict(x, length));
   }
-  /// A run ahead of need (narrowAhead): its outcome is kept aside, and counted and recorded only
-  /// when the search takes it.
+  /// A run ahead of need (narrowAhead, AheadRunner, FailingBranch): its outcome is kept aside,
+  /// and counted and recorded only when the search takes it. A value whose outcome is aside, or
+  /// whose run is under way on another thread, is not run again: that outcome is shared (a run
+  /// stopped before it ends is made again by whoever still needs it).
   bool runAhead(double x) {
-    TrialResult r = verdict(x, length);
-    const std::lock_guard<std::mutex> lock(mutex);
+    std::unique_lock<std::mutex> lock(mutex);
+    for (;;) {
+      if (const auto at = aside.find(x); at != aside.end()) return at->second.stable;
+      if (!underWay.count(x)) break;
+      ended.wait(lock);
+    }
+    underWay.insert(x);
+    ++madeAhead;
+    lock.unlock();
+    TrialResult r;
+    try {
+      r = verdict(x, length);
+    } catch (...) {
+      lock.lock();
+      underWay.erase(x);
+      ended.notify_all();
+      throw;
+    }
+    lock.lock();
+    underWay.erase(x);
     const bool stable = r.stable;
     aside[x] = std::move(r);
+    ended.notify_all();
     return stable;
   }
   void take(double x) {
@@ -71,6 +94,7 @@ struct CountedVerdict {
       const auto at = aside.find(x);
       r = std::move(at->second);
       aside.erase(at);
+      ++takenAhead;
     }
     record(x, std::move(r));
   }
@@ -80,15 +104,17 @@ struct CountedVerdict {
   LookAheadVerdict ahead() {
     return {[this](double x) { return runAhead(x); }, [this](double x) { take(x); }};
   }
-  /// Counts a narrowing's or a bracketing loop's runs made ahead, and the ones it took.
-  void countAhead(int made, int used) {
-    runsAhead += made;
-    runsAheadUnused += made - used;
-  }
-  int runsAhead = 0;        ///< runs made ahead of need
-  int runsAheadUnused = 0;  ///< of those, the runs the search did not take
+  /// Counts a narrowing's or a bracketing loop's runs started ahead of need.
+  void countAhead(int made) { runsAhead += made; }
+  int runsAhead = 0;  ///< runs started ahead of need (a diagnostic: a shared run may count twice)
+  /// Runs made by runAhead (stopped or not) that the search did not take.
+  int runsAheadUnused() const { return madeAhead - takenAhead; }
   /// Runs made ahead of need and not taken (yet), by value.
   std::map<double, TrialResult> aside;
+  /// Values whose runAhead is under way; `ended` is told when one ends (or stops).
+  std::set<double> underWay;
+  std::condition_variable ended;
+  int madeAhead = 0, takenAhead = 0;
   /// The trials by value: the record does not depend on which thread finished first.
   std::vector<TrialRecord> sortedTrials() {
     std::sort(trials.begin(), trials.end(), [](const TrialRecord& a, const TrialRecord& b) {
@@ -165,7 +191,7 @@ void copyBracket(const BisectionResult& b, Result& r) {
 BisectionResult narrow(CountedVerdict& v, double stable, double failing, double width, int threads) {
   if (!v.looksAhead()) return narrowBracket(std::ref(v), stable, failing, width, threads);
   const BisectionResult b = narrowAhead(v.ahead(), stable, failing, width, threads);
-  v.countAhead(b.runsAhead, b.runsAheadUsed);
+  v.countAhead(b.runsAhead);
   return b;
 }
 
@@ -183,7 +209,7 @@ class Bracketing {
       : v_(v), verdict_(v.ahead()), runner_(verdict_, v.looksAhead() ? threads : 1) {}
   ~Bracketing() {
     runner_.stop();
-    v_.countAhead(runner_.runsAhead(), runner_.runsAheadUsed());
+    v_.countAhead(runner_.runsAhead());
   }
   Bracketing(const Bracketing&) = delete;
   Bracketing& operator=(const Bracketing&) = delete;
@@ -195,6 +221,68 @@ class Bracketing {
   CountedVerdict& v_;
   LookAheadVerdict verdict_;
   AheadRunner runner_;
+};
+
+/// The first trials of a strength reduction on two threads or more, F = 1 and 1.5 at once, with
+/// the spare thread, once 1.5 is done, running ahead the trials the search makes next if F = 1
+/// fails: the bracketing down by 1.5 and the narrowing's rounds, each round's values one after
+/// another. A slope whose F lies just below 1 (a back-analysis of a failure is built so) has a
+/// slow trial at F = 1, a slide creeping to the failure displacement, and quick trials below it.
+/// Once F = 1 is decided the branch starts no more runs (the search's own threads go on, and a
+/// third would slow them down); the run under way ends, for the search to take. The search takes
+/// the same trials in the same order; the runs of the branch it does not take (F = 1 stood) are
+/// stopped and counted unused.
+class FailingBranch {
+ public:
+  FailingBranch(CountedVerdict& v, double width, int threads) : v_(v) {
+    spare_ = std::thread([this, width, threads] {
+      const CancellationScope scope(stop_);
+      const auto run = [this](double x) {
+        if (decided_) throw Cancelled{};
+        return v_.runAhead(x);
+      };
+      try {
+        run(1.5);
+        double stable = 0, failing = 1, f = 1;
+        for (int k = 0; k < 40 && stable == 0; ++k) {
+          f /= 1.5;
+          (run(f) ? stable : failing) = f;
+        }
+        if (stable > 0) narrowBracket(run, stable, failing, width, threads, true);
+      } catch (...) {
+        // Stopped, or an error of a run that the search meets again if it takes that run.
+      }
+    });
+  }
+  ~FailingBranch() { stop(); }
+  FailingBranch(const FailingBranch&) = delete;
+  FailingBranch& operator=(const FailingBranch&) = delete;
+  /// The verdicts at 1 and 1.5, taken (recorded) in that order. F = 1 runs on the calling thread.
+  std::vector<bool> first() {
+    bool one = false;
+    try {
+      one = v_.runAhead(1.0);
+    } catch (...) {
+      stop();
+      throw;
+    }
+    decided_ = true;
+    const bool oneAndAHalf = v_.runAhead(1.5);
+    if (one) stop();
+    v_.take(1.0);
+    v_.take(1.5);
+    return {one, oneAndAHalf};
+  }
+  /// Stops the branch's runs still under way (the search has taken what it needs).
+  void stop() {
+    stop_ = true;
+    if (spare_.joinable()) spare_.join();
+  }
+
+ private:
+  CountedVerdict& v_;
+  std::atomic<bool> stop_{false}, decided_{false};
+  std::thread spare_;
 };
 
 /// Narrows a known [stable, failing] bracket to `width` and records it in r.
@@ -209,7 +297,7 @@ template <class Result>
 Result& account(Result& r, CountedVerdict& v, std::chrono::steady_clock::time_point t0) {
   r.runs = v.runs;
   r.runsAhead = v.runsAhead;
-  r.runsAheadUnused = v.runsAheadUnused;
+  r.runsAheadUnused = v.runsAheadUnused();
   r.trials = v.sortedTrials();
   r.wallTime = secondsSince(t0);
   return r;
@@ -701,11 +789,14 @@ FactorOfSafetyResult factorOfSafetyOf(const std::function<TrialResult(double, do
   // Bracket from F = 1 by factors of 1.5 (stable: raise F; failing: lower it).
   double stable = 0, failing = 0, f = 1;
   bool atOne = false;
+  std::optional<FailingBranch> failingBranch;
   if (s.threads >= 2 && s.trialStart == TrialStart::Held) {
     // F = 1 and 1.5 at once: most slopes stand at F = 1, and then the trial at 1.5, which a
     // search one trial at a time makes next, costs no wall time. (A slope failing at F = 1 spends
     // it: that search goes down.) Trials that start from F = 1's rest must wait for it.
-    const std::vector<bool> first = evaluateAll(std::ref(stableAt), {1.0, 1.5}, 2);
+    if (stableAt.looksAhead()) failingBranch.emplace(stableAt, width, s.threads);
+    const std::vector<bool> first =
+        failingBranch ? failingBranch->first() : evaluateAll(std::ref(stableAt), {1.0, 1.5}, 2);
     atOne = first[0];
     (atOne ? stable : failing) = 1;
     if (atOne) f = 1.5, (first[1] ? stable : failing) = f;
@@ -738,6 +829,7 @@ FactorOfSafetyResult factorOfSafetyOf(const std::function<TrialResult(double, do
     r.factor = b.critical;
     r.rounds = b.rounds;
   }
+  if (failingBranch) failingBranch->stop();  // before the review changes the runs' length
   reviewTrials(r, stableAt, true, {0.0, 1e6}, width, s.threads, [&](double stable, double failing) {
     r.stableEnd = stable, r.failingEnd = failing, r.factor = 0.5 * (stable + failing);
   });

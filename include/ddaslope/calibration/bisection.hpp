@@ -27,9 +27,10 @@ std::vector<bool> evaluateAll(const std::function<bool(double)>& stableAt, const
 
 /// Narrows [stable, failing] (verdicts already known) to `width`: each round evaluates
 /// `threads` equally spaced interior points at once, shrinking the bracket by threads + 1.
-/// The verdict is assumed monotone between the ends.
+/// The verdict is assumed monotone between the ends. `inTurn`: the same rounds, their points
+/// evaluated one after another on the calling thread.
 BisectionResult narrowBracket(const std::function<bool(double)>& stableAt, double stable, double failing,
-                              double width, int threads = 1);
+                              double width, int threads = 1, bool inTurn = false);
 
 /// A verdict whose runs may be made ahead of need. `run(x)` makes the forward run at x, on any
 /// thread, keeps its outcome and returns whether it is stable; it may unwind with Cancelled
