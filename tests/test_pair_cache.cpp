@@ -193,6 +193,47 @@ TEST(PairCache, RunsAreTheSameWithAndWithoutIt) {
   EXPECT_GT(uncertified[0], 0);
 }
 
+// A pair whose blocks keep moving is searched without a certificate for a while (Entry::reuses):
+// a brick resting on another, moved 2 cm along it at every detection (twice the certified 1 % of
+// its shortest edge), certifies its first search, then, after each certificate its blocks moved
+// beyond unused, searches 1, 3 and 7 times without one; each search finds the same contacts as a
+// plain search. The brick stops where the certified search after the 7 finds it (its blocks
+// anchored anew there), and that certificate is used at every detection after it.
+TEST(PairCache, APairThatKeepsMovingSearchesWithoutACertificateForAWhile) {
+  const contact::NarrowPhaseSettings s{0.0625, 1.0 * M_PI / 180};
+  const std::vector<Vec2> lower = rectangle({0, 0}, 1, 0.5, 0);
+  std::vector<Vec2> upper;
+  const contact::PairCache::Polygons polygons{&lower, &upper};
+  const std::vector<contact::BlockPair> pairs{{0, 1}};
+  contact::PairCache cache;
+  std::set<contact::ContactKey> last;
+  const contact::PairCache::Known known = [&](const contact::ContactKey& k) { return last.count(k) > 0; };
+  std::vector<long> uncertified, reused;
+  for (int d = 0; d < 22; ++d) {
+    const double x = 0.3 + (d < 15 ? 0.02 * (d % 2) : 0.0);  // at rest from detection 14 on
+    upper = rectangle({x, 0.5}, 1, 0.5, 0);
+    cache.prepare(polygons, pairs, s, 1);
+    std::vector<contact::ContactCandidate> found, plain;
+    cache.find(0, polygons, s, known, found);
+    cache.finish(1);
+    contact::findContacts(0, lower, 1, upper, s, known, plain);
+    EXPECT_EQ(keys(found), keys(plain)) << "detection " << d;
+    uncertified.push_back(cache.uncertified());
+    reused.push_back(cache.reused());
+    last.clear();
+    for (const auto& c : found) last.insert(c.key);
+  }
+  const std::vector<long> waits = {0, 1, 0, 1, 1, 1, 0, 1, 1, 1, 1, 1, 1, 1, 0};
+  for (size_t d = 0; d < waits.size(); ++d) {
+    EXPECT_EQ(uncertified[d], waits[d]) << "detection " << d;
+    EXPECT_EQ(reused[d], 0) << "detection " << d;
+  }
+  for (size_t d = waits.size(); d < reused.size(); ++d) {
+    EXPECT_EQ(reused[d], 1) << "detection " << d;
+    EXPECT_EQ(uncertified[d], 0) << "detection " << d;
+  }
+}
+
 // The contact set's update when a scene at rest finds the same contacts again (the keys in the same
 // order): each contact takes its candidate's geometry and keeps its state, as the merge would give;
 // the key version stands while the keys do, the pairing version moves when a paired edge does, and

@@ -194,8 +194,8 @@ TEST(SearchReview, ReportsAContradictionItCannotResolve) {
 
 // A trial that moved the failure displacement while it settled was decided by the equilibrium,
 // before t = 0, which the run's length does not enter: the verdict of a run four times longer is
-// the same, step for step (the block on a frictionless base slides 4 cm while it settles, with
-// gravity tilted by 0.01 g). So a review does not re-run such a trial: here a settling failure at
+// the same, step for step (the block on a frictionless base, pushed along it at 0.01 m/s², slides
+// past a failure displacement of 4 mm while it settles). So a review does not re-run such a trial: here a settling failure at
 // F = 0.77-0.79, at any length, contradicts the stable trials above it, and the search reports the
 // same mixed range as when it re-runs a trend failure that stays (the test above), without a
 // forward run for it, saying why.

@@ -12,11 +12,13 @@
 #include <optional>
 #include <set>
 #include <sstream>
+#include <system_error>
 #include <thread>
 
 #include "ddaslope/calibration/bisection.hpp"
 #include "ddaslope/core/byte_record.hpp"
 #include "ddaslope/core/cancellation.hpp"
+#include "ddaslope/core/errors.hpp"
 #include "ddaslope/core/types.hpp"
 
 namespace ddaslope::calibration {
@@ -59,32 +61,41 @@ struct CountedVerdict {
   /// A run ahead of need (narrowAhead, AheadRunner, FailingBranch): its outcome is kept aside,
   /// and counted and recorded only when the search takes it. A value whose outcome is aside, or
   /// whose run is under way on another thread, is not run again: that outcome is shared (a run
-  /// stopped before it ends is made again by whoever still needs it).
-  bool runAhead(double x) {
+  /// stopped before it ends is made again by whoever still needs it). A caller waiting for
+  /// another's run still stops when its own run is cancelled. `startNone`, if set, forbids
+  /// starting a run (Cancelled instead); `made` counts the runs this call started.
+  bool runAhead(double x, const std::atomic<bool>* startNone = nullptr, int* made = nullptr) {
+    DDASLOPE_ASSERT(length == 1, "runs ahead are made at the case's duration only");
     std::unique_lock<std::mutex> lock(mutex);
     for (;;) {
       if (const auto at = aside.find(x); at != aside.end()) return at->second.stable;
       if (!underWay.count(x)) break;
-      ended.wait(lock);
+      ended.wait_for(lock, std::chrono::milliseconds(10));
+      throwIfCancelled();
     }
+    if (startNone && *startNone) throw Cancelled{};
     underWay.insert(x);
     ++madeAhead;
+    if (made) ++*made;
     lock.unlock();
+    // However the run ends, its value is no longer under way, and a waiter is told.
+    struct Ended {
+      CountedVerdict& v;
+      double x;
+      ~Ended() {
+        const std::lock_guard<std::mutex> lock(v.mutex);
+        v.underWay.erase(x);
+        v.ended.notify_all();
+      }
+    };
     TrialResult r;
-    try {
+    {
+      const Ended end{*this, x};
       r = verdict(x, length);
-    } catch (...) {
-      lock.lock();
-      underWay.erase(x);
-      ended.notify_all();
-      throw;
+      const std::lock_guard<std::mutex> guard(mutex);
+      aside[x] = r;
     }
-    lock.lock();
-    underWay.erase(x);
-    const bool stable = r.stable;
-    aside[x] = std::move(r);
-    ended.notify_all();
-    return stable;
+    return r.stable;
   }
   void take(double x) {
     ++runs;
@@ -92,6 +103,7 @@ struct CountedVerdict {
     {
       const std::lock_guard<std::mutex> lock(mutex);
       const auto at = aside.find(x);
+      DDASLOPE_ASSERT(at != aside.end(), "a run taken was made ahead");
       r = std::move(at->second);
       aside.erase(at);
       ++takenAhead;
@@ -235,24 +247,11 @@ class Bracketing {
 class FailingBranch {
  public:
   FailingBranch(CountedVerdict& v, double width, int threads) : v_(v) {
-    spare_ = std::thread([this, width, threads] {
-      const CancellationScope scope(stop_);
-      const auto run = [this](double x) {
-        if (decided_) throw Cancelled{};
-        return v_.runAhead(x);
-      };
-      try {
-        run(1.5);
-        double stable = 0, failing = 1, f = 1;
-        for (int k = 0; k < 40 && stable == 0; ++k) {
-          f /= 1.5;
-          (run(f) ? stable : failing) = f;
-        }
-        if (stable > 0) narrowBracket(run, stable, failing, width, threads, true);
-      } catch (...) {
-        // Stopped, or an error of a run that the search meets again if it takes that run.
-      }
-    });
+    try {
+      spare_ = std::thread([this, width, threads] { runBranch(width, threads); });
+    } catch (const std::system_error&) {
+      // No thread to spare: the first trials run as a search without runs ahead runs them.
+    }
   }
   ~FailingBranch() { stop(); }
   FailingBranch(const FailingBranch&) = delete;
@@ -273,15 +272,36 @@ class FailingBranch {
     v_.take(1.5);
     return {one, oneAndAHalf};
   }
-  /// Stops the branch's runs still under way (the search has taken what it needs).
+  /// Stops the branch's runs still under way (the search has taken what it needs) and counts the
+  /// runs it started.
   void stop() {
     stop_ = true;
-    if (spare_.joinable()) spare_.join();
+    if (spare_.joinable()) {
+      spare_.join();
+      v_.countAhead(made_);
+    }
   }
 
  private:
+  void runBranch(double width, int threads) {
+    const CancellationScope scope(stop_);
+    const auto run = [this](double x) { return v_.runAhead(x, &decided_, &made_); };
+    try {
+      run(1.5);
+      double stable = 0, failing = 1, f = 1;
+      for (int k = 0; k < 40 && stable == 0; ++k) {
+        f /= 1.5;
+        (run(f) ? stable : failing) = f;
+      }
+      if (stable > 0) narrowBracket(run, stable, failing, width, threads, true);
+    } catch (...) {
+      // Stopped, or an error of a run that the search meets again if it takes that run.
+    }
+  }
+
   CountedVerdict& v_;
   std::atomic<bool> stop_{false}, decided_{false};
+  int made_ = 0;  ///< runs the branch started (read after the join)
   std::thread spare_;
 };
 
@@ -395,8 +415,10 @@ void reviewTrials(Result& r, CountedVerdict& v, bool stableBelow, std::pair<doub
         << " at " << lfAnyValue << " (" << v.quantity << "), ";
       if (by.at(lfAnyValue).rule == VerdictRule::MovedWhileSettling)
         m << "where it moved the failure displacement while it settled, before t = 0, which no run length changes; ";
-      else
+      else if (rerun.count(lfAnyValue))
         m << "also when re-run " << kReRunLength << " times longer; ";
+      else
+        m << "and the review's rounds of re-runs are spent; ";
       if (r.found)
         m << "they are closer than the bracket width asked for (" << target << ") or than 1 % of the value, so the "
           << "answer is given over the range that holds them, [" << std::min(belowValue, aboveValue) << ", "

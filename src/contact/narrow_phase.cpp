@@ -93,7 +93,10 @@ void vertexOnEdges(const Poly& V, const Poly& E, const Region& region, const Nar
   const double sd = s.searchDistance;
   // The edges of E that cross the region, found once: a block on a long stepped base meets a few
   // of its edges. An edge outside is skipped on the same test for every vertex, so its slack is
-  // held once, when the first vertex reaches the edges.
+  // held once, when the first vertex reaches the edges. An edge that crosses it and gives a
+  // contact no longer holds its crossing's slack, which never binds: with the exact boxes, a
+  // vertex of V within distance δ ≤ sd of the edge puts the edge at least sd − δ inside each side
+  // of the region, a slack of (sd − δ)/2, the distance test's own.
   thread_local std::vector<int> crossing;
   crossing.clear();
   double outsideSlack = INFINITY;

@@ -52,17 +52,23 @@ void PairCache::prepare(const Polygons& blocks, const std::vector<BlockPair>& pa
   }
   // Match this detection's pairs with the last one's (both sorted). A pair whose certificate has
   // run out anchors its blocks anew: searched on the new anchors, its next certificate starts from
-  // a drift of 0 (a new pair, or one that could not be certified, is searched as it is).
+  // a drift of 0. So does a pair whose searches without a certificate (Entry::reuses) end now.
+  // (A new pair, or one that could not be certified, is searched as it is.)
   previous_.assign(pairs.size(), -1);
   prior_.assign(pairs.size(), -1);
+  movedAway_.assign(pairs.size(), 0);
   size_t old = 0;
   for (size_t k = 0; k < pairs.size(); ++k) {
     while (old < entries_.size() && pairLess(entries_[old].pair, pairs[k])) ++old;
     if (old == entries_.size() || !(entries_[old].pair == pairs[k])) continue;
     prior_[k] = static_cast<int>(old);
+    const Entry& e = entries_[old];
     const size_t a = static_cast<size_t>(pairs[k].a), b = static_cast<size_t>(pairs[k].b);
-    if (reanchor[a] || reanchor[b] || !holds(entries_[old])) {
-      if (entries_[old].slack > 0) reanchor[a] = reanchor[b] = 1;
+    if (!e.certified && e.wait == 0) reanchor[a] = reanchor[b] = 1;
+    if (reanchor[a] || reanchor[b] || !holds(e)) {
+      // Its blocks moved beyond the certificate (not only anchored anew for another pair).
+      movedAway_[k] = e.slack > 0 && e.epochA == anchors_[a].epoch && e.epochB == anchors_[b].epoch && !holds(e);
+      if (e.slack > 0) reanchor[a] = reanchor[b] = 1;
       continue;
     }
     previous_[k] = static_cast<int>(old);
@@ -93,12 +99,12 @@ void PairCache::prepare(const Polygons& blocks, const std::vector<BlockPair>& pa
     if (last.wait > 0) {
       e.certified = false;
       e.wait = static_cast<std::uint8_t>(last.wait - 1);
-    } else if (last.certified && !(last.slack > 0 && last.reuses > 0)) {  // lapsed unused, or not given
+    } else if (last.certified && last.slack > 0 && last.reuses > 0) {
+      e.level = 0;
+    } else if (last.certified && (!(last.slack > 0) || movedAway_[k])) {  // not given, or lapsed unused
       e.level = static_cast<std::uint8_t>(std::min(last.level + 1, kMaxLevel));
       e.certified = false;
       e.wait = static_cast<std::uint8_t>((1 << e.level) - 2);
-    } else if (last.certified) {
-      e.level = 0;
     }
     waited_ += !e.certified;
   }

@@ -29,7 +29,8 @@ constexpr double kReRunLength = 4;
 
 /// What a search's review of its own trials found (every search ends with one). The verdict must
 /// be monotone in the value searched: a failing trial on the stable side of a stable one is a
-/// contradiction. Contradicting trials are re-run kReRunLength times longer and the bracket is
+/// contradiction. Contradicting trials are re-run kReRunLength times longer (except those that
+/// failed while they settled, before t = 0, which a longer run repeats) and the bracket is
 /// narrowed again; if they still contradict, or if an undecided trial leaves the bracket between
 /// decided trials wider than asked for, the search has no answer (`found` false) and says so,
 /// with the bracket it can vouch for.

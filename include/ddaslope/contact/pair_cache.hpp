@@ -60,8 +60,10 @@ class PairCache {
     Found found[kMaxFound];
     /// Certifying a search costs about as much as the search. A pair whose blocks keep moving
     /// uses no certificate before it lapses, so such a pair is searched without one for a while:
-    /// after a certificate left unused, 1, then 3, 7 and 15 searches (2^level − 1), then
-    /// certified again; a certificate used once starts the count afresh.
+    /// after a certificate its blocks moved beyond unused, 1, then 3, 7 and 15 searches
+    /// (2^level − 1), then certified again, on its blocks anchored anew; a certificate used once
+    /// starts the count afresh. (One lost only to an anchor renewed for another pair counts for
+    /// nothing.)
     bool certified = false;  ///< this search was certified
     int reuses = 0;          ///< detections that reused this search's contacts
     std::uint8_t level = 0;  ///< certificates in a row that lapsed unused (at most kMaxLevel)
@@ -75,6 +77,7 @@ class PairCache {
   std::vector<Entry> next_;     ///< this detection's, one per pair
   std::vector<int> previous_;   ///< pair k's entry in entries_ if it is reused, or −1
   std::vector<int> prior_;      ///< pair k's entry in entries_, reused or not, or −1
+  std::vector<char> movedAway_;  ///< pair k's blocks moved beyond its last certificate
   long expectedVersion_ = -1;
   double searchDistance_ = -1, sinParallelTolerance_ = -1;
   long reused_ = 0, searched_ = 0, waited_ = 0;
