@@ -11,6 +11,7 @@
 #include <set>
 
 #include "ddaslope/calibration/strength_search.hpp"
+#include "ddaslope/calibration/trial_report.hpp"
 #include "ddaslope/calibration/verdict.hpp"
 #include "ddaslope/io/case_reader.hpp"
 
@@ -307,4 +308,25 @@ TEST(SearchReview, FirstTwoTrialsRunSideBySide) {
     EXPECT_NEAR(r.factor, critical, 0.005);
     EXPECT_EQ(r.review.reruns, 0);
   }
+}
+
+// A run that does not converge counts as failing. When one is the bracket's failing end (here
+// every trial from F = 0.95 on spends its budget, while the slope stands up to F = 1), the answer
+// is only a lower bound of F, and the search's warning says so, naming the value and the command
+// that shows why; a search whose failing end converged has no such warning.
+TEST(SearchReview, AnUnconvergedFailingEndIsReported) {
+  FakeVerdict v;
+  v.special = [](double f, double, TrialResult& r) {
+    if (f >= 0.95) r.stable = false, r.converged = false, r.rule = calibration::VerdictRule::NotConverged;
+    return true;
+  };
+  const auto r = calibration::factorOfSafetyOf(v, 0.005, twoAtOnce());
+  ASSERT_TRUE(r.found) << r.message;
+  EXPECT_LT(r.factor, 0.95);
+  EXPECT_GE(r.failingEnd, 0.95);
+  const std::string w = calibration::unconvergedEndWarning(r.trials, r.found, r.failingEnd, "F", "slope.json");
+  EXPECT_NE(w.find("did not converge"), std::string::npos) << w;
+  EXPECT_NE(w.find("--at-fos"), std::string::npos) << w;
+  const auto plain = calibration::factorOfSafetyOf(FakeVerdict{}, 0.005, twoAtOnce());
+  EXPECT_EQ(calibration::unconvergedEndWarning(plain.trials, plain.found, plain.failingEnd, "F"), "");
 }

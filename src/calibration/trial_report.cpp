@@ -66,4 +66,22 @@ std::string smallMotionWarning(const std::vector<TrialRecord>& trials, const std
   return m.str();
 }
 
+std::string unconvergedEndWarning(const std::vector<TrialRecord>& trials, bool found, double failingEnd,
+                                  const std::string& valueLabel, const std::string& caseLabel) {
+  if (!found) return "";
+  // The verdict in force at the failing end: its re-run's, if it was re-run.
+  const TrialRecord* end = nullptr;
+  for (const TrialRecord& t : trials)
+    if (t.value == failingEnd && (!end || t.rerun)) end = &t;
+  if (!end || end->result.converged) return "";
+  std::ostringstream m;
+  m << "the bracket's failing end, " << valueLabel << " = " << shortNumber(failingEnd)
+    << ", is a run that did not converge: it counts as failing, so the slope may stand there and the answer lie "
+    << "beyond it. See why with "
+    << (valueLabel == "F" ? "`ddaslope run " + caseLabel + " --at-fos " + shortNumber(failingEnd) + " --verbose`"
+                          : "`ddaslope run " + caseLabel + " --set ... --verbose` at that value")
+    << " (a budget spent: analysis.wall_clock_limit or analysis.max_steps; or Δt cut to its limit)";
+  return m.str();
+}
+
 }  // namespace ddaslope::calibration

@@ -274,6 +274,8 @@ int seismicCoefficientCommand(const std::string& casePath, const Overrides& o, d
     std::fprintf(stderr, "ddaslope: %s: no yield seismic coefficient found after %s: %s\n", casePath.c_str(),
                  runsText.c_str(), r.message.c_str());
   warnAboutTrials(casePath, ddaslope::calibration::smallMotionWarning(r.trials, "k_h", shellWord(casePath)));
+  warnAboutTrials(casePath, ddaslope::calibration::unconvergedEndWarning(r.trials, r.found, r.failingEnd, "k_h",
+                                                                          shellWord(casePath)));
   return r.found ? kExitOk : kExitNonConvergence;
 }
 
@@ -336,8 +338,10 @@ int criticalCommand(const std::string& casePath, const Overrides& o, const Criti
       r.found ? pictures.write(opt.outDir, casePath, cohesion ? "c (Pa)" : "φ (°)", r.stableEnd, r.failingEnd)
               : std::vector<std::string>{};
   std::vector<std::string> warnings;
-  for (std::string w : {ddaslope::calibration::smallMotionWarning(r.trials, cohesion ? "c" : "φ", shellWord(casePath)), slightBendNote(scene),
-                        notchWarning(scene), dtWarning})
+  for (std::string w : {ddaslope::calibration::smallMotionWarning(r.trials, cohesion ? "c" : "φ", shellWord(casePath)),
+                        ddaslope::calibration::unconvergedEndWarning(r.trials, r.found, r.failingEnd, cohesion ? "c" : "φ",
+                                                                     shellWord(casePath)),
+                        slightBendNote(scene), notchWarning(scene), dtWarning})
     if (!w.empty()) warnings.push_back(std::move(w));
   {
     ddaslope::io::JsonRecord j;

@@ -225,7 +225,9 @@ int fosCommand(const std::string& casePath, const Overrides& o, const FosOptions
       r.found ? pictures->write(opt.outDir, casePath, "F", r.stableEnd, r.failingEnd) : std::vector<std::string>{};
   // Said on stderr and kept in fos.json, so that a report carries them.
   std::vector<std::string> warnings;
-  for (std::string w : {ddaslope::calibration::smallMotionWarning(r.trials, "F", shellWord(casePath)), slightBendNote(scene), notchWarning(scene), dtWarning})
+  for (std::string w : {ddaslope::calibration::smallMotionWarning(r.trials, "F", shellWord(casePath)),
+                        ddaslope::calibration::unconvergedEndWarning(r.trials, r.found, r.failingEnd, "F", shellWord(casePath)),
+                        slightBendNote(scene), notchWarning(scene), dtWarning})
     if (!w.empty()) warnings.push_back(std::move(w));
   {
     ddaslope::io::JsonRecord j;

@@ -28,4 +28,10 @@ constexpr double kSmallFailureMotion = 0.01;
 std::string smallMotionWarning(const std::vector<TrialRecord>& trials, const std::string& valueLabel,
                                const std::string& caseLabel = "CASE");
 
+/// The warning (empty if none) when the bracket's failing end is a run that did not converge (a
+/// budget spent, Δt cut to its limit): it counts as failing, so the slope may stand there and the
+/// answer lie beyond it. `found`: whether the search gave an answer at all.
+std::string unconvergedEndWarning(const std::vector<TrialRecord>& trials, bool found, double failingEnd,
+                                  const std::string& valueLabel, const std::string& caseLabel = "CASE");
+
 }  // namespace ddaslope::calibration
