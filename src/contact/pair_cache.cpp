@@ -65,9 +65,10 @@ void PairCache::prepare(const Polygons& blocks, const std::vector<BlockPair>& pa
     const Entry& e = entries_[old];
     const size_t a = static_cast<size_t>(pairs[k].a), b = static_cast<size_t>(pairs[k].b);
     if (!e.certified && e.wait == 0) reanchor[a] = reanchor[b] = 1;
-    if (reanchor[a] || reanchor[b] || !holds(e)) {
+    const bool held = holds(e);
+    if (reanchor[a] || reanchor[b] || !held) {
       // Its blocks moved beyond the certificate (not only anchored anew for another pair).
-      movedAway_[k] = e.slack > 0 && e.epochA == anchors_[a].epoch && e.epochB == anchors_[b].epoch && !holds(e);
+      movedAway_[k] = !held && e.slack > 0 && e.epochA == anchors_[a].epoch && e.epochB == anchors_[b].epoch;
       if (e.slack > 0) reanchor[a] = reanchor[b] = 1;
       continue;
     }
