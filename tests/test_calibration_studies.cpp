@@ -77,3 +77,29 @@ TEST_P(CalibrationStudy, MeetsItsExpectedResult) {
 
 INSTANTIATE_TEST_SUITE_P(Studies, CalibrationStudy, ::testing::ValuesIn(studies()),
                          [](const auto& info) { return fs::path(info.param).filename().string(); });
+
+// The optimisers ask for one point at a time. A point asked again is not run again, and with a
+// spare thread the point DIRECT asks next (the mirror of the one it asks now) runs ahead. Neither
+// may change what the optimisers see: the job's result is the same to the bit with one thread
+// and with two.
+TEST(BackanalysisEvaluations, RunningAheadAndRepeatsChangeNothing) {
+  io::BackanalysisJob job = io::readJob((fs::path(DDASLOPE_SOURCE_DIR) / "calibration/two_block_slide/job.json").string());
+  job.threads = 1;
+  const calibration::BackanalysisResult one = calibration::runBackanalysis(job);
+  job.threads = 2;
+  const calibration::BackanalysisResult two = calibration::runBackanalysis(job);
+  ASSERT_EQ(one.estimate.size(), 1u);
+  EXPECT_EQ(one.estimate[0], two.estimate[0]);
+  EXPECT_EQ(one.misfit, two.misfit);
+  EXPECT_EQ(one.evaluations, two.evaluations);
+  EXPECT_EQ(one.forwardRuns, two.forwardRuns);
+  ASSERT_EQ(one.fit.size(), two.fit.size());
+  for (size_t k = 0; k < one.fit.size(); ++k) EXPECT_EQ(one.fit[k].simulated, two.fit[k].simulated);
+  // The local stage starts at the global stage's best point, already run: one forward run per
+  // point asked (a series observation is one run), and that point not again.
+  EXPECT_LE(one.forwardRuns, one.evaluations - 1);
+  EXPECT_EQ(one.runsAhead, 0);
+  // DIRECT's second and third points are 0.5 ∓ 1/3 of the range, the third the exact mirror of
+  // the second about the first: run ahead and taken, at least that one.
+  EXPECT_GE(two.runsAhead - two.runsAheadUnused, 1);
+}

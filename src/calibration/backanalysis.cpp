@@ -5,6 +5,11 @@
 #include <cstdio>
 #include <chrono>
 #include <cmath>
+#include <condition_variable>
+#include <exception>
+#include <map>
+#include <memory>
+#include <mutex>
 #include <optional>
 #include <sstream>
 #include <thread>
@@ -12,6 +17,7 @@
 #include "ddaslope/calibration/minimiser.hpp"
 #include "ddaslope/calibration/strength_search.hpp"
 #include "ddaslope/core/byte_record.hpp"
+#include "ddaslope/core/cancellation.hpp"
 #include "ddaslope/core/errors.hpp"
 #include "ddaslope/io/case_reader.hpp"
 #include "ddaslope/io/run_case.hpp"
@@ -227,6 +233,168 @@ std::vector<std::vector<double>> parameterGrid(const io::BackanalysisJob& job, i
   return points;
 }
 
+
+/// The optimisers' misfits, kept by exact point, with the next point run ahead on a spare thread.
+/// The optimisers ask for one point at a time, and a point asked again (the local stage starts at
+/// the global stage's best) is not run again. DIRECT divides a box at two points symmetric about
+/// its centre c along one axis and asks for c - d, then c + d. While the first runs, the second
+/// runs ahead: the asked point mirrored about the nearest point already asked above it on the one
+/// axis where they differ, c + (c - x), which in floating point is DIRECT's c + d for all but a
+/// few pairs (a miss costs only the spare thread). A value is used only for the exact point it
+/// was made for, so every optimiser sees the values it would see without running ahead.
+class Evaluations {
+ public:
+  struct Value {
+    double misfit = 0;
+    int runs = 0;
+    std::vector<ObservationFit> fit;
+  };
+  using Compute = std::function<Value(const std::vector<double>&)>;
+
+  Evaluations(Compute compute, bool runAhead) : compute_(std::move(compute)), runAhead_(runAhead) {}
+  ~Evaluations() { stopRunningAhead(); }
+  Evaluations(const Evaluations&) = delete;
+  Evaluations& operator=(const Evaluations&) = delete;
+
+  /// The value at u; `fresh`: u was not asked before (its runs count once).
+  Value at(const std::vector<double>& u, bool& fresh) {
+    std::unique_lock<std::mutex> lock(mutex_);
+    if (const auto it = entries_.find(u); it != entries_.end()) {
+      const std::shared_ptr<Entry> e = it->second;
+      done_.wait(lock, [&] { return e->done; });
+      fresh = !e->taken;
+      if (fresh && e->ahead) ++takenAhead_;
+      e->taken = true;
+      if (e->error) std::rethrow_exception(e->error);
+      return e->value;
+    }
+    auto e = std::make_shared<Entry>();
+    e->taken = true;
+    entries_[u] = e;
+    startAhead(u);
+    lock.unlock();
+    Value v;
+    std::exception_ptr error;
+    try {
+      v = compute_(u);
+    } catch (...) {
+      error = std::current_exception();
+    }
+    lock.lock();
+    e->value = v;
+    e->error = error;
+    e->done = true;
+    done_.notify_all();
+    fresh = true;
+    if (error) std::rethrow_exception(error);
+    return v;
+  }
+
+  /// Stops a run ahead that no one has asked for and waits for the spare thread: the stage that
+  /// follows needs the cores. (Its value, if it finished, stays for a later ask.)
+  void stopRunningAhead() {
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      for (auto& [u, e] : entries_)
+        if (e->ahead && !e->done) e->cancel = true;
+    }
+    if (spare_.joinable()) spare_.join();
+  }
+
+  /// Runs made ahead, and those of them no optimiser asked for.
+  int madeAhead() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return madeAhead_;
+  }
+  int unusedAhead() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return madeAhead_ - takenAhead_;
+  }
+
+ private:
+  struct Entry {
+    bool ahead = false, done = false, taken = false;
+    Value value;
+    std::exception_ptr error;
+    std::atomic<bool> cancel{false};
+  };
+
+  /// The mirror of u about the nearest point asked above it on the one axis they differ on, if
+  /// it lies in the unit box and was not asked or run. Under the lock.
+  std::optional<std::vector<double>> mirror(const std::vector<double>& u) const {
+    std::optional<std::vector<double>> best;
+    double nearest = INFINITY;
+    for (const auto& [c, e] : entries_) {
+      int axis = -1, differing = 0;
+      for (size_t i = 0; i < u.size(); ++i)
+        if (c[i] != u[i]) axis = static_cast<int>(i), ++differing;
+      if (differing != 1) continue;
+      const size_t i = static_cast<size_t>(axis);
+      const double above = c[i] - u[i];
+      if (!(above > 0) || above >= nearest) continue;
+      std::vector<double> m = u;
+      m[i] = c[i] + above;
+      if (!(m[i] <= 1.0)) continue;
+      nearest = above;
+      best = std::move(m);
+    }
+    if (best && entries_.count(*best)) best.reset();
+    return best;
+  }
+
+  /// Starts the run ahead of u's mirror on the spare thread, if it is free. Under the lock.
+  void startAhead(const std::vector<double>& u) {
+    if (!runAhead_ || spareBusy_) return;
+    const std::optional<std::vector<double>> next = mirror(u);
+    if (!next) return;
+    if (spare_.joinable()) spare_.join();  // finished: spareBusy_ is false
+    auto e = std::make_shared<Entry>();
+    e->ahead = true;
+    entries_[*next] = e;
+    spareBusy_ = true;
+    try {
+      spare_ = std::thread([this, x = *next, e] { runAhead(x, e); });
+    } catch (const std::system_error&) {  // no thread to be had: run nothing ahead
+      entries_.erase(*next);
+      spareBusy_ = false;
+    }
+  }
+
+  void runAhead(const std::vector<double>& x, const std::shared_ptr<Entry>& e) {
+    Value v;
+    std::exception_ptr error;
+    bool cancelled = false;
+    try {
+      const CancellationScope scope(e->cancel);
+      v = compute_(x);
+    } catch (const Cancelled&) {
+      cancelled = true;
+    } catch (...) {
+      error = std::current_exception();
+    }
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (cancelled) {
+      entries_.erase(x);
+    } else {
+      e->value = std::move(v);
+      e->error = error;
+      e->done = true;
+      ++madeAhead_;
+    }
+    spareBusy_ = false;
+    done_.notify_all();
+  }
+
+  Compute compute_;
+  bool runAhead_;
+  mutable std::mutex mutex_;
+  std::condition_variable done_;
+  std::map<std::vector<double>, std::shared_ptr<Entry>> entries_;
+  std::thread spare_;
+  bool spareBusy_ = false;
+  int madeAhead_ = 0, takenAhead_ = 0;
+};
+
 }  // namespace
 
 BackanalysisResult runBackanalysis(const io::BackanalysisJob& job, TaskFarm* farm, const io::ProgressSink& progress) {
@@ -264,14 +432,24 @@ BackanalysisResult runBackanalysis(const io::BackanalysisJob& job, TaskFarm* far
     std::snprintf(text, sizeof text, "best misfit %.4g (%d forward runs)", std::min(stageBest, bestSeen), runs.load());
     progress({stage, stageDone, stagePlanned, text, {{"best_misfit", std::min(stageBest, bestSeen)}}});
   };
+  // A factor-of-safety observation's search already uses job.threads; a run-out's or a series'
+  // forward run uses one, and the other runs the optimiser's next point ahead.
+  bool searches = false;
+  for (const auto& o : job.observations) searches |= o.kind == io::ObservationSpec::Kind::FactorOfSafety;
+  Evaluations misfits(
+      [&](const std::vector<double>& u) {
+        Evaluations::Value v;
+        v.misfit = misfitAt(job, physical(job, u), &v.runs, shared, job.threads, &v.fit);
+        return v;
+      },
+      job.threads >= 2 && !searches);
   const std::function<double(const std::vector<double>&)> f = [&](const std::vector<double>& u) {
-    int n = 0;
-    std::vector<ObservationFit> fit;
-    const double v = misfitAt(job, physical(job, u), &n, shared, job.threads, &fit);
-    runs += n;
-    if (v < bestSeen) bestSeen = v, r.fit = std::move(fit);  // the optimisers call f one at a time
-    evaluated(v);
-    return v;
+    bool fresh = false;
+    Evaluations::Value v = misfits.at(u, fresh);
+    if (fresh) runs += v.runs;
+    if (v.misfit < bestSeen) bestSeen = v.misfit, r.fit = std::move(v.fit);  // the optimisers call f one at a time
+    evaluated(v.misfit);
+    return v.misfit;
   };
   std::vector<double> u(job.parameters.size(), 0.5);
   for (size_t i = 0; i < u.size(); ++i)
@@ -309,6 +487,9 @@ BackanalysisResult runBackanalysis(const io::BackanalysisJob& job, TaskFarm* far
   }
   // The observations' fit at the estimate (the local stage recorded it if it ran from there).
   if (root && bestSeen > best) f(u), ++r.evaluations;
+  misfits.stopRunningAhead();
+  r.runsAhead = misfits.madeAhead();
+  r.runsAheadUnused = misfits.unusedAhead();
   r.estimate = physical(job, u);
   r.misfit = best;
   if (job.precision.enabled && root) {

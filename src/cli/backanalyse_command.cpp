@@ -90,6 +90,7 @@ int backanalyseCommand(const std::string& jobPath, const std::string& outDir, bo
   for (size_t i = 0; i < r.names.size(); ++i) estimate.set(r.names[i], r.estimate[i]);
   j.set("estimate", estimate);
   j.set("misfit", r.misfit).set("evaluations", r.evaluations).set("forward_runs", r.forwardRuns);
+  j.set("runs_ahead_unused", r.runsAheadUnused);
   j.set("global_search", r.globalStatus).set("local_search", r.localStatus).set("wall_time_s", r.wallTime);
   const ddaslope::model::Scene atEstimate = ddaslope::calibration::sceneAt(job, r.estimate);
   const std::string settings = settingsLine(atEstimate);

@@ -36,6 +36,10 @@ struct BackanalysisResult {
   std::vector<ObservationFit> fit;  ///< each observation at the estimate
   int evaluations = 0;              ///< misfit evaluations (each ≥ 1 forward run)
   int forwardRuns = 0;
+  /// Runs of the optimisers' next points made ahead on a spare thread (job.threads ≥ 2, no
+  /// factor-of-safety observation), and of those the ones no optimiser asked for (not in
+  /// forwardRuns).
+  int runsAhead = 0, runsAheadUnused = 0;
   std::string globalStatus, localStatus;
   double wallTime = 0;
   /// Misfit map (two parameters): axes and values[i][j] at (axis0[i], axis1[j]).
