@@ -10,6 +10,7 @@
 
 #include "ddaslope/calibration/backanalysis.hpp"
 #include "ddaslope/calibration/strength_search.hpp"
+#include "ddaslope/core/errors.hpp"
 #include "ddaslope/io/job_reader.hpp"
 
 namespace fs = std::filesystem;
@@ -102,4 +103,16 @@ TEST(BackanalysisEvaluations, RunningAheadAndRepeatsChangeNothing) {
   // DIRECT's second and third points are 0.5 ∓ 1/3 of the range, the third the exact mirror of
   // the second about the first: run ahead and taken, at least that one.
   EXPECT_GE(two.runsAhead - two.runsAheadUnused, 1);
+}
+
+// A job whose observation names a monitor the case lacks is the user's mistake: it reaches the
+// caller as an input error (exit 2 at the command line), with or without a run ahead, instead of
+// an optimiser status and an infinite misfit.
+TEST(BackanalysisEvaluations, AnErrorOfAForwardRunReachesTheCaller) {
+  io::BackanalysisJob job = io::readJob((fs::path(DDASLOPE_SOURCE_DIR) / "calibration/two_block_slide/job.json").string());
+  job.observations.at(0).monitor = "nowhere";
+  for (int threads : {1, 2}) {
+    job.threads = threads;
+    EXPECT_THROW(calibration::runBackanalysis(job), InputError) << threads << " threads";
+  }
 }

@@ -234,14 +234,15 @@ std::vector<std::vector<double>> parameterGrid(const io::BackanalysisJob& job, i
 }
 
 
-/// The optimisers' misfits, kept by exact point, with the next point run ahead on a spare thread.
-/// The optimisers ask for one point at a time, and a point asked again (the local stage starts at
-/// the global stage's best) is not run again. DIRECT divides a box at two points symmetric about
-/// its centre c along one axis and asks for c - d, then c + d. While the first runs, the second
-/// runs ahead: the asked point mirrored about the nearest point already asked above it on the one
-/// axis where they differ, c + (c - x), which in floating point is DIRECT's c + d for all but a
-/// few pairs (a miss costs only the spare thread). A value is used only for the exact point it
-/// was made for, so every optimiser sees the values it would see without running ahead.
+/// The optimisers' misfits, kept by exact point, with DIRECT's next point run ahead on a spare
+/// thread. The optimisers ask for one point at a time, and a point asked again (the local stage
+/// starts at the global stage's best) is not run again. DIRECT divides a box at two points
+/// symmetric about its centre c along one axis and asks for c - d, then c + d. While the first
+/// runs, the second runs ahead: the asked point mirrored about the nearest point known above it
+/// on the one axis where they differ, c + (c - x), which in floating point is DIRECT's c + d for
+/// all but a few pairs. A guess that the next ask does not take is stopped then. A value is used
+/// only for the exact point it was made for, so an optimiser sees the values it would see
+/// without running ahead.
 class Evaluations {
  public:
   struct Value {
@@ -251,10 +252,13 @@ class Evaluations {
   };
   using Compute = std::function<Value(const std::vector<double>&)>;
 
-  Evaluations(Compute compute, bool runAhead) : compute_(std::move(compute)), runAhead_(runAhead) {}
+  explicit Evaluations(Compute compute) : compute_(std::move(compute)) {}
   ~Evaluations() { stopRunningAhead(); }
   Evaluations(const Evaluations&) = delete;
   Evaluations& operator=(const Evaluations&) = delete;
+
+  /// Whether the points asked from now on have their mirrors run ahead (a DIRECT stage).
+  void runAheadFrom(bool on) { runAhead_ = on; }
 
   /// The value at u; `fresh`: u was not asked before (its runs count once).
   Value at(const std::vector<double>& u, bool& fresh) {
@@ -262,12 +266,20 @@ class Evaluations {
     if (const auto it = entries_.find(u); it != entries_.end()) {
       const std::shared_ptr<Entry> e = it->second;
       done_.wait(lock, [&] { return e->done; });
-      fresh = !e->taken;
-      if (fresh && e->ahead) ++takenAhead_;
-      e->taken = true;
-      if (e->error) std::rethrow_exception(e->error);
-      return e->value;
+      if (!e->cancelled) {
+        fresh = !e->taken;
+        if (fresh && e->ahead) ++takenAhead_;
+        e->taken = true;
+        if (e->error) std::rethrow_exception(e->error);
+        return e->value;
+      }
     }
+    // A new point: a guess run ahead for another one was wrong, and its thread is wanted.
+    const bool wrongGuess = guess_ && !guess_->done && !guess_->taken;
+    if (wrongGuess) guess_->cancel = true;
+    lock.unlock();
+    if (wrongGuess && spare_.joinable()) spare_.join();
+    lock.lock();
     auto e = std::make_shared<Entry>();
     e->taken = true;
     entries_[u] = e;
@@ -277,6 +289,10 @@ class Evaluations {
     std::exception_ptr error;
     try {
       v = compute_(u);
+    } catch (const Cancelled&) {
+      lock.lock();
+      forget(u, e);
+      throw;
     } catch (...) {
       error = std::current_exception();
     }
@@ -290,18 +306,17 @@ class Evaluations {
     return v;
   }
 
-  /// Stops a run ahead that no one has asked for and waits for the spare thread: the stage that
-  /// follows needs the cores. (Its value, if it finished, stays for a later ask.)
+  /// Stops a run ahead that no one has asked for and waits for the spare thread: what follows
+  /// needs the cores.
   void stopRunningAhead() {
     {
       std::lock_guard<std::mutex> lock(mutex_);
-      for (auto& [u, e] : entries_)
-        if (e->ahead && !e->done) e->cancel = true;
+      if (guess_ && !guess_->done) guess_->cancel = true;
     }
     if (spare_.joinable()) spare_.join();
   }
 
-  /// Runs made ahead, and those of them no optimiser asked for.
+  /// Runs made ahead (to the end), and those of them no optimiser asked for.
   int madeAhead() const {
     std::lock_guard<std::mutex> lock(mutex_);
     return madeAhead_;
@@ -313,14 +328,21 @@ class Evaluations {
 
  private:
   struct Entry {
-    bool ahead = false, done = false, taken = false;
+    bool ahead = false, done = false, taken = false, cancelled = false;
     Value value;
     std::exception_ptr error;
     std::atomic<bool> cancel{false};
   };
 
-  /// The mirror of u about the nearest point asked above it on the one axis they differ on, if
-  /// it lies in the unit box and was not asked or run. Under the lock.
+  /// A run stopped before its end: its point is not known after all. Under the lock.
+  void forget(const std::vector<double>& u, const std::shared_ptr<Entry>& e) {
+    e->cancelled = e->done = true;
+    if (const auto it = entries_.find(u); it != entries_.end() && it->second == e) entries_.erase(it);
+    done_.notify_all();
+  }
+
+  /// The mirror of u about the nearest point known above it on the one axis they differ on, if
+  /// it lies in the unit box and is not known yet. Under the lock.
   std::optional<std::vector<double>> mirror(const std::vector<double>& u) const {
     std::optional<std::vector<double>> best;
     double nearest = INFINITY;
@@ -351,11 +373,13 @@ class Evaluations {
     auto e = std::make_shared<Entry>();
     e->ahead = true;
     entries_[*next] = e;
+    guess_ = e;
     spareBusy_ = true;
     try {
       spare_ = std::thread([this, x = *next, e] { runAhead(x, e); });
     } catch (const std::system_error&) {  // no thread to be had: run nothing ahead
       entries_.erase(*next);
+      guess_.reset();
       spareBusy_ = false;
     }
   }
@@ -374,22 +398,23 @@ class Evaluations {
     }
     std::lock_guard<std::mutex> lock(mutex_);
     if (cancelled) {
-      entries_.erase(x);
+      forget(x, e);
     } else {
       e->value = std::move(v);
       e->error = error;
       e->done = true;
       ++madeAhead_;
+      done_.notify_all();
     }
     spareBusy_ = false;
-    done_.notify_all();
   }
 
   Compute compute_;
-  bool runAhead_;
+  bool runAhead_ = false;
   mutable std::mutex mutex_;
   std::condition_variable done_;
   std::map<std::vector<double>, std::shared_ptr<Entry>> entries_;
+  std::shared_ptr<Entry> guess_;  ///< the last run started ahead
   std::thread spare_;
   bool spareBusy_ = false;
   int madeAhead_ = 0, takenAhead_ = 0;
@@ -436,13 +461,12 @@ BackanalysisResult runBackanalysis(const io::BackanalysisJob& job, TaskFarm* far
   // forward run uses one, and the other runs the optimiser's next point ahead.
   bool searches = false;
   for (const auto& o : job.observations) searches |= o.kind == io::ObservationSpec::Kind::FactorOfSafety;
-  Evaluations misfits(
-      [&](const std::vector<double>& u) {
-        Evaluations::Value v;
-        v.misfit = misfitAt(job, physical(job, u), &v.runs, shared, job.threads, &v.fit);
-        return v;
-      },
-      job.threads >= 2 && !searches);
+  Evaluations misfits([&](const std::vector<double>& u) {
+    Evaluations::Value v;
+    v.misfit = misfitAt(job, physical(job, u), &v.runs, shared, job.threads, &v.fit);
+    return v;
+  });
+  const bool runAhead = job.threads >= 2 && !searches;
   const std::function<double(const std::vector<double>&)> f = [&](const std::vector<double>& u) {
     bool fresh = false;
     Evaluations::Value v = misfits.at(u, fresh);
@@ -472,7 +496,9 @@ BackanalysisResult runBackanalysis(const io::BackanalysisJob& job, TaskFarm* far
     r.globalStatus = std::string(io::kGridSearch) + ": " + std::to_string(grid.size()) + " points";
   } else if (!job.optimiser.global.empty() && root) {
     beginStage("global", job.optimiser.globalEvaluations);
+    misfits.runAheadFrom(runAhead && job.optimiser.global.find("DIRECT") != std::string::npos);
     const MinimiserResult g = minimise(job.optimiser.global, f, u, job.optimiser.globalEvaluations, job.optimiser.xtolRel);
+    misfits.runAheadFrom(false);
     r.globalStatus = job.optimiser.global + ": " + g.status;
     r.evaluations += g.evaluations;
     u = g.x;

@@ -2,6 +2,8 @@
 
 #include <nlopt.hpp>
 
+#include <exception>
+
 #include "ddaslope/core/errors.hpp"
 
 namespace ddaslope::calibration {
@@ -12,12 +14,20 @@ struct Objective {
   int evaluations = 0;
   std::vector<double> best;
   double bestValue = HUGE_VAL;
+  /// What the objective threw: NLopt's wrapper would turn it into a bare failure status.
+  std::exception_ptr error;
 };
 
 double trampoline(const std::vector<double>& x, std::vector<double>& /*grad*/, void* data) {
   auto* o = static_cast<Objective*>(data);
   ++o->evaluations;
-  const double v = (*o->f)(x);
+  double v = 0;
+  try {
+    v = (*o->f)(x);
+  } catch (...) {
+    o->error = std::current_exception();
+    throw nlopt::forced_stop();
+  }
   if (v < o->bestValue) o->bestValue = v, o->best = x;
   return v;
 }
@@ -49,6 +59,8 @@ MinimiserResult minimise(const std::string& algorithm, const std::function<doubl
   } catch (const std::runtime_error& e) {
     r.status = std::string("FAILURE: ") + e.what();
   }
+  // An error of the objective (a case that cannot run, say) is the caller's, not a status.
+  if (o.error) std::rethrow_exception(o.error);
   r.x = o.best.empty() ? x0 : o.best;
   r.value = o.bestValue;
   r.evaluations = o.evaluations;

@@ -1,9 +1,11 @@
 #include "ddaslope/calibration/precision.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <functional>
 #include <sstream>
+#include <utility>
 
 #include "ddaslope/calibration/backanalysis.hpp"
 #include "ddaslope/core/task_farm.hpp"
@@ -77,43 +79,56 @@ Precision measurePrecision(const io::BackanalysisJob& job, const std::vector<dou
   Precision out;
   const io::PrecisionSpec& spec = job.precision;
   std::atomic<int> counted{0};
-  // The scan: each parameter over estimate ± halfWidth of its range, the others held.
+  // The scan: each parameter over estimate ± halfWidth of its range, the others held; and the
+  // Δt ensemble at the estimate. All their runs share one pool, so that the threads finish
+  // together once, not once per parameter and again after the ensemble.
+  std::vector<std::vector<double>> values(job.parameters.size());
+  std::vector<std::pair<int, int>> tasks;  // (parameter, scan value), or (-1, Δt factor)
   for (size_t i = 0; i < job.parameters.size(); ++i) {
     const io::ParameterSpec& p = job.parameters[i];
-    ParameterRange range;
-    range.name = p.name;
-    range.estimate = estimate[i];
     const double half = spec.halfWidth * (p.max - p.min);
-    std::vector<double> values;
     for (int k = 0; k < spec.scanPoints; ++k) {
       const double v = estimate[i] - half + 2 * half * k / (spec.scanPoints - 1);
-      if (v >= p.min && v <= p.max && std::abs(v - estimate[i]) > 1e-9 * (p.max - p.min)) values.push_back(v);
+      if (v >= p.min && v <= p.max && std::abs(v - estimate[i]) > 1e-9 * (p.max - p.min)) {
+        tasks.emplace_back(static_cast<int>(i), static_cast<int>(values[i].size()));
+        values[i].push_back(v);
+      }
     }
-    range.scan.resize(values.size());
-    runOnThreads(static_cast<int>(values.size()), job.threads, [&](int k) {
-      std::vector<double> x = estimate;
-      x[i] = values[k];
-      int n = 0;
-      std::vector<ObservationFit> fit;
-      range.scan[k] = {values[k], misfitAt(job, x, &n, shared, 1, &fit), simulatedValues(fit)};
-      counted += n;
-    });
-    range.scan.push_back({estimate[i], bestMisfit, fitAtEstimate});
-    std::sort(range.scan.begin(), range.scan.end(), [](const auto& a, const auto& b) { return a.value < b.value; });
+  }
+  for (size_t k = 0; k < spec.timeStepFactors.size(); ++k) tasks.emplace_back(-1, static_cast<int>(k));
+  for (size_t i = 0; i < job.parameters.size(); ++i) {
+    ParameterRange range;
+    range.name = job.parameters[i].name;
+    range.estimate = estimate[i];
+    range.scan.resize(values[i].size());
     out.parameters.push_back(std::move(range));
   }
-  // The Δt ensemble at the estimate.
   out.ensemble.push_back({1.0, bestMisfit, fitAtEstimate});
   out.ensemble.resize(1 + spec.timeStepFactors.size());
-  runOnThreads(static_cast<int>(spec.timeStepFactors.size()), job.threads, [&](int k) {
-    model::Scene scene = sceneAt(job, estimate);
-    scene.settings.timeStep *= spec.timeStepFactors[k];
+  runOnThreads(static_cast<int>(tasks.size()), job.threads, [&](int t) {
+    const auto [i, k] = tasks[static_cast<size_t>(t)];
     int n = 0;
     std::vector<ObservationFit> fit;
-    const double m = misfitOf(job, scene, &n, shared, 1, &fit);
-    out.ensemble[k + 1] = {spec.timeStepFactors[k], m, simulatedValues(fit)};
+    if (i >= 0) {
+      std::vector<double> x = estimate;
+      const double v = values[static_cast<size_t>(i)][static_cast<size_t>(k)];
+      x[static_cast<size_t>(i)] = v;
+      const double m = misfitAt(job, x, &n, shared, 1, &fit);
+      out.parameters[static_cast<size_t>(i)].scan[static_cast<size_t>(k)] = {v, m, simulatedValues(fit)};
+    } else {
+      model::Scene scene = sceneAt(job, estimate);
+      const double factor = spec.timeStepFactors[static_cast<size_t>(k)];
+      scene.settings.timeStep *= factor;
+      const double m = misfitOf(job, scene, &n, shared, 1, &fit);
+      out.ensemble[static_cast<size_t>(k) + 1] = {factor, m, simulatedValues(fit)};
+    }
     counted += n;
   });
+  for (size_t i = 0; i < job.parameters.size(); ++i) {
+    auto& scan = out.parameters[i].scan;
+    scan.push_back({estimate[i], bestMisfit, fitAtEstimate});
+    std::sort(scan.begin(), scan.end(), [](const auto& a, const auto& b) { return a.value < b.value; });
+  }
   runs += counted;
 
   // The range within one standard deviation (misfit + Σ weights) of the best point seen, and the
