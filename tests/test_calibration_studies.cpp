@@ -116,3 +116,18 @@ TEST(BackanalysisEvaluations, AnErrorOfAForwardRunReachesTheCaller) {
     EXPECT_THROW(calibration::runBackanalysis(job), InputError) << threads << " threads";
   }
 }
+
+// One joint strength fitted to F = 1 is the critical strength: the job is pointed to `critical`.
+// Another observation, or a residual strength, is not.
+TEST(BackanalysisEvaluations, AStrengthFittedToFEqualToOneIsPointedToCritical) {
+  const fs::path dir = fs::path(DDASLOPE_SOURCE_DIR) / "calibration";
+  io::BackanalysisJob job = io::readJob((dir / "vajont/job.json").string());
+  EXPECT_EQ(calibration::directSearchCommand(job),
+            "ddaslope critical " + job.casePath + " --joint sliding_surface --solve friction");
+  job.parameters.at(0).property = "cohesion";
+  EXPECT_NE(calibration::directSearchCommand(job).find("--solve cohesion"), std::string::npos);
+  job.observations.at(0).target = 1.2;
+  EXPECT_EQ(calibration::directSearchCommand(job), "");
+  EXPECT_EQ(calibration::directSearchCommand(io::readJob((dir / "vajont_runout/job.json").string())), "");
+  EXPECT_EQ(calibration::directSearchCommand(io::readJob((dir / "jiufengershan/job.json").string())), "");
+}

@@ -422,6 +422,17 @@ class Evaluations {
 
 }  // namespace
 
+std::string directSearchCommand(const io::BackanalysisJob& job) {
+  if (job.parameters.size() != 1 || job.observations.size() != 1) return {};
+  const io::ParameterSpec& p = job.parameters[0];
+  const io::ObservationSpec& o = job.observations[0];
+  // F = 1 reduces no strength, so the joints the observation names do not matter.
+  if (o.kind != io::ObservationSpec::Kind::FactorOfSafety || o.target != 1.0 || p.joint.empty()) return {};
+  const std::string solve = p.property == "cohesion" ? "cohesion" : p.property == "friction_angle" ? "friction" : "";
+  if (solve.empty()) return {};
+  return "ddaslope critical " + job.casePath + " --joint " + p.joint + " --solve " + solve;
+}
+
 BackanalysisResult runBackanalysis(const io::BackanalysisJob& job, TaskFarm* farm, const io::ProgressSink& progress) {
   const auto t0 = std::chrono::steady_clock::now();
   std::unique_ptr<TaskFarm> own;

@@ -97,6 +97,14 @@ int backanalyseCommand(const std::string& jobPath, const std::string& outDir, bo
   warnAboutTrials(job.casePath, fixedCrackNote(atEstimate, fittedPaths(job)));
   j.set("settings", settings);
   if (!r.map.empty()) j.set("constrains_only_a_line", r.lineOnly).set("statement", r.statement);
+  // The same answer in a few tens of runs: said, since a user who wrote this job may not know.
+  const std::string direct = ddaslope::calibration::directSearchCommand(job);
+  const std::string note =
+      direct.empty() ? std::string()
+                     : "one joint strength fitted to F = 1 is the strength at which the slope is at its limit: `" + direct +
+                           "` finds it by bisection on the stability verdict in a few tens of forward runs (this fit: " +
+                           std::to_string(r.forwardRuns) + "), with the job's settings given as options (--preset, --blocks, --set)";
+  if (!note.empty()) j.set("notes", std::vector<std::string>{note});
   for (const auto& f : r.fit) {
     ddaslope::io::JsonRecord item;
     item.set("observation", f.label);
@@ -143,6 +151,7 @@ int backanalyseCommand(const std::string& jobPath, const std::string& outDir, bo
     }
     if (!r.statement.empty()) std::printf("  %s\n", r.statement.c_str());
     if (!r.precision.statement.empty()) std::printf("  %s\n", r.precision.statement.c_str());
+    if (!note.empty()) std::printf("  note: %s\n", note.c_str());
     std::printf("  wrote %s%s\n", result.c_str(), r.map.empty() ? "" : (" and " + outDir + "/misfit_map.csv, .png").c_str());
   }
   return kExitOk;

@@ -80,4 +80,10 @@ double misfitOf(const io::BackanalysisJob& job, const model::Scene& scene, int* 
 BackanalysisResult runBackanalysis(const io::BackanalysisJob& job, TaskFarm* farm = nullptr,
                                    const io::ProgressSink& progress = {});
 
+/// For a job that fits one joint's cohesion or friction angle to one observation F = 1: the
+/// `ddaslope critical` command that answers it directly (the strength at which the slope is at
+/// its limit, by bisection on the stability verdict, where each evaluation of the fit is a whole
+/// strength-reduction search). Empty for any other job.
+std::string directSearchCommand(const io::BackanalysisJob& job);
+
 }  // namespace ddaslope::calibration
