@@ -131,3 +131,43 @@ TEST(BackanalysisEvaluations, AStrengthFittedToFEqualToOneIsPointedToCritical) {
   EXPECT_EQ(calibration::directSearchCommand(io::readJob((dir / "vajont_runout/job.json").string())), "");
   EXPECT_EQ(calibration::directSearchCommand(io::readJob((dir / "jiufengershan/job.json").string())), "");
 }
+
+// The precision study may start on the spare thread at the global stage's best while the local
+// stage polishes it. It is kept only if the polish leaves the estimate where it was (here, a
+// local stage of one evaluation: the start itself) and stopped if it moves (the study's own
+// local stage): either way the study is the one a single thread makes, to the bit.
+TEST(BackanalysisEvaluations, APrecisionStudyStartedEarlyIsTheSameStudy) {
+  io::BackanalysisJob job = io::readJob((fs::path(DDASLOPE_SOURCE_DIR) / "calibration/two_block_slide/job.json").string());
+  job.precision.enabled = true;
+  job.precision.scanPoints = 5;
+  job.precision.timeStepFactors = {0.9, 1.1};
+  for (int localEvaluations : {1, job.optimiser.localEvaluations}) {
+    job.optimiser.localEvaluations = localEvaluations;
+    job.threads = 1;
+    const calibration::BackanalysisResult one = calibration::runBackanalysis(job);
+    job.threads = 2;
+    const calibration::BackanalysisResult two = calibration::runBackanalysis(job);
+    SCOPED_TRACE(localEvaluations);
+    ASSERT_EQ(one.estimate, two.estimate);
+    EXPECT_EQ(one.forwardRuns, two.forwardRuns);
+    ASSERT_EQ(one.precision.parameters.size(), 1u);
+    ASSERT_EQ(two.precision.parameters.size(), 1u);
+    const auto& a = one.precision.parameters[0].scan;
+    const auto& b = two.precision.parameters[0].scan;
+    ASSERT_EQ(a.size(), 5u);
+    ASSERT_EQ(b.size(), 5u);
+    for (size_t k = 0; k < a.size(); ++k) {
+      EXPECT_EQ(a[k].value, b[k].value);
+      EXPECT_EQ(a[k].misfit, b[k].misfit);
+    }
+    ASSERT_EQ(one.precision.ensemble.size(), 3u);
+    ASSERT_EQ(two.precision.ensemble.size(), 3u);
+    for (size_t k = 0; k < 3; ++k) EXPECT_EQ(one.precision.ensemble[k].misfit, two.precision.ensemble[k].misfit);
+    EXPECT_EQ(one.precision.statement, two.precision.statement);
+    EXPECT_FALSE(one.precisionStartedEarly);
+    // One local evaluation is the global stage's best itself: the early study is kept.
+    if (localEvaluations == 1) {
+      EXPECT_TRUE(two.precisionStartedEarly);
+    }
+  }
+}

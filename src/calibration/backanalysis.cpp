@@ -12,9 +12,11 @@
 #include <mutex>
 #include <optional>
 #include <sstream>
+#include <system_error>
 #include <thread>
 
 #include "ddaslope/calibration/minimiser.hpp"
+#include "ddaslope/calibration/precision.hpp"
 #include "ddaslope/calibration/strength_search.hpp"
 #include "ddaslope/core/byte_record.hpp"
 #include "ddaslope/core/cancellation.hpp"
@@ -515,6 +517,36 @@ BackanalysisResult runBackanalysis(const io::BackanalysisJob& job, TaskFarm* far
     u = g.x;
     best = g.value;
   }
+  // While the local stage polishes the global stage's best point, the spare thread starts the
+  // precision study there: if the polish finds nothing better, that point is the estimate and
+  // the study's runs are the ones it needs; if it moves, they are stopped.
+  std::optional<PrecisionRuns> early;
+  struct Spare {
+    std::atomic<bool> stop{false};
+    std::thread thread;
+    void join() {
+      if (thread.joinable()) thread.join();
+    }
+    ~Spare() {
+      stop = true;
+      join();
+    }
+  } spare;
+  if (runAhead && job.precision.enabled && root && !job.optimiser.local.empty()) {
+    misfits.stopRunningAhead();
+    early.emplace(job, physical(job, u), shared);
+    try {
+      spare.thread = std::thread([&] {
+        const CancellationScope scope(spare.stop);
+        try {
+          early->work();
+        } catch (const Cancelled&) {
+        }
+      });
+    } catch (const std::system_error&) {  // no thread to be had: the study runs after the polish
+      early.reset();
+    }
+  }
   if (!job.optimiser.local.empty() && root) {
     beginStage("local", job.optimiser.localEvaluations);
     const MinimiserResult l = minimise(job.optimiser.local, f, u, job.optimiser.localEvaluations, job.optimiser.xtolRel);
@@ -534,7 +566,19 @@ BackanalysisResult runBackanalysis(const io::BackanalysisJob& job, TaskFarm* far
     std::vector<double> simulated;
     for (const auto& f : r.fit) simulated.push_back(f.converged ? f.simulated : NAN);
     int n = 0;
-    r.precision = measurePrecision(job, r.estimate, r.misfit, simulated, shared, n);
+    if (early && early->estimate() == r.estimate) {
+      // The same runs the study would make: this thread (and any other allowed) joins in.
+      runOnThreads(job.threads - 1, job.threads - 1, [&](int) { early->work(); });
+      spare.join();
+      r.precision = early->summary(r.misfit, simulated, n);
+      r.precisionStartedEarly = true;
+    } else {
+      spare.stop = true;
+      spare.join();
+      // Its finished runs were made ahead of need, for a point that is not the estimate.
+      if (early) r.runsAhead += early->runsMade(), r.runsAheadUnused += early->runsMade();
+      r.precision = measurePrecision(job, r.estimate, r.misfit, simulated, shared, n);
+    }
     runs += n;
   }
 

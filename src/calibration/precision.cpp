@@ -8,6 +8,8 @@
 #include <utility>
 
 #include "ddaslope/calibration/backanalysis.hpp"
+#include "ddaslope/core/cancellation.hpp"
+#include "ddaslope/core/errors.hpp"
 #include "ddaslope/core/task_farm.hpp"
 
 namespace ddaslope::calibration {
@@ -73,63 +75,89 @@ double noiseResolution(const std::vector<ScanPoint>& scan, const std::vector<dou
   return resolution;
 }
 
-Precision measurePrecision(const io::BackanalysisJob& job, const std::vector<double>& estimate, double bestMisfit,
-                           const std::vector<double>& fitAtEstimate, const solver::HeldEquilibrium* shared,
-                           int& runs) {
-  Precision out;
+PrecisionRuns::PrecisionRuns(const io::BackanalysisJob& job, std::vector<double> estimate,
+                             const solver::HeldEquilibrium* shared)
+    : job_(job), estimate_(std::move(estimate)), shared_(shared) {
   const io::PrecisionSpec& spec = job.precision;
-  std::atomic<int> counted{0};
   // The scan: each parameter over estimate ± halfWidth of its range, the others held; and the
-  // Δt ensemble at the estimate. All their runs share one pool, so that the threads finish
-  // together once, not once per parameter and again after the ensemble.
-  std::vector<std::vector<double>> values(job.parameters.size());
-  std::vector<std::pair<int, int>> tasks;  // (parameter, scan value), or (-1, Δt factor)
+  // Δt ensemble at the estimate. All their runs are tasks of one pool, so that the threads
+  // finish together once, not once per parameter and again after the ensemble.
+  values_.resize(job.parameters.size());
   for (size_t i = 0; i < job.parameters.size(); ++i) {
     const io::ParameterSpec& p = job.parameters[i];
     const double half = spec.halfWidth * (p.max - p.min);
     for (int k = 0; k < spec.scanPoints; ++k) {
-      const double v = estimate[i] - half + 2 * half * k / (spec.scanPoints - 1);
-      if (v >= p.min && v <= p.max && std::abs(v - estimate[i]) > 1e-9 * (p.max - p.min)) {
-        tasks.emplace_back(static_cast<int>(i), static_cast<int>(values[i].size()));
-        values[i].push_back(v);
+      const double v = estimate_[i] - half + 2 * half * k / (spec.scanPoints - 1);
+      if (v >= p.min && v <= p.max && std::abs(v - estimate_[i]) > 1e-9 * (p.max - p.min)) {
+        tasks_.emplace_back(static_cast<int>(i), static_cast<int>(values_[i].size()));
+        values_[i].push_back(v);
       }
     }
   }
-  for (size_t k = 0; k < spec.timeStepFactors.size(); ++k) tasks.emplace_back(-1, static_cast<int>(k));
+  for (size_t k = 0; k < spec.timeStepFactors.size(); ++k) tasks_.emplace_back(-1, static_cast<int>(k));
+  scan_.resize(job.parameters.size());
+  for (size_t i = 0; i < job.parameters.size(); ++i) scan_[i].resize(values_[i].size());
+  ensemble_.resize(spec.timeStepFactors.size());
+}
+
+void PrecisionRuns::work() {
+  const io::PrecisionSpec& spec = job_.precision;
+  for (;;) {
+    const int t = next_++;
+    if (t >= static_cast<int>(tasks_.size())) return;
+    const auto [i, k] = tasks_[static_cast<size_t>(t)];
+    int n = 0;
+    std::vector<ObservationFit> fit;
+    try {
+      if (i >= 0) {
+        std::vector<double> x = estimate_;
+        const double v = values_[static_cast<size_t>(i)][static_cast<size_t>(k)];
+        x[static_cast<size_t>(i)] = v;
+        const double m = misfitAt(job_, x, &n, shared_, 1, &fit);
+        scan_[static_cast<size_t>(i)][static_cast<size_t>(k)] = {v, m, simulatedValues(fit)};
+      } else {
+        model::Scene scene = sceneAt(job_, estimate_);
+        const double factor = spec.timeStepFactors[static_cast<size_t>(k)];
+        scene.settings.timeStep *= factor;
+        const double m = misfitOf(job_, scene, &n, shared_, 1, &fit);
+        ensemble_[static_cast<size_t>(k)] = {factor, m, simulatedValues(fit)};
+      }
+    } catch (const Cancelled&) {
+      throw;
+    } catch (...) {
+      const std::lock_guard<std::mutex> lock(mutex_);
+      if (!error_) error_ = std::current_exception();
+    }
+    counted_ += n;
+    ++finished_;
+  }
+}
+
+Precision measurePrecision(const io::BackanalysisJob& job, const std::vector<double>& estimate, double bestMisfit,
+                           const std::vector<double>& fitAtEstimate, const solver::HeldEquilibrium* shared,
+                           int& runs) {
+  PrecisionRuns study(job, estimate, shared);
+  runOnThreads(job.threads, job.threads, [&](int) { study.work(); });
+  return study.summary(bestMisfit, fitAtEstimate, runs);
+}
+
+Precision PrecisionRuns::summary(double bestMisfit, const std::vector<double>& fitAtEstimate, int& runs) {
+  DDASLOPE_ASSERT(finished_ == static_cast<int>(tasks_.size()), "the precision study's runs are not all done");
+  if (error_) std::rethrow_exception(error_);
+  const io::BackanalysisJob& job = job_;
+  Precision out;
   for (size_t i = 0; i < job.parameters.size(); ++i) {
     ParameterRange range;
     range.name = job.parameters[i].name;
-    range.estimate = estimate[i];
-    range.scan.resize(values[i].size());
+    range.estimate = estimate_[i];
+    range.scan = scan_[i];
+    range.scan.push_back({estimate_[i], bestMisfit, fitAtEstimate});
+    std::sort(range.scan.begin(), range.scan.end(), [](const auto& a, const auto& b) { return a.value < b.value; });
     out.parameters.push_back(std::move(range));
   }
   out.ensemble.push_back({1.0, bestMisfit, fitAtEstimate});
-  out.ensemble.resize(1 + spec.timeStepFactors.size());
-  runOnThreads(static_cast<int>(tasks.size()), job.threads, [&](int t) {
-    const auto [i, k] = tasks[static_cast<size_t>(t)];
-    int n = 0;
-    std::vector<ObservationFit> fit;
-    if (i >= 0) {
-      std::vector<double> x = estimate;
-      const double v = values[static_cast<size_t>(i)][static_cast<size_t>(k)];
-      x[static_cast<size_t>(i)] = v;
-      const double m = misfitAt(job, x, &n, shared, 1, &fit);
-      out.parameters[static_cast<size_t>(i)].scan[static_cast<size_t>(k)] = {v, m, simulatedValues(fit)};
-    } else {
-      model::Scene scene = sceneAt(job, estimate);
-      const double factor = spec.timeStepFactors[static_cast<size_t>(k)];
-      scene.settings.timeStep *= factor;
-      const double m = misfitOf(job, scene, &n, shared, 1, &fit);
-      out.ensemble[static_cast<size_t>(k) + 1] = {factor, m, simulatedValues(fit)};
-    }
-    counted += n;
-  });
-  for (size_t i = 0; i < job.parameters.size(); ++i) {
-    auto& scan = out.parameters[i].scan;
-    scan.push_back({estimate[i], bestMisfit, fitAtEstimate});
-    std::sort(scan.begin(), scan.end(), [](const auto& a, const auto& b) { return a.value < b.value; });
-  }
-  runs += counted;
+  out.ensemble.insert(out.ensemble.end(), ensemble_.begin(), ensemble_.end());
+  runs += counted_;
 
   // The range within one standard deviation (misfit + Σ weights) of the best point seen, and the
   // resolution the noise allows along each parameter.

@@ -40,6 +40,9 @@ struct BackanalysisResult {
   /// factor-of-safety observation), and of those the ones no optimiser asked for (not in
   /// forwardRuns).
   int runsAhead = 0, runsAheadUnused = 0;
+  /// The precision study started on the spare thread while the local stage ran, and was kept
+  /// (the local stage did not move the estimate).
+  bool precisionStartedEarly = false;
   std::string globalStatus, localStatus;
   double wallTime = 0;
   /// Misfit map (two parameters): axes and values[i][j] at (axis0[i], axis1[j]).

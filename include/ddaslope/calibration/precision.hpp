@@ -9,8 +9,12 @@
 // - an ensemble of forward runs at the estimate with Δt scaled by factors inside its documented
 //   range (which should not matter): the spread of each simulated observable is the objective's
 //   numerical noise, and divided by the observable's slope along the scan, a resolution.
-#include <string>
+#include <atomic>
+#include <exception>
+#include <mutex>
 #include <optional>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "ddaslope/io/job_reader.hpp"
@@ -63,6 +67,39 @@ struct Precision {
 /// ensemble's misfit noise (half the spread of its members' misfits): then the optimiser's
 /// estimate is not the best fit, and its budget was too small. Nothing otherwise.
 std::optional<BetterPoint> betterThanEstimate(const Precision& p, double estimateMisfit);
+
+/// The forward runs of measurePrecision at an estimate (each parameter's scan and the Δt
+/// ensemble), as tasks that any number of threads take in turn: a spare thread may start them
+/// before the optimiser's last stage has confirmed the estimate, and others join in once it has.
+class PrecisionRuns {
+ public:
+  PrecisionRuns(const io::BackanalysisJob& job, std::vector<double> estimate, const solver::HeldEquilibrium* shared);
+  PrecisionRuns(const PrecisionRuns&) = delete;
+  PrecisionRuns& operator=(const PrecisionRuns&) = delete;
+  /// Runs tasks until none is left to start (several threads at once). A task's error is kept
+  /// for summary(); a cancellation (`Cancelled`, core/cancellation.hpp) passes through and
+  /// leaves the study unfinished.
+  void work();
+  const std::vector<double>& estimate() const { return estimate_; }
+  /// Forward runs its finished tasks made.
+  int runsMade() const { return counted_; }
+  /// Once every task is done: the study, with the optimiser's best misfit and its simulated
+  /// values at the estimate as the scan's centre and the ensemble's factor 1. Adds the forward
+  /// runs to `runs`; rethrows a task's error.
+  Precision summary(double bestMisfit, const std::vector<double>& fitAtEstimate, int& runs);
+
+ private:
+  const io::BackanalysisJob& job_;
+  std::vector<double> estimate_;
+  const solver::HeldEquilibrium* shared_;
+  std::vector<std::vector<double>> values_;    ///< each parameter's scanned values
+  std::vector<std::pair<int, int>> tasks_;     ///< (parameter, scan value) or (−1, Δt factor)
+  std::vector<std::vector<ScanPoint>> scan_;
+  std::vector<EnsembleMember> ensemble_;       ///< without the factor-1 member
+  std::atomic<int> next_{0}, finished_{0}, counted_{0};
+  std::mutex mutex_;
+  std::exception_ptr error_;
+};
 
 /// Scans each parameter around `estimate` and runs the Δt ensemble there (job.precision), in
 /// parallel on job.threads. `bestMisfit` and `fitAtEstimate` (simulated values, one per
