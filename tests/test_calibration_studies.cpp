@@ -159,15 +159,24 @@ TEST(BackanalysisEvaluations, APrecisionStudyStartedEarlyIsTheSameStudy) {
     for (size_t k = 0; k < a.size(); ++k) {
       EXPECT_EQ(a[k].value, b[k].value);
       EXPECT_EQ(a[k].misfit, b[k].misfit);
+      EXPECT_EQ(a[k].simulated, b[k].simulated);
     }
     ASSERT_EQ(one.precision.ensemble.size(), 3u);
     ASSERT_EQ(two.precision.ensemble.size(), 3u);
-    for (size_t k = 0; k < 3; ++k) EXPECT_EQ(one.precision.ensemble[k].misfit, two.precision.ensemble[k].misfit);
+    for (size_t k = 0; k < 3; ++k) {
+      EXPECT_EQ(one.precision.ensemble[k].timeStepFactor, two.precision.ensemble[k].timeStepFactor);
+      EXPECT_EQ(one.precision.ensemble[k].misfit, two.precision.ensemble[k].misfit);
+      EXPECT_EQ(one.precision.ensemble[k].simulated, two.precision.ensemble[k].simulated);
+    }
     EXPECT_EQ(one.precision.statement, two.precision.statement);
     EXPECT_FALSE(one.precisionStartedEarly);
     // One local evaluation is the global stage's best itself: the early study is kept.
     if (localEvaluations == 1) {
       EXPECT_TRUE(two.precisionStartedEarly);
+    } else {
+      // The job's own local stage moves the estimate (9° is the truth, DIRECT's best is not):
+      // the early study is stopped, and its finished runs are counted as unused.
+      EXPECT_FALSE(two.precisionStartedEarly);
     }
   }
 }

@@ -480,10 +480,28 @@ BackanalysisResult runBackanalysis(const io::BackanalysisJob& job, TaskFarm* far
     return v;
   });
   const bool runAhead = job.threads >= 2 && !searches;
+  // While the local stage polishes the global stage's best point, the spare thread starts the
+  // precision study there: if the polish finds nothing better, that point is the estimate and
+  // the study's runs are the ones it needs; if it moves, they are stopped.
+  std::optional<PrecisionRuns> early;
+  struct Spare {
+    std::atomic<bool> stop{false};
+    std::thread thread;
+    void join() {
+      if (thread.joinable()) thread.join();
+    }
+    ~Spare() {
+      stop = true;
+      join();
+    }
+  } spare;
+  double earlyBest = HUGE_VAL;  // the misfit at the early study's point
   const std::function<double(const std::vector<double>&)> f = [&](const std::vector<double>& u) {
     bool fresh = false;
     Evaluations::Value v = misfits.at(u, fresh);
     if (fresh) runs += v.runs;
+    // A better point: the estimate will move, and the early study is of no use.
+    if (early && v.misfit < earlyBest) spare.stop = true;
     if (v.misfit < bestSeen) bestSeen = v.misfit, r.fit = std::move(v.fit);  // the optimisers call f one at a time
     evaluated(v.misfit);
     return v.misfit;
@@ -517,24 +535,12 @@ BackanalysisResult runBackanalysis(const io::BackanalysisJob& job, TaskFarm* far
     u = g.x;
     best = g.value;
   }
-  // While the local stage polishes the global stage's best point, the spare thread starts the
-  // precision study there: if the polish finds nothing better, that point is the estimate and
-  // the study's runs are the ones it needs; if it moves, they are stopped.
-  std::optional<PrecisionRuns> early;
-  struct Spare {
-    std::atomic<bool> stop{false};
-    std::thread thread;
-    void join() {
-      if (thread.joinable()) thread.join();
-    }
-    ~Spare() {
-      stop = true;
-      join();
-    }
-  } spare;
-  if (runAhead && job.precision.enabled && root && !job.optimiser.local.empty()) {
+  // (Without a global stage the local one starts at the job's start, which it nearly always leaves.)
+  if (runAhead && job.precision.enabled && root && !job.optimiser.local.empty() &&
+      (gridSearch || !job.optimiser.global.empty())) {
     misfits.stopRunningAhead();
     early.emplace(job, physical(job, u), shared);
+    earlyBest = best;
     try {
       spare.thread = std::thread([&] {
         const CancellationScope scope(spare.stop);
@@ -566,7 +572,7 @@ BackanalysisResult runBackanalysis(const io::BackanalysisJob& job, TaskFarm* far
     std::vector<double> simulated;
     for (const auto& f : r.fit) simulated.push_back(f.converged ? f.simulated : NAN);
     int n = 0;
-    if (early && early->estimate() == r.estimate) {
+    if (early && !spare.stop && early->estimate() == r.estimate) {
       // The same runs the study would make: this thread (and any other allowed) joins in.
       runOnThreads(job.threads - 1, job.threads - 1, [&](int) { early->work(); });
       spare.join();

@@ -103,6 +103,7 @@ PrecisionRuns::PrecisionRuns(const io::BackanalysisJob& job, std::vector<double>
 void PrecisionRuns::work() {
   const io::PrecisionSpec& spec = job_.precision;
   for (;;) {
+    if (failed_) return;  // a study that cannot be completed starts no more runs
     const int t = next_++;
     if (t >= static_cast<int>(tasks_.size())) return;
     const auto [i, k] = tasks_[static_cast<size_t>(t)];
@@ -127,6 +128,7 @@ void PrecisionRuns::work() {
     } catch (...) {
       const std::lock_guard<std::mutex> lock(mutex_);
       if (!error_) error_ = std::current_exception();
+      failed_ = true;
     }
     counted_ += n;
     ++finished_;
@@ -137,13 +139,14 @@ Precision measurePrecision(const io::BackanalysisJob& job, const std::vector<dou
                            const std::vector<double>& fitAtEstimate, const solver::HeldEquilibrium* shared,
                            int& runs) {
   PrecisionRuns study(job, estimate, shared);
-  runOnThreads(job.threads, job.threads, [&](int) { study.work(); });
+  const int threads = std::max(1, std::min(job.threads, study.tasks()));
+  runOnThreads(threads, threads, [&](int) { study.work(); });
   return study.summary(bestMisfit, fitAtEstimate, runs);
 }
 
 Precision PrecisionRuns::summary(double bestMisfit, const std::vector<double>& fitAtEstimate, int& runs) {
-  DDASLOPE_ASSERT(finished_ == static_cast<int>(tasks_.size()), "the precision study's runs are not all done");
   if (error_) std::rethrow_exception(error_);
+  DDASLOPE_ASSERT(finished_ == static_cast<int>(tasks_.size()), "the precision study's runs are not all done");
   const io::BackanalysisJob& job = job_;
   Precision out;
   for (size_t i = 0; i < job.parameters.size(); ++i) {

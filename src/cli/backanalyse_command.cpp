@@ -91,6 +91,7 @@ int backanalyseCommand(const std::string& jobPath, const std::string& outDir, bo
   j.set("estimate", estimate);
   j.set("misfit", r.misfit).set("evaluations", r.evaluations).set("forward_runs", r.forwardRuns);
   j.set("runs_ahead_unused", r.runsAheadUnused);
+  if (job.precision.enabled) j.set("precision_started_early", r.precisionStartedEarly);
   j.set("global_search", r.globalStatus).set("local_search", r.localStatus).set("wall_time_s", r.wallTime);
   const ddaslope::model::Scene atEstimate = ddaslope::calibration::sceneAt(job, r.estimate);
   const std::string settings = settingsLine(atEstimate);

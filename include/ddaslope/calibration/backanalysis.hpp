@@ -36,9 +36,10 @@ struct BackanalysisResult {
   std::vector<ObservationFit> fit;  ///< each observation at the estimate
   int evaluations = 0;              ///< misfit evaluations (each ≥ 1 forward run)
   int forwardRuns = 0;
-  /// Runs of the optimisers' next points made ahead on a spare thread (job.threads ≥ 2, no
-  /// factor-of-safety observation), and of those the ones no optimiser asked for (not in
-  /// forwardRuns).
+  /// Runs made ahead on a spare thread (job.threads ≥ 2, no factor-of-safety observation): of
+  /// DIRECT's next points, and of a precision study started at the global stage's best; and of
+  /// those the ones not used (a point no optimiser asked for, a study at a point that did not
+  /// stay the estimate), which are not in forwardRuns.
   int runsAhead = 0, runsAheadUnused = 0;
   /// The precision study started on the spare thread while the local stage ran, and was kept
   /// (the local stage did not move the estimate).

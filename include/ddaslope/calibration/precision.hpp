@@ -77,12 +77,14 @@ class PrecisionRuns {
   PrecisionRuns(const PrecisionRuns&) = delete;
   PrecisionRuns& operator=(const PrecisionRuns&) = delete;
   /// Runs tasks until none is left to start (several threads at once). A task's error is kept
-  /// for summary(); a cancellation (`Cancelled`, core/cancellation.hpp) passes through and
+  /// for summary(), and no task starts after it; a cancellation (`Cancelled`, core/cancellation.hpp) passes through and
   /// leaves the study unfinished.
   void work();
   const std::vector<double>& estimate() const { return estimate_; }
   /// Forward runs its finished tasks made.
   int runsMade() const { return counted_; }
+  /// Its forward-run tasks.
+  int tasks() const { return static_cast<int>(tasks_.size()); }
   /// Once every task is done: the study, with the optimiser's best misfit and its simulated
   /// values at the estimate as the scan's centre and the ensemble's factor 1. Adds the forward
   /// runs to `runs`; rethrows a task's error.
@@ -97,6 +99,7 @@ class PrecisionRuns {
   std::vector<std::vector<ScanPoint>> scan_;
   std::vector<EnsembleMember> ensemble_;       ///< without the factor-1 member
   std::atomic<int> next_{0}, finished_{0}, counted_{0};
+  std::atomic<bool> failed_{false};
   std::mutex mutex_;
   std::exception_ptr error_;
 };
