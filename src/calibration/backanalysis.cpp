@@ -235,7 +235,6 @@ std::vector<std::vector<double>> parameterGrid(const io::BackanalysisJob& job, i
   return points;
 }
 
-
 /// The optimisers' misfits, kept by exact point, with DIRECT's next point run ahead on a spare
 /// thread. The optimisers ask for one point at a time, and a point asked again (the local stage
 /// starts at the global stage's best) is not run again. DIRECT divides a box at two points

@@ -82,26 +82,25 @@ PrecisionRuns::PrecisionRuns(const io::BackanalysisJob& job, std::vector<double>
   // The scan: each parameter over estimate ± halfWidth of its range, the others held; and the
   // Δt ensemble at the estimate. All their runs are tasks of one pool, so that the threads
   // finish together once, not once per parameter and again after the ensemble.
-  values_.resize(job.parameters.size());
+  scan_.resize(job.parameters.size());
   for (size_t i = 0; i < job.parameters.size(); ++i) {
     const io::ParameterSpec& p = job.parameters[i];
     const double half = spec.halfWidth * (p.max - p.min);
     for (int k = 0; k < spec.scanPoints; ++k) {
       const double v = estimate_[i] - half + 2 * half * k / (spec.scanPoints - 1);
       if (v >= p.min && v <= p.max && std::abs(v - estimate_[i]) > 1e-9 * (p.max - p.min)) {
-        tasks_.emplace_back(static_cast<int>(i), static_cast<int>(values_[i].size()));
-        values_[i].push_back(v);
+        tasks_.emplace_back(static_cast<int>(i), static_cast<int>(scan_[i].size()));
+        scan_[i].push_back({v, 0, {}});
       }
     }
   }
-  for (size_t k = 0; k < spec.timeStepFactors.size(); ++k) tasks_.emplace_back(-1, static_cast<int>(k));
-  scan_.resize(job.parameters.size());
-  for (size_t i = 0; i < job.parameters.size(); ++i) scan_[i].resize(values_[i].size());
-  ensemble_.resize(spec.timeStepFactors.size());
+  for (const double factor : spec.timeStepFactors) {
+    tasks_.emplace_back(-1, static_cast<int>(ensemble_.size()));
+    ensemble_.push_back({factor, 0, {}});
+  }
 }
 
 void PrecisionRuns::work() {
-  const io::PrecisionSpec& spec = job_.precision;
   for (;;) {
     if (failed_) return;  // a study that cannot be completed starts no more runs
     const int t = next_++;
@@ -111,17 +110,17 @@ void PrecisionRuns::work() {
     std::vector<ObservationFit> fit;
     try {
       if (i >= 0) {
+        ScanPoint& point = scan_[static_cast<size_t>(i)][static_cast<size_t>(k)];
         std::vector<double> x = estimate_;
-        const double v = values_[static_cast<size_t>(i)][static_cast<size_t>(k)];
-        x[static_cast<size_t>(i)] = v;
-        const double m = misfitAt(job_, x, &n, shared_, 1, &fit);
-        scan_[static_cast<size_t>(i)][static_cast<size_t>(k)] = {v, m, simulatedValues(fit)};
+        x[static_cast<size_t>(i)] = point.value;
+        point.misfit = misfitAt(job_, x, &n, shared_, 1, &fit);
+        point.simulated = simulatedValues(fit);
       } else {
+        EnsembleMember& member = ensemble_[static_cast<size_t>(k)];
         model::Scene scene = sceneAt(job_, estimate_);
-        const double factor = spec.timeStepFactors[static_cast<size_t>(k)];
-        scene.settings.timeStep *= factor;
-        const double m = misfitOf(job_, scene, &n, shared_, 1, &fit);
-        ensemble_[static_cast<size_t>(k)] = {factor, m, simulatedValues(fit)};
+        scene.settings.timeStep *= member.timeStepFactor;
+        member.misfit = misfitOf(job_, scene, &n, shared_, 1, &fit);
+        member.simulated = simulatedValues(fit);
       }
     } catch (const Cancelled&) {
       throw;

@@ -77,8 +77,8 @@ class PrecisionRuns {
   PrecisionRuns(const PrecisionRuns&) = delete;
   PrecisionRuns& operator=(const PrecisionRuns&) = delete;
   /// Runs tasks until none is left to start (several threads at once). A task's error is kept
-  /// for summary(), and no task starts after it; a cancellation (`Cancelled`, core/cancellation.hpp) passes through and
-  /// leaves the study unfinished.
+  /// for summary(), and no task starts after it; a cancellation (`Cancelled`,
+  /// core/cancellation.hpp) passes through and leaves the study unfinished.
   void work();
   const std::vector<double>& estimate() const { return estimate_; }
   /// Forward runs its finished tasks made.
@@ -94,9 +94,8 @@ class PrecisionRuns {
   const io::BackanalysisJob& job_;
   std::vector<double> estimate_;
   const solver::HeldEquilibrium* shared_;
-  std::vector<std::vector<double>> values_;    ///< each parameter's scanned values
-  std::vector<std::pair<int, int>> tasks_;     ///< (parameter, scan value) or (−1, Δt factor)
-  std::vector<std::vector<ScanPoint>> scan_;
+  std::vector<std::pair<int, int>> tasks_;     ///< (parameter, scan point) or (−1, ensemble member)
+  std::vector<std::vector<ScanPoint>> scan_;   ///< each parameter's scan, without the estimate
   std::vector<EnsembleMember> ensemble_;       ///< without the factor-1 member
   std::atomic<int> next_{0}, finished_{0}, counted_{0};
   std::atomic<bool> failed_{false};
