@@ -1,7 +1,9 @@
-// Narrowing a bracket with runs ahead of need (calibration/bisection.hpp, narrowAhead): threads a
-// round leaves idle run the trials the next round may need, and the narrowing takes exactly the
-// trials, and gives exactly the bracket, of the k-section without them (narrowBracket). The
-// reference is that k-section itself, on verdicts whose answers are known by construction.
+// Narrowing a bracket with a round's trials at once and runs ahead of need
+// (calibration/bisection.hpp, narrowAhead): threads a round leaves idle run the trials the next
+// round may need, a round ends at a failure that ends it, and the narrowing takes exactly the
+// trials, and gives exactly the bracket, of the k-section in turn (narrowBracket, one value after
+// another, each round up to such a failure). The reference is that k-section itself, on verdicts
+// whose answers are known by construction.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -40,6 +42,15 @@ struct Landscape {
       if (x >= a && x <= b) stable = !stable;
     return stable;
   }
+  /// Whether a failure at x ends its round: about half of them, by a hash of the value's bits.
+  bool endsRoundAt(double x) const {
+    if (endsNoRound || everyFailureEndsRound) return everyFailureEndsRound;
+    std::uint64_t bits;
+    std::memcpy(&bits, &x, sizeof bits);
+    bits *= 0x9e3779b97f4a7c15ULL;
+    return (bits >> 61) & 1u;
+  }
+  bool endsNoRound = false, everyFailureEndsRound = false;
   int sleepAt(double x) const {
     // Deterministic per value: a hash of its bits.
     const auto at = sleepMicros.find(x);
@@ -79,6 +90,7 @@ struct RecordingVerdict {
       finished.insert(x);
       return verdict(x);
     };
+    v.endsRound = [&l](double x) { return l.endsRoundAt(x); };
     v.take = [this](double x) {
       const std::lock_guard<std::mutex> lock(m);
       EXPECT_TRUE(finished.count(x)) << "took " << x << " before its run finished";
@@ -109,31 +121,25 @@ Narrowed lookingAhead(const Landscape& l, double stable, double failing, double 
   return n;
 }
 
-/// The k-section's rounds: the values of each, in order.
+/// The k-section's rounds in turn: the values of each, in order, up to a failure that ends it.
 std::vector<double> kSectionValues(const Landscape& l, double stable, double failing, double width, int threads,
                                    BisectionResult& r) {
-  std::mutex m;
   std::vector<double> values;
   r = calibration::narrowBracket(
       [&](double x) {
-        {
-          const std::lock_guard<std::mutex> lock(m);
-          values.push_back(x);
-        }
+        values.push_back(x);
         return l.stableAt(x);
       },
-      stable, failing, width, threads);
-  // A round's values ran at once, in any order: sort each round.
-  for (size_t i = 0; i < values.size(); i += static_cast<size_t>(threads))
-    std::sort(values.begin() + static_cast<long>(i), values.begin() + static_cast<long>(i + static_cast<size_t>(threads)));
+      stable, failing, width, threads, true, [&l](double x) { return l.endsRoundAt(x); });
   return values;
 }
 
 }  // namespace
 
 // On 300 landscapes (monotone and not, thresholds and islands drawn at random, run times of 0 to
-// 1.4 ms), with 2, 3 and 4 threads: the trials taken, round by round in order, are the
-// k-section's, and so are the bracket, its ends, the runs and the rounds, to the last bit.
+// 1.4 ms, about half the failures ending their rounds, none in one landscape of five), with 2, 3
+// and 4 threads: the trials taken, round by round in order, are the k-section's in turn, and so
+// are the bracket, its ends, the runs and the rounds, to the last bit.
 TEST(LookAhead, TakesTheKSectionsTrialsAndGivesItsBracket) {
   std::mt19937 rng(20261206);
   std::uniform_real_distribution<double> u(0, 1);
@@ -146,6 +152,7 @@ TEST(LookAhead, TakesTheKSectionsTrialsAndGivesItsBracket) {
       l.islands.push_back({a, b});
     }
     const int threads = 2 + trial % 3;
+    l.endsNoRound = trial % 5 == 0;
     const double width = 1e-3 * (1 + 9 * u(rng));
     BisectionResult reference;
     const std::vector<double> values = kSectionValues(l, 0, 1, width, threads, reference);
@@ -218,6 +225,48 @@ TEST(LookAhead, ARunWhoseRoundCannotComeIsCancelledAndNotTaken) {
   EXPECT_EQ(std::count(taken.begin(), taken.end(), fiveNinths), 0);
   EXPECT_EQ(std::count(taken.begin(), taken.end(), fourNinths), 0);
   EXPECT_GE(r.runsAhead, 1);
+}
+
+// Round 1 of [0, 1] with two threads tries 1/3 and 2/3 (stable below 0.2). 1/3 fails at once, a
+// failure that ends its round: the bracket is [0, 1/3] whatever 2/3 says, so the run at 2/3, which
+// would last 30 s, is stopped and not taken, and the narrowing goes on without it, as the
+// k-section in turn does. Its runs count the values taken.
+TEST(LookAhead, AFailureThatEndsItsRoundStopsTheRunsBeyondIt) {
+  std::atomic<int> cancelled{0};
+  std::mutex m;
+  std::vector<double> taken;
+  calibration::LookAheadVerdict v;
+  v.run = [&](double x) {
+    if (x == 2.0 / 3) runUntilCancelled(cancelled);
+    return x < 0.2;
+  };
+  v.endsRound = [](double) { return true; };
+  v.take = [&](double x) {
+    const std::lock_guard<std::mutex> lock(m);
+    taken.push_back(x);
+  };
+  for (const bool ahead : {true, false}) {
+    SCOPED_TRACE(ahead);
+    cancelled = 0;
+    taken.clear();
+    const auto t0 = std::chrono::steady_clock::now();
+    const BisectionResult r = calibration::narrowAhead(v, 0, 1, 0.01, 2, ahead);
+    EXPECT_LT(std::chrono::steady_clock::now() - t0, std::chrono::seconds(20)) << "waited for the run at 2/3";
+    Landscape l;
+    l.threshold = 0.2;
+    l.everyFailureEndsRound = true;
+    BisectionResult reference;
+    EXPECT_EQ(taken, kSectionValues(l, 0, 1, 0.01, 2, reference));
+    EXPECT_EQ(cancelled.load(), 1) << "the run at 2/3 was not stopped";
+    EXPECT_EQ(std::count(taken.begin(), taken.end(), 2.0 / 3), 0);
+    EXPECT_EQ(r.stableEnd, reference.stableEnd);
+    EXPECT_EQ(r.failingEnd, reference.failingEnd);
+    EXPECT_EQ(r.runs, static_cast<int>(taken.size()));
+    EXPECT_EQ(r.rounds, reference.rounds);
+    if (!ahead) {
+      EXPECT_EQ(r.runsAhead, 0);
+    }
+  }
 }
 
 // An error in a run the narrowing takes reaches the caller; one in a run ahead that it never

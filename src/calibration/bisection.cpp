@@ -29,19 +29,19 @@ std::vector<bool> evaluateAll(const std::function<bool(double)>& stableAt, const
   return {out.begin(), out.end()};
 }
 
-namespace {
-
-/// A round's k equally spaced interior values of [stable, failing].
 std::vector<double> roundValues(double stable, double failing, int k) {
   std::vector<double> values;
   for (int i = 1; i <= k; ++i) values.push_back(stable + (failing - stable) * i / (k + 1));
   return values;
 }
 
-/// The bracket after a round: between the last stable value and the first failing one.
+namespace {
+
+/// The bracket after a round: between the last stable value and the first failing one (`ok`: the
+/// verdicts of the round's first values, up to its first failing one at least).
 std::pair<double, double> afterRound(const std::vector<double>& values, const std::vector<bool>& ok, double stable,
                                      double failing) {
-  for (size_t i = 0; i < values.size(); ++i) {
+  for (size_t i = 0; i < ok.size(); ++i) {
     if (!ok[i]) return {stable, values[i]};
     stable = values[i];
   }
@@ -59,13 +59,19 @@ BisectionResult bracketed(BisectionResult r, double stable, double failing) {
 }  // namespace
 
 BisectionResult narrowBracket(const std::function<bool(double)>& stableAt, double stable, double failing,
-                              double width, int threads, bool inTurn) {
+                              double width, int threads, bool inTurn, const EndsRound& endsRound) {
   BisectionResult r;
   const int k = std::max(1, threads);
   while (std::abs(failing - stable) > width) {
     const std::vector<double> values = roundValues(stable, failing, k);
-    const std::vector<bool> ok = evaluateAll(stableAt, values, inTurn ? 1 : k);
-    r.runs += k;
+    std::vector<bool> ok;
+    if (inTurn) {
+      for (const double x : values)
+        if (ok.push_back(stableAt(x)); !ok.back() && endsRound && endsRound(x)) break;
+    } else {
+      ok = evaluateAll(stableAt, values, k);
+    }
+    r.runs += static_cast<int>(ok.size());
     ++r.rounds;
     std::tie(stable, failing) = afterRound(values, ok, stable, failing);
   }
@@ -80,6 +86,7 @@ struct AheadRun {
   bool ahead = false;  ///< started ahead of need
   bool done = false;
   bool stable = false;
+  bool endsRound = false;  ///< a failure that ends its round (LookAheadVerdict::endsRound)
   std::exception_ptr error;
 };
 using AheadRuns = std::map<double, std::shared_ptr<AheadRun>>;
@@ -89,11 +96,12 @@ using AheadRuns = std::map<double, std::shared_ptr<AheadRun>>;
 void execute(const LookAheadVerdict& v, double x, const std::shared_ptr<AheadRun>& run, AheadRuns& runs,
              std::unique_lock<std::mutex>& lock) {
   lock.unlock();
-  bool stable = false, cancelled = false;
+  bool stable = false, cancelled = false, endsRound = false;
   std::exception_ptr error;
   try {
     const CancellationScope scope(run->cancel);
     stable = v.run(x);
+    endsRound = !stable && v.endsRound && v.endsRound(x);
   } catch (const Cancelled&) {
     cancelled = true;
   } catch (...) {
@@ -106,6 +114,7 @@ void execute(const LookAheadVerdict& v, double x, const std::shared_ptr<AheadRun
   } else {
     run->done = true;
     run->stable = stable;
+    run->endsRound = endsRound;
     run->error = error;
   }
 }
@@ -113,8 +122,8 @@ void execute(const LookAheadVerdict& v, double x, const std::shared_ptr<AheadRun
 /// The state narrowAhead's threads share, under its mutex.
 class AheadRounds {
  public:
-  AheadRounds(const LookAheadVerdict& v, double stable, double failing, double width, int k)
-      : v_(v), stable_(stable), failing_(failing), width_(width), k_(k) {
+  AheadRounds(const LookAheadVerdict& v, double stable, double failing, double width, int k, bool runsAhead)
+      : v_(v), stable_(stable), failing_(failing), width_(width), k_(k), runsAhead_(runsAhead) {
     nextRound();
   }
 
@@ -198,6 +207,7 @@ class AheadRounds {
         x = *value, ahead = false;
         return true;
       }
+    if (!runsAhead_) return false;
     for (const double value : mayNeed())
       if (!runs_.count(value)) {
         x = value, ahead = true;
@@ -218,27 +228,33 @@ class AheadRounds {
       if (!run->done && std::find(keep.begin(), keep.end(), x) == keep.end()) run->cancel = true;
   }
 
-  /// Takes the round if all its trials have finished: hands them to the verdict, in order, and
-  /// narrows the bracket. An error of one of them ends the narrowing.
+  /// Takes the round once its trials have finished, from its stable end up to a failure that
+  /// ends it (narrowBracket in turn): hands them to the verdict, in order, and narrows the
+  /// bracket. The values beyond are not needed, and their runs are stopped. An error of a trial
+  /// taken ends the narrowing.
   bool takeRound() {
     std::vector<bool> ok;
-    for (const double x : round_)
-      if (!done(x)) return false;
     for (const double x : round_) {
+      if (!done(x)) return false;
       const AheadRun& run = *runs_.at(x);
       if (run.error) {
         error_ = run.error;
         finished_ = true;
         return false;
       }
-      ok.push_back(run.stable);
+      if (ok.push_back(run.stable); run.endsRound) break;
     }
-    for (const double x : round_) {
-      v_.take(x);
-      if (runs_.at(x)->ahead) ++result_.runsAheadUsed;
-      runs_.erase(x);
+    for (size_t i = 0; i < round_.size(); ++i) {
+      const double x = round_[i];
+      if (i < ok.size()) {
+        v_.take(x);
+        if (runs_.at(x)->ahead) ++result_.runsAheadUsed;
+      }
+      // A value beyond the failure that ended the round: forgotten if it finished, stopped by
+      // settle() if not.
+      if (i < ok.size() || done(x)) runs_.erase(x);
     }
-    result_.runs += k_;
+    result_.runs += static_cast<int>(ok.size());
     ++result_.rounds;
     std::tie(stable_, failing_) = afterRound(round_, ok, stable_, failing_);
     return true;
@@ -247,6 +263,7 @@ class AheadRounds {
   const LookAheadVerdict& v_;
   double stable_, failing_, width_;
   int k_;
+  bool runsAhead_;  ///< idle threads run the values the next round may need
   std::mutex mutex_;
   std::condition_variable idle_;
   std::vector<double> round_;
@@ -259,7 +276,7 @@ class AheadRounds {
 }  // namespace
 
 BisectionResult narrowAhead(const LookAheadVerdict& verdict, double stable, double failing, double width,
-                            int threads) {
+                            int threads, bool runsAhead) {
   const int k = std::max(1, threads);
   if (k == 1)
     return narrowBracket(
@@ -269,7 +286,7 @@ BisectionResult narrowAhead(const LookAheadVerdict& verdict, double stable, doub
           return ok;
         },
         stable, failing, width, 1);
-  AheadRounds rounds(verdict, stable, failing, width, k);
+  AheadRounds rounds(verdict, stable, failing, width, k, runsAhead);
   std::vector<std::thread> pool;
   try {
     for (int t = 1; t < k; ++t) pool.emplace_back([&] { rounds.work(); });

@@ -58,7 +58,7 @@ struct CountedVerdict {
     ++runs;
     return record(x, verdict(x, length));
   }
-  /// A run ahead of need (narrowAhead, AheadRunner, FailingBranch): its outcome is kept aside,
+  /// A run ahead of need (narrowAhead, AheadRunner, BranchesAhead): its outcome is kept aside,
   /// and counted and recorded only when the search takes it. A value whose outcome is aside, or
   /// whose run is under way on another thread, is not run again: that outcome is shared (a run
   /// stopped before it ends is made again by whoever still needs it). A caller waiting for
@@ -114,7 +114,22 @@ struct CountedVerdict {
   bool looksAhead() const { return lookAhead && length == 1; }
   /// This verdict as the look-ahead machinery calls it (bisection.hpp).
   LookAheadVerdict ahead() {
-    return {[this](double x) { return runAhead(x); }, [this](double x) { take(x); }};
+    return {[this](double x) { return runAhead(x); }, [this](double x) { take(x); },
+            [this](double x) { return endsRound(x); }};
+  }
+  /// Whether the failure found at x (a run made, aside or recorded) ends its narrowing round: the
+  /// slope passed the failure displacement after t = 0, which a run no longer changes. A failure
+  /// while settling, or on the trend of a motion, leaves the round's values beyond it to run as
+  /// checks that the verdicts are monotone: a trend may be misjudged (the review re-runs it), and
+  /// settling is where DDA's verdicts have been seen not to be monotone (Goodman & Bray's slope
+  /// fails while settling at F = 1.00206 and stands at 1.00412).
+  bool endsRound(double x) {
+    const std::lock_guard<std::mutex> lock(mutex);
+    const auto proven = [](const TrialResult& r) { return !r.stable && r.rule == VerdictRule::PassedDisplacement; };
+    if (const auto at = aside.find(x); at != aside.end()) return proven(at->second);
+    for (auto t = trials.rbegin(); t != trials.rend(); ++t)
+      if (t->value == x) return proven(t->result);
+    return false;
   }
   /// Counts a narrowing's or a bracketing loop's runs started ahead of need.
   void countAhead(int made) { runsAhead += made; }
@@ -198,11 +213,15 @@ void copyBracket(const BisectionResult& b, Result& r) {
   r.failingEnd = b.failingEnd;
 }
 
-/// Narrows [stable, failing] to `width` with the search's verdict: looking ahead (narrowAhead)
-/// unless the search was told not to (SearchSettings::lookAhead) or is re-running trials longer.
+/// Narrows [stable, failing] to `width` with the search's verdict (narrowAhead): a round's values
+/// at once, the round taken up to a failure that ends it (CountedVerdict::endsRound); looking
+/// ahead unless the search was told not to (SearchSettings::lookAhead). Runs made at another
+/// length than the case's (a review's re-runs) are not kept aside by value: such a narrowing
+/// takes its values in turn.
 BisectionResult narrow(CountedVerdict& v, double stable, double failing, double width, int threads) {
-  if (!v.looksAhead()) return narrowBracket(std::ref(v), stable, failing, width, threads);
-  const BisectionResult b = narrowAhead(v.ahead(), stable, failing, width, threads);
+  if (v.length != 1)
+    return narrowBracket(std::ref(v), stable, failing, width, threads, true, [&v](double x) { return v.endsRound(x); });
+  const BisectionResult b = narrowAhead(v.ahead(), stable, failing, width, threads, v.looksAhead());
   v.countAhead(b.runsAhead);
   return b;
 }
@@ -236,26 +255,31 @@ class Bracketing {
 };
 
 /// The first trials of a strength reduction on two threads or more, F = 1 and 1.5 at once, with
-/// the spare thread, once 1.5 is done, running ahead the trials the search makes next if F = 1
-/// fails: the bracketing down by 1.5 and the narrowing's rounds, each round's values one after
-/// another. A slope whose F lies just below 1 (a back-analysis of a failure is built so) has a
-/// slow trial at F = 1, a slide creeping to the failure displacement, and quick trials below it.
-/// Once F = 1 is decided the branch starts no more runs (the search's own threads go on, and a
-/// third would slow them down); the run under way ends, for the search to take. The search takes
-/// the same trials in the same order; the runs of the branch it does not take (F = 1 stood) are
-/// stopped and counted unused.
-class FailingBranch {
+/// the spare thread, once 1.5 is done, running ahead the trials the search makes next:
+/// - if 1.5 stands, F = 1 stands too (verdicts are monotone), and the search goes up by 1.5: the
+///   spare thread runs 2.25, 3.375, … until one fails;
+/// - if 1.5 fails, first the narrowing's first round of [1, 1.5] (the search's next trials if
+///   F = 1 stands: a slope near its strength settles slowly at F = 1, while these, well beyond
+///   it, fail fast), then the trials the search makes if F = 1 fails: the bracketing down by 1.5
+///   and the narrowing's rounds, each round's values one after another. A slope whose F lies just
+///   below 1 (a back-analysis of a failure is built so) has a slow trial at F = 1, a slide
+///   creeping to the failure displacement, and quick trials below it.
+/// Once F = 1 is decided the spare thread starts no more runs (the search's own threads go on, and
+/// a third would slow them down); a run under way of the branch F = 1 chose ends, for the search
+/// to take, and one of the other branch is stopped. The search takes the same trials in the same
+/// order; the runs it does not take are counted unused.
+class BranchesAhead {
  public:
-  FailingBranch(CountedVerdict& v, double width, int threads) : v_(v) {
+  BranchesAhead(CountedVerdict& v, double width, int threads) : v_(v) {
     try {
-      spare_ = std::thread([this, width, threads] { runBranch(width, threads); });
+      spare_ = std::thread([this, width, threads] { runBranches(width, threads); });
     } catch (const std::system_error&) {
       // No thread to spare: the first trials run as a search without runs ahead runs them.
     }
   }
-  ~FailingBranch() { stop(); }
-  FailingBranch(const FailingBranch&) = delete;
-  FailingBranch& operator=(const FailingBranch&) = delete;
+  ~BranchesAhead() { stop(); }
+  BranchesAhead(const BranchesAhead&) = delete;
+  BranchesAhead& operator=(const BranchesAhead&) = delete;
   /// The verdicts at 1 and 1.5, taken (recorded) in that order. F = 1 runs on the calling thread.
   std::vector<bool> first() {
     bool one = false;
@@ -265,15 +289,17 @@ class FailingBranch {
       stop();
       throw;
     }
+    // Set before the branch is read: a branch entered after this starts no run (runAhead's
+    // startNone), one entered before is seen here.
     decided_ = true;
     const bool oneAndAHalf = v_.runAhead(1.5);
-    if (one) stop();
+    if (branch_ == (one ? Branch::IfOneFails : Branch::IfOneStands)) stop();
     v_.take(1.0);
     v_.take(1.5);
     return {one, oneAndAHalf};
   }
-  /// Stops the branch's runs still under way (the search has taken what it needs) and counts the
-  /// runs it started.
+  /// Stops the runs still under way (the search has taken what it needs) and counts the runs
+  /// the spare thread started.
   void stop() {
     stop_ = true;
     if (spare_.joinable()) {
@@ -283,17 +309,31 @@ class FailingBranch {
   }
 
  private:
-  void runBranch(double width, int threads) {
+  enum class Branch { Both, IfOneStands, IfOneFails };
+
+  void runBranches(double width, int threads) {
     const CancellationScope scope(stop_);
     const auto run = [this](double x) { return v_.runAhead(x, &decided_, &made_); };
     try {
-      run(1.5);
+      const bool oneAndAHalfStands = run(1.5);
+      branch_ = Branch::IfOneStands;
+      if (oneAndAHalfStands) {
+        // The values factorOfSafetyOf's bracketing loop takes, computed as it computes them.
+        double f = 1.5;
+        for (int k = 0; k < 40; ++k)
+          if (!run(f = f * 1.5)) break;
+        return;
+      }
+      for (const double x : roundValues(1.0, 1.5, threads))
+        if (!run(x) && v_.endsRound(x)) break;
+      branch_ = Branch::IfOneFails;
       double stable = 0, failing = 1, f = 1;
       for (int k = 0; k < 40 && stable == 0; ++k) {
         f /= 1.5;
         (run(f) ? stable : failing) = f;
       }
-      if (stable > 0) narrowBracket(run, stable, failing, width, threads, true);
+      if (stable > 0)
+        narrowBracket(run, stable, failing, width, threads, true, [this](double x) { return v_.endsRound(x); });
     } catch (...) {
       // Stopped, or an error of a run that the search meets again if it takes that run.
     }
@@ -301,7 +341,8 @@ class FailingBranch {
 
   CountedVerdict& v_;
   std::atomic<bool> stop_{false}, decided_{false};
-  int made_ = 0;  ///< runs the branch started (read after the join)
+  std::atomic<Branch> branch_{Branch::Both};
+  int made_ = 0;  ///< runs the spare thread started (read after the join)
   std::thread spare_;
 };
 
@@ -811,14 +852,14 @@ FactorOfSafetyResult factorOfSafetyOf(const std::function<TrialResult(double, do
   // Bracket from F = 1 by factors of 1.5 (stable: raise F; failing: lower it).
   double stable = 0, failing = 0, f = 1;
   bool atOne = false;
-  std::optional<FailingBranch> failingBranch;
+  std::optional<BranchesAhead> branches;
   if (s.threads >= 2 && s.trialStart == TrialStart::Held) {
     // F = 1 and 1.5 at once: most slopes stand at F = 1, and then the trial at 1.5, which a
     // search one trial at a time makes next, costs no wall time. (A slope failing at F = 1 spends
     // it: that search goes down.) Trials that start from F = 1's rest must wait for it.
-    if (stableAt.looksAhead()) failingBranch.emplace(stableAt, width, s.threads);
+    if (stableAt.looksAhead()) branches.emplace(stableAt, width, s.threads);
     const std::vector<bool> first =
-        failingBranch ? failingBranch->first() : evaluateAll(std::ref(stableAt), {1.0, 1.5}, 2);
+        branches ? branches->first() : evaluateAll(std::ref(stableAt), {1.0, 1.5}, 2);
     atOne = first[0];
     (atOne ? stable : failing) = 1;
     if (atOne) f = 1.5, (first[1] ? stable : failing) = f;
@@ -851,7 +892,7 @@ FactorOfSafetyResult factorOfSafetyOf(const std::function<TrialResult(double, do
     r.factor = b.critical;
     r.rounds = b.rounds;
   }
-  if (failingBranch) failingBranch->stop();  // before the review changes the runs' length
+  if (branches) branches->stop();  // before the review changes the runs' length
   reviewTrials(r, stableAt, true, {0.0, 1e6}, width, s.threads, [&](double stable, double failing) {
     r.stableEnd = stable, r.failingEnd = failing, r.factor = 0.5 * (stable + failing);
   });

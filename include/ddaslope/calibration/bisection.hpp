@@ -25,12 +25,24 @@ struct BisectionResult {
 std::vector<bool> evaluateAll(const std::function<bool(double)>& stableAt, const std::vector<double>& values,
                               int threads);
 
+/// A round's k equally spaced interior values of [stable, failing], in increasing distance from
+/// the stable end: the values narrowBracket and narrowAhead evaluate in a round.
+std::vector<double> roundValues(double stable, double failing, int k);
+
+/// Whether the failure just found at a value ends its round (see narrowBracket); none: no failure
+/// does.
+using EndsRound = std::function<bool(double)>;
+
 /// Narrows [stable, failing] (verdicts already known) to `width`: each round evaluates
 /// `threads` equally spaced interior points at once, shrinking the bracket by threads + 1.
 /// The verdict is assumed monotone between the ends. `inTurn`: the same rounds, their points
-/// evaluated one after another on the calling thread.
+/// evaluated one after another on the calling thread, from the stable end, and a round ends at a
+/// failing point for which `endsRound` says so. The bracket after a round does not depend on the
+/// points beyond its first failing one (with monotone verdicts they fail too); they are checks of
+/// monotonicity, worth their runs where a failure may be misjudged. `runs` counts the points
+/// evaluated.
 BisectionResult narrowBracket(const std::function<bool(double)>& stableAt, double stable, double failing,
-                              double width, int threads = 1, bool inTurn = false);
+                              double width, int threads = 1, bool inTurn = false, const EndsRound& endsRound = {});
 
 /// A verdict whose runs may be made ahead of need. `run(x)` makes the forward run at x, on any
 /// thread, keeps its outcome and returns whether it is stable; it may unwind with Cancelled
@@ -41,15 +53,23 @@ BisectionResult narrowBracket(const std::function<bool(double)>& stableAt, doubl
 struct LookAheadVerdict {
   std::function<bool(double)> run;
   std::function<void(double)> take;
+  /// Asked after run(x) returned a failure (on the thread that ran it): whether it ends its
+  /// round (narrowBracket). None: no failure does.
+  EndsRound endsRound;
 };
 
-/// narrowBracket's rounds, values, verdicts and result, with the threads a round leaves idle
-/// (its other trials finished, one still running) making the trials the next round may need:
-/// those of every outcome of the trials still running, the outcome where they fail first. A run
-/// ahead is taken only if its round comes, so the narrowing uses, and hands to `take`, exactly
-/// the trials narrowBracket would; a run whose round cannot come any more is cancelled.
+/// narrowBracket's rounds, values, verdicts and result in turn (a round's values from its stable
+/// end, up to a failure that ends the round: `verdict.endsRound`), with a round's values run at
+/// once on `threads` threads: a round is taken as soon as its values up to such a failure have
+/// finished, and the runs of the values beyond it are stopped (a failing trial near the answer
+/// often creeps for a long time, and one beyond it, failing too, is not needed). With `runsAhead`, the threads a round
+/// leaves idle (its other trials finished, one still running) make the trials the next round may
+/// need: those of every outcome of the trials still running, the outcome where they fail first.
+/// A run ahead is taken only if its round comes, so the narrowing uses, and hands to `take`,
+/// exactly the trials narrowBracket in turn would, whatever finishes first; a run whose round
+/// cannot come any more is cancelled.
 BisectionResult narrowAhead(const LookAheadVerdict& verdict, double stable, double failing, double width,
-                            int threads);
+                            int threads, bool runsAhead = true);
 
 /// Trials taken one at a time, as a bracketing loop takes them (c × 2 until the slope holds), with
 /// the spare threads running ahead the values the loop hopes to take next. `take(x, hoped)` gives
