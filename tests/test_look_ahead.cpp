@@ -164,6 +164,10 @@ TEST(LookAhead, TakesTheKSectionsTrialsAndGivesItsBracket) {
     EXPECT_EQ(n.result.runs, reference.runs) << trial;
     EXPECT_EQ(n.result.rounds, reference.rounds) << trial;
     EXPECT_TRUE(n.result.bracketed);
+    // The bracket against the landscape itself: its ends' verdicts (0 and 1 are given) and width.
+    EXPECT_TRUE(n.result.stableEnd == 0 || l.stableAt(n.result.stableEnd)) << trial;
+    EXPECT_TRUE(n.result.failingEnd == 1 || !l.stableAt(n.result.failingEnd)) << trial;
+    EXPECT_LE(n.result.failingEnd - n.result.stableEnd, width) << trial;
     EXPECT_LE(n.result.runsAheadUsed, n.result.runsAhead);
     aheadUsed += n.result.runsAheadUsed;
   }
@@ -468,5 +472,52 @@ TEST(LookAhead, TheFailingBranchRunsWhileTheTrialAtOneCreeps) {
     ASSERT_EQ(a.trials.size(), b.trials.size());
     for (size_t i = 0; i < a.trials.size(); ++i) EXPECT_EQ(a.trials[i].value, b.trials[i].value);
     EXPECT_NEAR(a.factor, critical, 0.005);
+  }
+}
+
+// The first narrowing round of a strength reduction that stands at F = 1 and fails at 1.5 tries
+// 7/6 and 4/3. A failure proven by the failure displacement at 7/6 ends the round: the run at 4/3,
+// which would last 30 s, is stopped, and no trial at 4/3 is recorded. A failure while settling at
+// 7/6 (an island of a verdict that is not monotone, F* = 1.4 beyond it) leaves 4/3 to run: it
+// stands, and the search reports the contradiction, as Goodman & Bray's slope needs
+// (docs/calibration.md, "Where contradictions can be seen").
+TEST(LookAhead, OnlyAFailureProvenByTheDisplacementEndsItsRound) {
+  const double sevenSixths = 1 + (1.5 - 1) * 1 / 3, fourThirds = 1 + (1.5 - 1) * 2 / 3;  // as the search computes them
+  for (const bool lookAhead : {true, false}) {
+    SCOPED_TRACE(lookAhead);
+    calibration::SearchSettings s;
+    s.threads = 2;
+    s.lookAhead = lookAhead;
+    std::atomic<int> cancelled{0};
+    const auto proven = [&](double f, double) {
+      calibration::TrialResult r;
+      r.stable = f < 1.1;
+      r.rule = r.stable ? calibration::VerdictRule::AtRest : calibration::VerdictRule::PassedDisplacement;
+      if (f == fourThirds) runUntilCancelled(cancelled);
+      return r;
+    };
+    const auto t0 = std::chrono::steady_clock::now();
+    const auto a = calibration::factorOfSafetyOf(proven, 0.005, s);
+    EXPECT_LT(std::chrono::steady_clock::now() - t0, std::chrono::seconds(20)) << "waited for the run at 4/3";
+    ASSERT_TRUE(a.found) << a.message;
+    EXPECT_NEAR(a.factor, 1.1, 0.005);
+    for (const auto& t : a.trials) EXPECT_NE(t.value, fourThirds) << "the value beyond the proven failure was taken";
+    EXPECT_LE(cancelled.load(), 1);
+
+    const auto settling = [&](double f, double) {
+      calibration::TrialResult r;
+      r.stable = f < 1.4 && f != sevenSixths;
+      r.rule = r.stable ? calibration::VerdictRule::AtRest
+               : f == sevenSixths ? calibration::VerdictRule::MovedWhileSettling
+                                  : calibration::VerdictRule::PassedDisplacement;
+      if (f == fourThirds) std::this_thread::sleep_for(std::chrono::milliseconds(50));
+      return r;
+    };
+    const auto b = calibration::factorOfSafetyOf(settling, 0.005, s);
+    bool fourThirdsStands = false;
+    for (const auto& t : b.trials) fourThirdsStands |= t.value == fourThirds && t.result.stable;
+    EXPECT_TRUE(fourThirdsStands) << "the value beyond the settling failure did not run";
+    EXPECT_TRUE(b.review.contradiction) << b.message;
+    EXPECT_NE(b.message.find("while it settled"), std::string::npos) << b.message;
   }
 }

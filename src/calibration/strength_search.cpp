@@ -40,13 +40,18 @@ struct CountedVerdict {
         quantity(quantity),
         width(width),
         perRound(std::max(1, s.threads)),
-        lookAhead(s.lookAhead) {}
+        lookAhead(s.lookAhead),
+        inTurn(static_cast<bool>(s.finalStates)) {}
   std::function<TrialResult(double, double)> verdict;
   io::ProgressSink progress;
   const char* quantity;
   double width;
   int perRound;
   bool lookAhead;  ///< SearchSettings::lookAhead
+  /// A narrowing runs a round's values one after another: every trial's final state is written
+  /// (SearchSettings::finalStates), and a value run at once beside the one that ends its round
+  /// would leave the file of a trial the search does not take.
+  bool inTurn;
   /// The duration factor of the runs being made: 1, or kReRunLength while a review re-runs trials.
   double length = 1;
   std::atomic<int> runs{0};
@@ -99,16 +104,14 @@ struct CountedVerdict {
   }
   void take(double x) {
     ++runs;
-    TrialResult r;
-    {
-      const std::lock_guard<std::mutex> lock(mutex);
-      const auto at = aside.find(x);
-      DDASLOPE_ASSERT(at != aside.end(), "a run taken was made ahead");
-      r = std::move(at->second);
-      aside.erase(at);
-      ++takenAhead;
-    }
-    record(x, std::move(r));
+    // From aside to the record under one lock: endsRound(x) finds it in one or the other.
+    const std::lock_guard<std::mutex> lock(mutex);
+    const auto at = aside.find(x);
+    DDASLOPE_ASSERT(at != aside.end(), "a run taken was made ahead");
+    TrialResult r = std::move(at->second);
+    aside.erase(at);
+    ++takenAhead;
+    recordLocked(x, std::move(r));
   }
   /// Whether the search runs trials ahead of need now: asked to, and not re-running trials longer.
   bool looksAhead() const { return lookAhead && length == 1; }
@@ -117,16 +120,17 @@ struct CountedVerdict {
     return {[this](double x) { return runAhead(x); }, [this](double x) { take(x); },
             [this](double x) { return endsRound(x); }};
   }
-  /// Whether the failure found at x (a run made, aside or recorded) ends its narrowing round: the
-  /// slope passed the failure displacement after t = 0, which a run no longer changes. A failure
-  /// while settling, or on the trend of a motion, leaves the round's values beyond it to run as
-  /// checks that the verdicts are monotone: a trend may be misjudged (the review re-runs it), and
-  /// settling is where DDA's verdicts have been seen not to be monotone (Goodman & Bray's slope
-  /// fails while settling at F = 1.00206 and stands at 1.00412).
-  bool endsRound(double x) {
+  /// Whether the failure of the run at x just made ends its narrowing round: the slope passed
+  /// the failure displacement after t = 0, which a longer run does not undo. A failure while
+  /// settling, or on the trend of a motion, leaves the round's values beyond it to run as checks
+  /// that the verdicts are monotone: a trend may be misjudged (the review re-runs it), and
+  /// settling is where DDA's verdicts have been seen not to be (docs/calibration.md, "Where
+  /// contradictions can be seen"). A run made ahead is read from aside, or from the record if
+  /// already taken; `recorded`: a run just recorded (operator()), read from the record alone.
+  bool endsRound(double x, bool recorded = false) {
     const std::lock_guard<std::mutex> lock(mutex);
     const auto proven = [](const TrialResult& r) { return !r.stable && r.rule == VerdictRule::PassedDisplacement; };
-    if (const auto at = aside.find(x); at != aside.end()) return proven(at->second);
+    if (const auto at = aside.find(x); !recorded && at != aside.end()) return proven(at->second);
     for (auto t = trials.rbegin(); t != trials.rend(); ++t)
       if (t->value == x) return proven(t->result);
     return false;
@@ -153,6 +157,9 @@ struct CountedVerdict {
  private:
   bool record(double x, TrialResult r) {
     const std::lock_guard<std::mutex> lock(mutex);
+    return recordLocked(x, std::move(r));
+  }
+  bool recordLocked(double x, TrialResult r) {
     undecidedInARow = r.undecided ? undecidedInARow + 1 : 0;
     const bool stable = r.stable;
     trials.push_back({x, std::move(r), length > 1});
@@ -215,12 +222,13 @@ void copyBracket(const BisectionResult& b, Result& r) {
 
 /// Narrows [stable, failing] to `width` with the search's verdict (narrowAhead): a round's values
 /// at once, the round taken up to a failure that ends it (CountedVerdict::endsRound); looking
-/// ahead unless the search was told not to (SearchSettings::lookAhead). Runs made at another
-/// length than the case's (a review's re-runs) are not kept aside by value: such a narrowing
-/// takes its values in turn.
+/// ahead unless the search was told not to (SearchSettings::lookAhead). In turn, the same trials
+/// (CountedVerdict::inTurn), or when runs are made at another length than the case's, which are
+/// not kept aside by value.
 BisectionResult narrow(CountedVerdict& v, double stable, double failing, double width, int threads) {
-  if (v.length != 1)
-    return narrowBracket(std::ref(v), stable, failing, width, threads, true, [&v](double x) { return v.endsRound(x); });
+  if (v.inTurn || v.length != 1)
+    return narrowBracket(std::ref(v), stable, failing, width, threads, true,
+                         [&v](double x) { return v.endsRound(x, true); });
   const BisectionResult b = narrowAhead(v.ahead(), stable, failing, width, threads, v.looksAhead());
   v.countAhead(b.runsAhead);
   return b;

@@ -13,7 +13,7 @@ struct BisectionResult {
   double critical = 0;     ///< midpoint of the final bracket
   double stableEnd = 0;    ///< the bracket end that is stable
   double failingEnd = 0;   ///< the bracket end that fails
-  int runs = 0;            ///< forward runs spent
+  int runs = 0;            ///< forward runs taken (the values whose verdicts the narrowing used)
   int rounds = 0;          ///< narrowing rounds
   int runsAhead = 0;       ///< runs started ahead of need (narrowAhead), used or not
   int runsAheadUsed = 0;   ///< of those, the runs the narrowing took
@@ -37,7 +37,8 @@ using EndsRound = std::function<bool(double)>;
 /// `threads` equally spaced interior points at once, shrinking the bracket by threads + 1.
 /// The verdict is assumed monotone between the ends. `inTurn`: the same rounds, their points
 /// evaluated one after another on the calling thread, from the stable end, and a round ends at a
-/// failing point for which `endsRound` says so. The bracket after a round does not depend on the
+/// failing point for which `endsRound` says so (at once, every point of a round runs, and
+/// `endsRound` is not asked). The bracket after a round does not depend on the
 /// points beyond its first failing one (with monotone verdicts they fail too); they are checks of
 /// monotonicity, worth their runs where a failure may be misjudged. `runs` counts the points
 /// evaluated.

@@ -56,7 +56,7 @@ struct SearchSettings {
   /// While a round's last trial runs, the threads its other trials freed run the trials the next
   /// round may need (calibration/bisection.hpp, narrowAhead): the same trials and answer, sooner.
   /// Off when every trial's final state is written, since a run the search does not use must
-  /// leave no file.
+  /// leave no file (a narrowing then also runs each round's values in turn).
   bool lookAhead = true;
   /// Strength reduction (factorOfSafety): where each trial's equilibrium starts. Settled: from the
   /// rest the trial at the case's own strengths (F = 1) found, when that trial stands, as the
@@ -79,9 +79,10 @@ struct CriticalResult {
   double stableEnd = 0;     ///< bracket end that holds
   double failingEnd = 0;    ///< bracket end that fails
   int runs = 0;
-  /// Runs made ahead of need (SearchSettings::lookAhead), and of those the ones the search did
-  /// not use, stopped or finished: threads' time spent, not counted in `runs` nor recorded as
-  /// trials. Both depend on the threads' timing; nothing else in the result does.
+  /// Runs made ahead of need (SearchSettings::lookAhead); and the runs made that the search did
+  /// not use, stopped or finished: made ahead, or a narrowing round's values beyond a failure
+  /// that ended the round. Threads' time spent, not counted in `runs` nor recorded as trials.
+  /// Both depend on the threads' timing; nothing else in the result does.
   int runsAhead = 0;
   int runsAheadUnused = 0;
   double wallTime = 0;      ///< s
@@ -151,9 +152,10 @@ struct FactorOfSafetyResult {
   TrialStart trialStart = TrialStart::Held;
   int runs = 0;
   int rounds = 0;
-  /// Runs made ahead of need (SearchSettings::lookAhead), and of those the ones the search did
-  /// not use, stopped or finished: threads' time spent, not counted in `runs` nor recorded as
-  /// trials. Both depend on the threads' timing; nothing else in the result does.
+  /// Runs made ahead of need (SearchSettings::lookAhead); and the runs made that the search did
+  /// not use, stopped or finished: made ahead, or a narrowing round's values beyond a failure
+  /// that ended the round. Threads' time spent, not counted in `runs` nor recorded as trials.
+  /// Both depend on the threads' timing; nothing else in the result does.
   int runsAhead = 0;
   int runsAheadUnused = 0;
   double wallTime = 0;
