@@ -2,7 +2,7 @@
 """Reads the VTK series that `run --vtk` and a search's `--vtk` write with VTK's own reader
 (vtkXMLUnstructuredGridReader, Debian python3-vtk9) and checks them against the run's own
 history.csv, the case files and closed forms (run by ctest when `import vtk` works)."""
-import csv, filecmp, json, math, os, subprocess, sys, tempfile, unittest
+import csv, filecmp, glob, json, math, os, subprocess, sys, tempfile, unittest
 import xml.etree.ElementTree as ET
 
 import vtk
@@ -295,6 +295,16 @@ class SearchSeries(unittest.TestCase):
             for factor, state in ((stable_end, LOCKED), (failing_end, SLIDING)):
                 path = dict(series(f"{out}/contacts.pvd"))[factor]
                 self.assertTrue((Grid(path).cells["state"] == state).all(), (factor, Grid(path).cells["state"]))
+
+    def test_no_frame_for_a_run_the_search_did_not_take(self):
+        # Three threads on the stepped slope: narrowing rounds whose first value passes the
+        # failure displacement, the values beyond it not needed. Only the trials taken have frames.
+        with tempfile.TemporaryDirectory() as out:
+            result = subprocess.run([DDASLOPE, "fos", case_path("stepped_toppling.json"), "--json", "--threads", "3",
+                                     "--vtk", out], check=True, capture_output=True, text=True)
+            report = json.loads(result.stdout)
+            self.assertEqual([t for t, _ in series(f"{out}/blocks.pvd")], sorted({t["factor"] for t in report["trials"]}))
+            self.assertEqual(len(glob.glob(f"{out}/blocks_*.vtu")), len({t["factor"] for t in report["trials"]}))
 
     def test_curve_and_sweep_refuse_vtk(self):
         for args in (["critical", case_path("planar_failure.json"), "--joint", "sliding_plane", "--curve", "10:40:3"],

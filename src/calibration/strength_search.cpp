@@ -41,17 +41,14 @@ struct CountedVerdict {
         width(width),
         perRound(std::max(1, s.threads)),
         lookAhead(s.lookAhead),
-        inTurn(static_cast<bool>(s.finalStates)) {}
+        inTurn(s.narrowInTurn) {}
   std::function<TrialResult(double, double)> verdict;
   io::ProgressSink progress;
   const char* quantity;
   double width;
   int perRound;
   bool lookAhead;  ///< SearchSettings::lookAhead
-  /// A narrowing runs a round's values one after another: every trial's final state is written
-  /// (SearchSettings::finalStates), and a value run at once beside the one that ends its round
-  /// would leave the file of a trial the search does not take.
-  bool inTurn;
+  bool inTurn;  ///< SearchSettings::narrowInTurn
   /// The duration factor of the runs being made: 1, or kReRunLength while a review re-runs trials.
   double length = 1;
   std::atomic<int> runs{0};

@@ -263,6 +263,7 @@ void recordTrialStates(calibration::SearchSettings& s, const std::string& dir, c
   if (dir.empty() || processRank() != 0) return;
   auto recorder = std::make_shared<io::VtkRecorder>(dir, scene);
   s.lookAhead = false;
+  s.narrowInTurn = true;
   s.finalStates = [recorder](double value, const solver::Simulation& sim, const calibration::TrialResult& r) {
     char label[32];
     std::snprintf(label, sizeof label, "%.12g", value);

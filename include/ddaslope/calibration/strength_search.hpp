@@ -56,8 +56,13 @@ struct SearchSettings {
   /// While a round's last trial runs, the threads its other trials freed run the trials the next
   /// round may need (calibration/bisection.hpp, narrowAhead): the same trials and answer, sooner.
   /// Off when every trial's final state is written, since a run the search does not use must
-  /// leave no file (a narrowing then also runs each round's values in turn).
+  /// leave no file.
   bool lookAhead = true;
+  /// A narrowing runs each round's values one after another instead of at once (the same trials,
+  /// slower): set where every trial's final state is written to a file (a search's --vtk), since
+  /// a value run beside the one that ends its round would leave the file of a trial the search
+  /// does not take.
+  bool narrowInTurn = false;
   /// Strength reduction (factorOfSafety): where each trial's equilibrium starts. Settled: from the
   /// rest the trial at the case's own strengths (F = 1) found, when that trial stands, as the
   /// strength reduction of FLAC and UDEC starts from the model in equilibrium; a trial then only
