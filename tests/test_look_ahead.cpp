@@ -521,3 +521,45 @@ TEST(LookAhead, OnlyAFailureProvenByTheDisplacementEndsItsRound) {
     EXPECT_NE(b.message.find("while it settled"), std::string::npos) << b.message;
   }
 }
+
+// A slope that stands at F = 1 but settles slowly there, while the trials well beyond its F fail
+// (or, F* = 4, stand) fast. Once 1.5 is done the spare thread runs what the search takes next if
+// F = 1 stands: the first round of [1, 1.5] when 1.5 fails, the bracketing's 2.25 when it stands.
+// The trial at F = 1 here ends only once that run has finished (30 s at most). The search takes
+// the same trials, and gives the same F, as without runs ahead, and no run outlives it.
+TEST(LookAhead, TheSearchesNextTrialsRunWhileTheTrialAtOneSettles) {
+  for (const double critical : {1.2, 4.0}) {
+    SCOPED_TRACE(critical);
+    const double awaited = critical < 1.5 ? calibration::roundValues(1.0, 1.5, 2).back() : 1.5 * 1.5;
+    std::atomic<bool> awaitedRan{false}, awaitedBeforeOne{false};
+    std::atomic<int> underWay{0};
+    const auto verdict = [&](double f, double) {
+      ++underWay;
+      calibration::TrialResult r;
+      r.stable = f < critical;
+      r.rule = r.stable ? calibration::VerdictRule::AtRest : calibration::VerdictRule::PassedDisplacement;
+      if (f == 1.0) {
+        waitFor(awaitedRan);
+        awaitedBeforeOne = awaitedRan.load();
+      }
+      std::this_thread::sleep_for(std::chrono::microseconds(300));
+      if (f == awaited) awaitedRan = true;
+      --underWay;
+      return r;
+    };
+    calibration::SearchSettings with, without;
+    with.threads = without.threads = 2;
+    without.lookAhead = false;
+    const auto a = calibration::factorOfSafetyOf(verdict, 0.005, with);
+    EXPECT_EQ(underWay.load(), 0) << "a run of the spare thread outlived the search";
+    EXPECT_TRUE(awaitedBeforeOne) << "the trial at " << awaited << " did not run while F = 1 ran";
+    awaitedRan = true;  // the search without runs ahead must not wait
+    const auto b = calibration::factorOfSafetyOf(verdict, 0.005, without);
+    ASSERT_TRUE(a.found && b.found) << a.message << b.message;
+    EXPECT_EQ(a.factor, b.factor);
+    EXPECT_EQ(a.runs, b.runs);
+    ASSERT_EQ(a.trials.size(), b.trials.size());
+    for (size_t i = 0; i < a.trials.size(); ++i) EXPECT_EQ(a.trials[i].value, b.trials[i].value);
+    EXPECT_NEAR(a.factor, critical, 0.005 * critical);
+  }
+}
