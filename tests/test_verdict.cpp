@@ -132,6 +132,45 @@ TEST(StrengthReduction, SteppedToppingSlopeDoesNotDependOnSettings) {
   EXPECT_LE(*hi - mid, 0.015 * mid) << "F from " << *lo << " to " << *hi;
 }
 
+// Goodman & Bray's slope, searched on two threads with runs ahead of need and without: the same
+// trials (values, verdicts, rules), F and review, whichever threads finish first. Its search
+// meets both kinds of failure in its narrowing rounds: failures proven by the failure
+// displacement, which end their round, and a failure while settling at F = 1.00206 below a trial
+// that stands, which does not, so that the search still sees that contradiction and reports the
+// mixed range (docs/calibration.md, "Where contradictions can be seen").
+TEST(StrengthReduction, ASearchTakesTheSameTrialsWithAndWithoutRunsAhead) {
+  const model::Scene s = io::readCase(std::string(DDASLOPE_SOURCE_DIR) + "/cases/goodman_bray_toppling.json");
+  calibration::SearchSettings with, without;
+  with.threads = without.threads = 2;
+  without.lookAhead = false;
+  const calibration::FactorOfSafetyResult a = calibration::factorOfSafety(s, {}, 0.005, with);
+  const calibration::FactorOfSafetyResult b = calibration::factorOfSafety(s, {}, 0.005, without);
+  ASSERT_TRUE(a.found && b.found) << a.message << " / " << b.message;
+  EXPECT_EQ(a.factor, b.factor);
+  EXPECT_EQ(a.stableEnd, b.stableEnd);
+  EXPECT_EQ(a.failingEnd, b.failingEnd);
+  EXPECT_EQ(a.review.contradiction, b.review.contradiction);
+  EXPECT_EQ(a.review.reruns, b.review.reruns);
+  ASSERT_EQ(a.trials.size(), b.trials.size());
+  for (size_t i = 0; i < a.trials.size(); ++i) {
+    EXPECT_EQ(a.trials[i].value, b.trials[i].value) << i;
+    EXPECT_EQ(a.trials[i].result.stable, b.trials[i].result.stable) << a.trials[i].value;
+    EXPECT_EQ(a.trials[i].result.rule, b.trials[i].result.rule) << a.trials[i].value;
+  }
+  // Both kinds of failure were met, and the contradiction was seen.
+  bool proven = false, settling = false;
+  for (const calibration::TrialRecord& t : a.trials) {
+    proven |= t.result.rule == calibration::VerdictRule::PassedDisplacement && t.value > 1;
+    settling |= t.result.rule == calibration::VerdictRule::MovedWhileSettling && t.value > 1;
+  }
+  EXPECT_TRUE(proven && settling);
+  EXPECT_TRUE(a.review.contradiction) << a.message;
+  // Goodman & Bray's limit equilibrium with this case's toe force: F = 1.001 (the case's
+  // description, scripts/goodman_bray_toppling.py); 1 % for DDA's toppling columns, as the test
+  // above allows the stepped slope 3 %.
+  EXPECT_NEAR(a.factor, 1.001, 0.01);
+}
+
 // Rule 0 (issue #14) counts the motion of stages 2 and 3 of the equilibrium, once contacts may
 // slip, not stage 1's elastic settlement with every contact held. Limit equilibrium has no
 // stiffness: the chair slide stands at c = 400 kPa (the slices with the joints' friction need
