@@ -38,10 +38,9 @@ using EndsRound = std::function<bool(double)>;
 /// The verdict is assumed monotone between the ends. `inTurn`: the same rounds, their points
 /// evaluated one after another on the calling thread, from the stable end, and a round ends at a
 /// failing point for which `endsRound` says so (at once, every point of a round runs, and
-/// `endsRound` is not asked). The bracket after a round does not depend on the
-/// points beyond its first failing one (with monotone verdicts they fail too); they are checks of
-/// monotonicity, worth their runs where a failure may be misjudged. `runs` counts the points
-/// evaluated.
+/// `endsRound` is not asked). The bracket after a round does not depend on the points beyond its
+/// first failing one (with monotone verdicts they fail too); they are checks of monotonicity,
+/// worth their runs where a failure may be misjudged. `runs` counts the points evaluated.
 BisectionResult narrowBracket(const std::function<bool(double)>& stableAt, double stable, double failing,
                               double width, int threads = 1, bool inTurn = false, const EndsRound& endsRound = {});
 
@@ -63,9 +62,10 @@ struct LookAheadVerdict {
 /// end, up to a failure that ends the round: `verdict.endsRound`), with a round's values run at
 /// once on `threads` threads: a round is taken as soon as its values up to such a failure have
 /// finished, and the runs of the values beyond it are stopped (a failing trial near the answer
-/// often creeps for a long time, and one beyond it, failing too, is not needed). With `runsAhead`, the threads a round
-/// leaves idle (its other trials finished, one still running) make the trials the next round may
-/// need: those of every outcome of the trials still running, the outcome where they fail first.
+/// often creeps for a long time, and one beyond it, failing too, is not needed). With
+/// `runsAhead`, the threads a round leaves idle (its other trials finished, one still running)
+/// make the trials the next round may need: those of every outcome of the trials still running,
+/// the outcome where they fail first.
 /// A run ahead is taken only if its round comes, so the narrowing uses, and hands to `take`,
 /// exactly the trials narrowBracket in turn would, whatever finishes first; a run whose round
 /// cannot come any more is cancelled.
