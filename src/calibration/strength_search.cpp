@@ -120,9 +120,9 @@ struct CountedVerdict {
   /// Whether the failure of the run at x just made ends its narrowing round: the slope passed
   /// the failure displacement after t = 0, which a longer run does not undo. A failure while
   /// settling, or on the trend of a motion, leaves the round's values beyond it to run as checks
-  /// that the verdicts are monotone: a trend may be misjudged (the review re-runs it), and
-  /// settling is where DDA's verdicts have been seen not to be (docs/calibration.md, "Where
-  /// contradictions can be seen"). A run made ahead is read from aside, or from the record if
+  /// that the verdicts are monotone: a trend may be misjudged (the review re-runs it), and a
+  /// failure while settling may not be monotone in the value searched (docs/calibration.md,
+  /// "Where contradictions can be seen"). A run made ahead is read from aside, or from the record if
   /// already taken; `recorded`: a run just recorded (operator()), read from the record alone.
   bool endsRound(double x, bool recorded = false) {
     const std::lock_guard<std::mutex> lock(mutex);
