@@ -122,11 +122,13 @@ struct CountedVerdict {
   /// settling, or on the trend of a motion, leaves the round's values beyond it to run as checks
   /// that the verdicts are monotone: a trend may be misjudged (the review re-runs it), and a
   /// failure while settling may not be monotone in the value searched (docs/calibration.md,
-  /// "Where contradictions can be seen"). A run made ahead is read from aside, or from the record if
-  /// already taken; `recorded`: a run just recorded (operator()), read from the record alone.
+  /// "Where contradictions can be seen"). A run made ahead is read from aside, or from the record
+  /// if already taken; `recorded`: a run just recorded (operator()), read from the record alone.
   bool endsRound(double x, bool recorded = false) {
     const std::lock_guard<std::mutex> lock(mutex);
-    const auto proven = [](const TrialResult& r) { return !r.stable && r.rule == VerdictRule::PassedDisplacement; };
+    const auto proven = [](const TrialResult& r) {
+      return !r.stable && r.rule == VerdictRule::PassedDisplacement;
+    };
     if (const auto at = aside.find(x); !recorded && at != aside.end()) return proven(at->second);
     for (auto t = trials.rbegin(); t != trials.rend(); ++t)
       if (t->value == x) return proven(t->result);
