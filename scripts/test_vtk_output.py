@@ -270,9 +270,9 @@ class RunSeries(unittest.TestCase):
 
 class SearchSeries(unittest.TestCase):
     def test_every_trial_final_state_at_its_value(self):
-        with tempfile.TemporaryDirectory() as out:
-            result = subprocess.run([DDASLOPE, "fos", case_path("stable_block_40deg.json"), "--json", "--vtk", out],
-                                    check=True, capture_output=True, text=True)
+        with tempfile.TemporaryDirectory() as out, tempfile.TemporaryDirectory() as pictures:
+            result = subprocess.run([DDASLOPE, "fos", case_path("stable_block_40deg.json"), "--json", "--vtk", out,
+                                     "--out", pictures], check=True, capture_output=True, text=True)
             report = json.loads(result.stdout)
             frames = series(f"{out}/blocks.pvd")
             # One frame per factor tried, in increasing order: a review's re-run at a factor (listed
@@ -299,9 +299,9 @@ class SearchSeries(unittest.TestCase):
     def test_no_frame_for_a_run_the_search_did_not_take(self):
         # Three threads on the stepped slope: narrowing rounds whose first value passes the
         # failure displacement, the values beyond it not needed. Only the trials taken have frames.
-        with tempfile.TemporaryDirectory() as out:
+        with tempfile.TemporaryDirectory() as out, tempfile.TemporaryDirectory() as pictures:
             result = subprocess.run([DDASLOPE, "fos", case_path("stepped_toppling.json"), "--json", "--threads", "3",
-                                     "--vtk", out], check=True, capture_output=True, text=True)
+                                     "--vtk", out, "--out", pictures], check=True, capture_output=True, text=True)
             report = json.loads(result.stdout)
             self.assertEqual([t for t, _ in series(f"{out}/blocks.pvd")], sorted({t["factor"] for t in report["trials"]}))
             self.assertEqual(len(glob.glob(f"{out}/blocks_*.vtu")), len({t["factor"] for t in report["trials"]}))
