@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <thread>
 #include <nlohmann/json.hpp>
@@ -64,8 +65,12 @@ TEST(Progress, FosLogsEveryForwardRunAndEndsOnItsResult) {
   // run, the last one's bracket the result's, and no progress line on a stderr that is a file.
   const std::string log = clitest::writeTemp("fos.jsonl", "");
   std::string err;
+  const std::string pictures = log + ".pictures";  // not the working directory's out/fos, which other tests write too
   const std::string out = clitest::captureCli(
-      "fos " + std::string(DDASLOPE_SOURCE_DIR) + "/cases/planar_failure.json --json --log-json " + log, &err);
+      "fos " + std::string(DDASLOPE_SOURCE_DIR) + "/cases/planar_failure.json --json --log-json " + log + " --out " +
+          pictures,
+      &err);
+  std::filesystem::remove_all(pictures);
   const json result = json::parse(out);
   const std::vector<json> lines = readLines(log);
   int progress = 0;

@@ -292,9 +292,12 @@ TEST(StrengthReduction, RunAtFosShowsTheSearchsVerdicts) {
   namespace fs = std::filesystem;
   const std::string c = std::string(DDASLOPE_SOURCE_DIR) + "/cases/planar_failure.json";
   std::string err;
-  const auto fos = nlohmann::json::parse(clitest::captureCli("fos " + c + " --width 1e-3 --json", &err));
-  const double stable = fos["bracket"][0], failing = fos["bracket"][1];
   const fs::path dir = fs::temp_directory_path() / ("ddaslope_atfos_" + std::to_string(::getpid()));
+  // The search's pictures in this test's own folder, not in the working directory's out/fos,
+  // which other tests running at the same time write too.
+  const auto fos = nlohmann::json::parse(
+      clitest::captureCli("fos " + c + " --width 1e-3 --json --out " + (dir / "fos").string(), &err));
+  const double stable = fos["bracket"][0], failing = fos["bracket"][1];
   const auto displacement = [&](double f, std::string* printed) {
     char digits[32];
     std::snprintf(digits, sizeof digits, "%.17g", f);
