@@ -429,49 +429,75 @@ TEST(LookAhead, ARunnerStopsItsRunsAheadAndKeepsTheirErrors) {
   EXPECT_THROW(runner.take(3, {}), InputError);
 }
 
+namespace {
+
+/// A strength reduction on two threads whose verdict is stable below `critical`, and whose trial
+/// at F = 1 ends only once the trial at `awaited` has run (30 s at most: without a spare thread
+/// running it meanwhile, F = 1 ends on that timeout). The same search without runs ahead is the
+/// reference.
+struct WhileOneRuns {
+  bool awaitedBeforeOne = false;  ///< the trial at `awaited` had run when F = 1 ended
+  int leftUnderWay = 0;           ///< runs still going when the search returned
+  calibration::FactorOfSafetyResult with, without;
+};
+
+WhileOneRuns searchWaitingAtOne(double critical, double awaited) {
+  std::atomic<bool> awaitedRan{false}, awaitedBeforeOne{false};
+  std::atomic<int> underWay{0};
+  const auto verdict = [&](double f, double) {
+    ++underWay;
+    calibration::TrialResult r;
+    r.stable = f < critical;
+    r.rule = r.stable ? calibration::VerdictRule::AtRest : calibration::VerdictRule::PassedDisplacement;
+    if (f == 1.0) {
+      waitFor(awaitedRan);
+      awaitedBeforeOne = awaitedRan.load();
+    }
+    std::this_thread::sleep_for(std::chrono::microseconds(300));
+    if (f == awaited) awaitedRan = true;
+    --underWay;
+    return r;
+  };
+  calibration::SearchSettings with, without;
+  with.threads = without.threads = 2;
+  without.lookAhead = false;
+  WhileOneRuns w;
+  w.with = calibration::factorOfSafetyOf(verdict, 0.005, with);
+  w.leftUnderWay = underWay.load();
+  w.awaitedBeforeOne = awaitedBeforeOne.load();
+  awaitedRan = true;  // the search without runs ahead must not wait
+  w.without = calibration::factorOfSafetyOf(verdict, 0.005, without);
+  return w;
+}
+
+/// The same F, runs and trials, in the same order, with runs ahead as without.
+void expectTheSameSearch(const calibration::FactorOfSafetyResult& a, const calibration::FactorOfSafetyResult& b) {
+  ASSERT_TRUE(a.found && b.found) << a.message << b.message;
+  EXPECT_EQ(a.factor, b.factor);
+  EXPECT_EQ(a.runs, b.runs);
+  ASSERT_EQ(a.trials.size(), b.trials.size());
+  for (size_t i = 0; i < a.trials.size(); ++i) EXPECT_EQ(a.trials[i].value, b.trials[i].value);
+}
+
+}  // namespace
+
 // A slope whose F lies just below 1 (a back-analysis of a failure): its trial at F = 1 creeps to
 // the failure displacement and is the slowest of the search, while the trials below it are quick.
 // While it runs, the spare thread runs the trials the search makes next if it fails, from 1/1.5
-// on. The trial at F = 1 here ends only once the trial at 2/3 has run (30 s at most): without the
-// failing branch it would end on its timeout, after the one at 2/3. The search takes the same
-// trials, and gives the same F, as without runs ahead, none is left under way, and where F = 1
-// stands (F* = 1.3) the run at 2/3, never taken, is counted unused.
+// on; here F = 1 ends only once the trial at 2/3 has run. The search takes the same trials, and
+// gives the same F, as without runs ahead, none is left under way, and where F = 1 stands
+// (F* = 1.3) the run at 2/3, never taken, is counted unused.
 TEST(LookAhead, TheFailingBranchRunsWhileTheTrialAtOneCreeps) {
   for (const double critical : {0.985, 1.3}) {
     SCOPED_TRACE(critical);
-    std::atomic<bool> twoThirdsRan{false}, twoThirdsBeforeOne{false};
-    std::atomic<int> underWay{0};
-    const auto verdict = [&](double f, double) {
-      ++underWay;
-      calibration::TrialResult r;
-      r.stable = f < critical;
-      r.rule = r.stable ? calibration::VerdictRule::AtRest : calibration::VerdictRule::PassedDisplacement;
-      if (f == 1.0) {
-        waitFor(twoThirdsRan);
-        twoThirdsBeforeOne = twoThirdsRan.load();
-      }
-      std::this_thread::sleep_for(std::chrono::microseconds(300));
-      if (f == 1.0 / 1.5) twoThirdsRan = true;
-      --underWay;
-      return r;
-    };
-    calibration::SearchSettings with, without;
-    with.threads = without.threads = 2;
-    without.lookAhead = false;
-    const auto a = calibration::factorOfSafetyOf(verdict, 0.005, with);
-    EXPECT_EQ(underWay.load(), 0) << "a run of the branch outlived the search";
-    EXPECT_TRUE(twoThirdsBeforeOne) << "the trial at 2/3 did not run while F = 1 ran";
+    const WhileOneRuns w = searchWaitingAtOne(critical, 1.0 / 1.5);
+    EXPECT_EQ(w.leftUnderWay, 0) << "a run of the branch outlived the search";
+    EXPECT_TRUE(w.awaitedBeforeOne) << "the trial at 2/3 did not run while F = 1 ran";
     if (critical > 1) {
-      EXPECT_GE(a.runsAheadUnused, 1);
+      EXPECT_GE(w.with.runsAheadUnused, 1);
     }
-    twoThirdsRan = true;  // the search without runs ahead must not wait
-    const auto b = calibration::factorOfSafetyOf(verdict, 0.005, without);
-    ASSERT_TRUE(a.found && b.found) << a.message << b.message;
-    EXPECT_EQ(a.factor, b.factor);
-    EXPECT_EQ(a.runs, b.runs);
-    ASSERT_EQ(a.trials.size(), b.trials.size());
-    for (size_t i = 0; i < a.trials.size(); ++i) EXPECT_EQ(a.trials[i].value, b.trials[i].value);
-    EXPECT_NEAR(a.factor, critical, 0.005);
+    expectTheSameSearch(w.with, w.without);
+    EXPECT_NEAR(w.with.factor, critical, 0.005);
   }
 }
 
@@ -524,42 +550,17 @@ TEST(LookAhead, OnlyAFailureProvenByTheDisplacementEndsItsRound) {
 
 // A slope that stands at F = 1 but settles slowly there, while the trials well beyond its F fail
 // (or, F* = 4, stand) fast. Once 1.5 is done the spare thread runs what the search takes next if
-// F = 1 stands: the first round of [1, 1.5] when 1.5 fails, the bracketing's 2.25 when it stands.
-// The trial at F = 1 here ends only once that run has finished (30 s at most). The search takes
-// the same trials, and gives the same F, as without runs ahead, and no run outlives it.
+// F = 1 stands: the first round of [1, 1.5] when 1.5 fails, the bracketing's 2.25 when it stands;
+// here F = 1 ends only once that run has finished. The search takes the same trials, and gives
+// the same F, as without runs ahead, and no run outlives it.
 TEST(LookAhead, TheSearchesNextTrialsRunWhileTheTrialAtOneSettles) {
   for (const double critical : {1.2, 4.0}) {
     SCOPED_TRACE(critical);
     const double awaited = critical < 1.5 ? calibration::roundValues(1.0, 1.5, 2).back() : 1.5 * 1.5;
-    std::atomic<bool> awaitedRan{false}, awaitedBeforeOne{false};
-    std::atomic<int> underWay{0};
-    const auto verdict = [&](double f, double) {
-      ++underWay;
-      calibration::TrialResult r;
-      r.stable = f < critical;
-      r.rule = r.stable ? calibration::VerdictRule::AtRest : calibration::VerdictRule::PassedDisplacement;
-      if (f == 1.0) {
-        waitFor(awaitedRan);
-        awaitedBeforeOne = awaitedRan.load();
-      }
-      std::this_thread::sleep_for(std::chrono::microseconds(300));
-      if (f == awaited) awaitedRan = true;
-      --underWay;
-      return r;
-    };
-    calibration::SearchSettings with, without;
-    with.threads = without.threads = 2;
-    without.lookAhead = false;
-    const auto a = calibration::factorOfSafetyOf(verdict, 0.005, with);
-    EXPECT_EQ(underWay.load(), 0) << "a run of the spare thread outlived the search";
-    EXPECT_TRUE(awaitedBeforeOne) << "the trial at " << awaited << " did not run while F = 1 ran";
-    awaitedRan = true;  // the search without runs ahead must not wait
-    const auto b = calibration::factorOfSafetyOf(verdict, 0.005, without);
-    ASSERT_TRUE(a.found && b.found) << a.message << b.message;
-    EXPECT_EQ(a.factor, b.factor);
-    EXPECT_EQ(a.runs, b.runs);
-    ASSERT_EQ(a.trials.size(), b.trials.size());
-    for (size_t i = 0; i < a.trials.size(); ++i) EXPECT_EQ(a.trials[i].value, b.trials[i].value);
-    EXPECT_NEAR(a.factor, critical, 0.005 * critical);
+    const WhileOneRuns w = searchWaitingAtOne(critical, awaited);
+    EXPECT_EQ(w.leftUnderWay, 0) << "a run of the spare thread outlived the search";
+    EXPECT_TRUE(w.awaitedBeforeOne) << "the trial at " << awaited << " did not run while F = 1 ran";
+    expectTheSameSearch(w.with, w.without);
+    EXPECT_NEAR(w.with.factor, critical, 0.005 * critical);
   }
 }
