@@ -69,8 +69,8 @@ DESCRIPTION = (
     "stand, 5-13 topple, 1-4 slide; a pure horizontal toe force of 1997 kN/m gives F = 1 (2013 kN/m: "
     "F = 1.001); parallel to the base steps 2379 kN/m would be needed; Goodman & Bray's own P_0, normal "
     "to the toe face and carrying face friction P_0 tan phi, is 4118 kN/m. Without the force F = "
-    "tan 33.02/tan 38.13 = 0.828. ddaslope fos: 1.002 with the force, 0.827 without (--set "
-    "point_loads[0].force[0]=0), 1.002 at phi = 38.15 without it. Try: ddaslope fos cases/goodman_bray_toppling.json, "
+    "tan 33.02/tan 38.13 = 0.828. ddaslope fos: 1.003 with the force, 0.825 without (--set "
+    "point_loads[0].force[0]=0), 1.001 at phi = 38.15 without it. Try: ddaslope fos cases/goodman_bray_toppling.json, "
     "and the toe force for F = 1: ddaslope critical cases/goodman_bray_toppling.json --solve support --support toe_force"
 )
 

@@ -204,7 +204,7 @@ def toppling_slope():
     analysis = {"duration": 1.0, "time_step": 0.001, "failure_displacement": 0.05}
     write("toppling_slope.json", {
         "description": source + "Here the basal joint daylights 1 m above the bench (a step at the toe), so the toe "
-                       "column can slide out along it as Goodman & Bray assume. DDA factor of safety 0.866 "
+                       "column can slide out along it as Goodman & Bray assume. DDA factor of safety 0.895 "
                        "(docs/calibration.md, benchmark D): at phi = 31 deg the slope topples. "
                        "Try: ddaslope fos cases/toppling_slope.json",
         **common,
@@ -215,7 +215,7 @@ def toppling_slope():
     write("toppling_slope_bench_toe.json", {
         "description": source + "Here the basal joint ends exactly at the bench level, as transcribed: the bench "
                        "blocks the toe column's path along the basal joint, the columns cannot slide out and the "
-                       "slope holds until phi falls below the 30 deg base (DDA factor of safety 1.044, "
+                       "slope holds until phi falls below the 30 deg base (DDA factor of safety 1.048, "
                        "docs/calibration.md, benchmark D). Compare cases/toppling_slope.json",
         **common,
         "section": {"ground": [[0, 19.85], [14, 19.85], [20, 10], [30, 10]], **section},
