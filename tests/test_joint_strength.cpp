@@ -182,6 +182,32 @@ TEST(ChairSlide, SofteningJointsKeepTheButtressThatBrittleBondsLose) {
   EXPECT_NEAR(critical(withBrittleJoint(scene, "sliding_surface")), kSingleBlock, 0.1 * kSingleBlock);
 }
 
+// The chair slide's critical cohesion is the slope's, not the time step's: a search at Δt 0.5, 1
+// and 3 ms (the case's own step is 4.2 ms), on the shipped 50 m blocks and on 40 m blocks, lands
+// within issue #14's 10 % of the slices' limit equilibrium with the joints' 40° (48.50 kPa for
+// 50 m blocks, 49.0 for 40 m: scripts/chair_slide.py le) and above the blocks' static bound (44.12
+// and 46.0 kPa, scripts/block_equilibrium.py; tolerance the search's 500 Pa bracket). Smaller
+// steps leave the ringing that follows the release of the held start undamped; it used to end a
+// settling that found no rest with a 3 g kick and to break the bond of every edge-contact end it
+// lifted, and the answer followed Δt: 58.1 kPa at 1 ms and 66.9 at 0.5 ms, failed by the crown
+// block (docs/contact-model.md, "Separation without tensile strength").
+TEST(ChairSlide, CriticalCohesionDoesNotFollowTheTimeStep) {
+  const std::string path = std::string(DDASLOPE_SOURCE_DIR) + "/cases/chair_slide.json";
+  constexpr double kBracket = 500;
+  struct Layout {
+    double spacing, wedges, bound;
+  };
+  for (const Layout& l : {Layout{50, 48.50e3, 44.123e3}, Layout{40, 49.0e3, 46.0e3}})
+    for (double dt : {0.0005, 0.001, 0.003}) {
+      const model::Scene scene =
+          io::readCase(path, {io::CaseOverride("section.joint_sets[0].spacing", l.spacing),
+                              io::CaseOverride("analysis.time_step", dt)});
+      const double c = criticalCohesionAt18(scene, "sliding_surface", kBracket);
+      EXPECT_NEAR(c, l.wedges, 0.1 * l.wedges) << l.spacing << " m blocks, Δt " << dt;
+      EXPECT_GE(c, l.bound - kBracket) << l.spacing << " m blocks, Δt " << dt;
+    }
+}
+
 // A planar multi-block slide (cases/planar_multiblock_slide.json: a wedge on one 30° plane, thick
 // at the crown, joints normal to the plane) is a rigid mechanism, so limit equilibrium is exact:
 // c_cr = γA(sinα − cosα tanφ)/L = 24525 × 10000 × 0.218616 / 461.880 = 116.08 kPa at φ = 18°.

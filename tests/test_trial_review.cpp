@@ -191,6 +191,9 @@ TEST(SearchReview, ReportsAContradictionItCannotResolve) {
   EXPECT_LT(r.stableEnd, 0.77);
   EXPECT_GE(r.failingEnd, 1.0);
   EXPECT_LT(r.failingEnd, 1.0 + 0.1);
+  // The review carries that range (the result file's review.mixed_range), found or not.
+  EXPECT_EQ(r.review.mixedLow, r.stableEnd);
+  EXPECT_EQ(r.review.mixedHigh, r.failingEnd);
 }
 
 // A trial that moved the failure displacement while it settled was decided by the equilibrium,

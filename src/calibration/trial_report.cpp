@@ -32,6 +32,7 @@ void appendTrials(io::JsonRecord& j, const std::vector<TrialRecord>& trials, con
 void appendReview(io::JsonRecord& j, const TrialReview& review) {
   io::JsonRecord r;
   r.set("contradiction", review.contradiction).set("undecided", review.undecided).set("reruns", review.reruns);
+  r.set("mixed_range", std::vector<double>{review.mixedLow, review.mixedHigh});
   j.set("review", r);
 }
 

@@ -10,6 +10,18 @@ double shearStrength(bool bonded, double normalForce, const ContactStrength& s) 
   return std::max(0.0, s.friction(std::max(0.0, normalForce)));
 }
 
+bool separatesWithBond(const ContactStrength& s) {
+  // A bond with tensile strength that is pulled open has cracked: it is lost (original DDA,
+  // UDEC's Coulomb slip). Without tensile strength (σt = 0) there is nothing to crack: opening is
+  // separation, and a softening joint's cohesion (its asperities' interlock, whose scale is the
+  // weakening distance) is damaged by the largest opening as by slip (Simulation::commit). With
+  // penalty springs an end of an edge contact opens as soon as its block turns by the springs'
+  // penetration over the edge's length (0.15 mm over 50 m on the chair slide): losing half the
+  // bond to that made a slope's strength follow the ringing that smaller time steps leave
+  // undamped (docs/contact-model.md).
+  return s.bondSurvivesSlip && s.tensileForce <= 0;
+}
+
 ContactJudgement judgeVertexContact(ContactState state, int direction, bool bonded,
                                     const ContactResponse& r, const ContactStrength& s,
                                     const StateTolerance& tol) {
@@ -18,7 +30,7 @@ ContactJudgement judgeVertexContact(ContactState state, int direction, bool bond
     return {ContactState::Open, 0, bonded};
   }
   const double tensionCapacity = bonded ? s.tensileForce : 0.0;
-  if (r.normalForce < -tensionCapacity - tol.force) return {ContactState::Open, 0, false};
+  if (r.normalForce < -tensionCapacity - tol.force) return {ContactState::Open, 0, bonded && separatesWithBond(s)};
   const bool bondedWhileSliding = bonded && s.bondSurvivesSlip;
   if (state == ContactState::Locked) {
     if (std::abs(r.lockedShear) > shearStrength(bonded, r.normalForce, s) + tol.force)
@@ -47,11 +59,12 @@ std::pair<ContactJudgement, ContactJudgement> judgeEdgeContact(const HalfState& 
   const bool open2 = r2.normalForce < -(bonded ? s2.tensileForce : 0.0) - tol.force;
   if (open1 || open2) {
     // An end separates and the other half is the pivot. A brittle bond fails as a whole (the
-    // founding paper's rule); a softening joint is damaged only where it opened, so the pivot
-    // keeps its own share of the bond (c·L/2, as a vertex-to-edge contact).
-    const bool pivotKeepsBond = s1.bondSurvivesSlip && s2.bondSurvivesSlip;
-    return {alone(h1, r1, s1, !open1 && pivotKeepsBond && h1.bonded),
-            alone(h2, r2, s2, !open2 && pivotKeepsBond && h2.bonded)};
+    // founding paper's rule). A softening joint's pivot keeps its own share of the bond (c·L/2, as
+    // a vertex-to-edge contact); the end that opened keeps its share too if the joint has no
+    // tensile strength to break (separatesWithBond).
+    const bool softening = s1.bondSurvivesSlip && s2.bondSurvivesSlip;
+    return {alone(h1, r1, s1, softening && (!open1 || separatesWithBond(s1)) && h1.bonded),
+            alone(h2, r2, s2, softening && (!open2 || separatesWithBond(s2)) && h2.bonded)};
   }
   const bool bondedWhileSliding = bonded && s1.bondSurvivesSlip && s2.bondSurvivesSlip;
   if (h1.state == ContactState::Sliding && h2.state == ContactState::Sliding && h1.direction == h2.direction) {

@@ -96,6 +96,7 @@ void ContactSet::update(std::vector<ContactCandidate> candidates, const std::vec
         c.state = it->state;
         c.bonded = it->bonded;
         c.slipDistance = it->slipDistance;
+        c.opening = it->opening;
         c.intact = it->intact;
         c.slideDirection = it->slideDirection;
         c.normalForce = it->normalForce;

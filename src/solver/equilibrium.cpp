@@ -116,7 +116,7 @@ Simulation::Rest Simulation::settle(Regime regime, double& dt, double largestDt)
   return fallBack();
 }
 
-bool Simulation::settleDynamically() {
+Simulation::Settled Simulation::settleDynamically() {
   // Kinetic damping (Cundall's dynamic relaxation for explicit codes; here on the implicit
   // Newmark step): steps at the analysis Δt carry velocity, and whenever the kinetic energy has
   // passed a peak every velocity is set to zero, which removes the energy of the mode that
@@ -157,9 +157,27 @@ bool Simulation::settleDynamically() {
   constexpr int kStalledSteps = 1000;
   double leastImplied = std::numeric_limits<double>::infinity();
   int stalledPeaks = 0, lastHalved = 0;
+  // A settling that stalls leaves the scene in the quietest state it reached: the state at rest
+  // from which a step implied the least acceleration. Stage 2's rest, the fallback otherwise, can
+  // be far from rest at the analysis Δt (3 g in one step from it on the chair slide at Δt 1 ms),
+  // and the analysis, undamped, would start with that kick: blocks rock, the halves that open
+  // lose their bond, and the verdict follows Δt.
+  model::Scene quietestScene, candidateScene;
+  contact::ContactSet quietestContacts, candidateContacts;
+  const auto stalled = [&] {
+    if (leastImplied == std::numeric_limits<double>::infinity()) return Settled::Failed;
+    scene_ = std::move(quietestScene);
+    contacts_ = std::move(quietestContacts);
+    stats_.equilibriumResidual = leastImplied / std::max(scene_.gravity.norm(), 1e-3);
+    return Settled::Stalled;
+  };
   for (int s = 0; s < budget; ++s) {
     checkDeadline();
     detectContacts(false);
+    if (fromRest) {
+      candidateScene = scene_;
+      candidateContacts = contacts_;
+    }
     double dt = scene_.settings.timeStep;
     Attempt a = tryStep(dt, Regime::Settling, false, holdSmallViolations);
     for (int k = 0; !a.converged && k < scene_.settings.maxStepCuts; ++k) {
@@ -167,13 +185,13 @@ bool Simulation::settleDynamically() {
       dt *= scene_.settings.stepCutFactor;
       a = tryStep(dt, Regime::Settling, k >= 1, holdSmallViolations);
     }
-    if (!a.converged) return false;
+    if (!a.converged) return Settled::Failed;
     commit(a, dt, false);
     ++stats_.settlingSteps;
     if (equilibriumProgress_) equilibriumProgress_("settling", s + 1, budget);
     const double worst = largestVertexDisplacement(a);
     travel += worst;
-    if (passedSettlingLimit()) return false;
+    if (passedSettlingLimit()) return Settled::Failed;
     const double implied = 2 * worst / (dt * dt);
     if (log_) {
       std::ostringstream m;
@@ -184,9 +202,9 @@ bool Simulation::settleDynamically() {
     }
     if (fromRest && !a.frozeContacts && implied < restAcceleration()) {
       stats_.equilibriumResidual = implied / std::max(scene_.gravity.norm(), 1e-3);
-      return true;
+      return Settled::AtRest;
     }
-    if (travel > givingUpTravel) return false;
+    if (travel > givingUpTravel) return Settled::Failed;
     const bool failing = travel > failingTravel;
     if (fromRest) {
       if (implied < 0.5 * leastImplied) {
@@ -195,12 +213,16 @@ bool Simulation::settleDynamically() {
       } else {
         ++stalledPeaks;
       }
-      leastImplied = std::min(leastImplied, implied);
+      if (implied < leastImplied && a.converged) {
+        leastImplied = implied;
+        quietestScene = std::move(candidateScene);
+        quietestContacts = std::move(candidateContacts);
+      }
       if (stalledPeaks >= kStalledPeaks && s - lastHalved >= kStalledSteps) {
         if (log_)
           log_("settling: " + std::to_string(stalledPeaks) + " steps from rest over " + std::to_string(s - lastHalved) +
                " steps came no nearer to rest");
-        return false;
+        return stalled();
       }
     }
     double kinetic = 0;
@@ -214,7 +236,7 @@ bool Simulation::settleDynamically() {
     }
     lastKinetic = kinetic;
   }
-  return false;
+  return travel > failingTravel ? Settled::Failed : stalled();
 }
 
 void Simulation::polishRest(double staticDt) {
@@ -426,15 +448,22 @@ void Simulation::bringToEquilibrium(const HeldEquilibrium* shared) {
         log_(skipStaticRelaxation ? "equilibrium: a large system settles dynamically from every contact held"
              : rest == Rest::Unsettled ? "equilibrium (relaxation): no static rest; settling dynamically"
                                      : "equilibrium (relaxation): rest not confirmed at the analysis Δt; settling dynamically");
-      stats_.startedAtRest = settleDynamically();
+      const Settled settled = settleDynamically();
+      stats_.startedAtRest = settled == Settled::AtRest;
       // Without stage 2, "relaxed" reports whether the real contact law found rest at all.
       if (skipStaticRelaxation) {
         stats_.relaxationConverged = stats_.startedAtRest;
         if (stats_.startedAtRest) polishRest(shared->dt);
       }
-      if (!stats_.startedAtRest && !stats_.gaveWayWhileSettling) {
-        // Failing, or still moving after the budget: start from stage 2's rest, or from stage 1's
-        // state if stage 2 found none, as without stage 3.
+      if (settled == Settled::Stalled && log_) {
+        std::ostringstream m;
+        m << "settling: no rest found; the analysis starts, at rest, from the quietest settled state (a step from it "
+          << "implies " << stats_.equilibriumResidual << " g)";
+        log_(m.str());
+      }
+      if (settled == Settled::Failed && !stats_.gaveWayWhileSettling) {
+        // Failing: start from stage 2's rest, or from stage 1's state if stage 2 found none, as
+        // without stage 3, so that the analysis, not the settling, moves the scene.
         const bool relaxed = rest == Rest::Unconfirmed;
         if (log_)
           log_(std::string("settling: no rest found; the analysis starts from the ") +

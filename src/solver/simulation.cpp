@@ -88,10 +88,14 @@ void Simulation::commit(Attempt& a, double dt, bool weakens) {
   a.contacts.clear();
   if (weakens)
     for (Contact& c : contacts_.contacts()) {
-      // A softening joint loses strength with the slip accumulated by the accepted steps.
+      // A softening joint loses strength with the slip accumulated by the accepted steps, and
+      // with the largest opening of a contact that opened with its bond (a mixed-mode cohesive
+      // law: a hairline opening costs little, one of the weakening distance costs the bond).
       c.slipDistance += std::abs(c.stepSlip);
+      if (!c.closed() && c.bonded) c.opening = std::max(c.opening, c.geometry.gap - c.normalOffset);
       const model::JointProperties& j = scene_.joints[c.joint];
-      if (*j.weakeningDistance > 0) c.intact = std::min(c.intact, contact::remainingStrength(j, c.slipDistance));
+      if (*j.weakeningDistance > 0)
+        c.intact = std::min(c.intact, contact::remainingStrength(j, c.slipDistance + c.opening));
     }
   recordSolverStatistics();
   stats_.times.update += sw.lap();

@@ -39,6 +39,9 @@ struct Contact {
   double shearForce = 0;           ///< shear spring force from the latest solution (N/m)
   double slipDistance = 0;         ///< slip accumulated while sliding, all steps (m)
   double stepSlip = 0;             ///< slip in the step being solved, while sliding (m)
+  /// Largest opening (m) since t = 0 while open with its bond: a softening joint's bond is damaged
+  /// by opening as by slip (contact/joint_strength.hpp).
+  double opening = 0;
   /// Fraction of the joint's peak-above-residual strength left (contact/joint_strength.hpp).
   double intact = 1;
 

@@ -244,9 +244,17 @@ class Simulation {
   /// scene travels more than g2·w0 (failing) or the step budget runs out. A relaxation rest is
   /// Unconfirmed unless confirmedAtRest().
   Rest settle(Regime regime, double& dt, double largestDt);
+  /// How stage 3 ended.
+  enum class Settled {
+    AtRest,   ///< a step from rest stayed at rest
+    Stalled,  ///< it stopped nearing rest, or spent its budget, without travelling like a failing
+              ///< scene: the scene is left in the quietest state it reached (the least implied
+              ///< acceleration from rest), at rest
+    Failed,   ///< it travelled g2·w0, passed stopSettlingPast()'s limit, or a step did not converge
+  };
   /// Stage 3: dynamic steps at the analysis Δt with kinetic damping until a step from rest stays
-  /// at rest (true), or until the scene travels g2·w0 or the budget runs out (false).
-  bool settleDynamically();
+  /// at rest, or until the scene travels g2·w0, stops nearing rest or the budget runs out.
+  Settled settleDynamically();
   /// True (and recorded in the statistics) once a vertex of an active block is farther than
   /// stopSettlingPast()'s limit from where stage 1 left it.
   bool passedSettlingLimit();
