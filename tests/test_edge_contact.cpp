@@ -140,6 +140,34 @@ TEST(EdgeContact, RuleJudgesTotalsAndSplitsAtAPivot) {
   EXPECT_TRUE(h.bonded);
 }
 
+// A softening joint without tensile strength has nothing to crack: an end pulled open separates
+// with its share of the bond (damaged later by the opening, Simulation::commit), and the pivot
+// keeps its own. With σt > 0 the tension cracks the opened end's bond (the pivot keeps its own),
+// and a brittle joint loses the whole bond, the founding paper's rule. The same for a lone
+// vertex-to-edge contact (docs/contact-model.md, "Separation without tensile strength").
+TEST(EdgeContact, AnEndThatSeparatesKeepsItsBondOnlyWithoutTensileStrengthToCrack) {
+  using contact::ContactState;
+  const contact::HalfState locked{ContactState::Locked, 0, true};
+  const contact::ContactResponse heel{-250, 0, 0}, toe{1000, 100, 0};
+  const contact::ContactStrength softNoTension{std::tan(M_PI / 6), 500, 0, true},
+      softTension{std::tan(M_PI / 6), 500, 200, true}, brittleNoTension{std::tan(M_PI / 6), 500, 0, false};
+  auto [h, t] = contact::judgeEdgeContact(locked, locked, heel, toe, softNoTension, softNoTension);
+  EXPECT_EQ(h.state, ContactState::Open);
+  EXPECT_EQ(t.state, ContactState::Locked);
+  EXPECT_TRUE(h.bonded);
+  EXPECT_TRUE(t.bonded);
+  std::tie(h, t) = contact::judgeEdgeContact(locked, locked, heel, toe, softTension, softTension);
+  EXPECT_EQ(h.state, ContactState::Open);
+  EXPECT_FALSE(h.bonded);
+  EXPECT_TRUE(t.bonded);
+  std::tie(h, t) = contact::judgeEdgeContact(locked, locked, heel, toe, brittleNoTension, brittleNoTension);
+  EXPECT_EQ(h.state, ContactState::Open);
+  EXPECT_FALSE(h.bonded || t.bonded);
+  EXPECT_TRUE(contact::judgeVertexContact(ContactState::Locked, 0, true, heel, softNoTension).bonded);
+  EXPECT_FALSE(contact::judgeVertexContact(ContactState::Locked, 0, true, {-250, 0, 0}, softTension).bonded);
+  EXPECT_FALSE(contact::judgeVertexContact(ContactState::Locked, 0, true, heel, brittleNoTension).bonded);
+}
+
 // Halves of a softening joint that have slipped different distances carry different tan φ. The
 // whole's strength is Σ N_i tan φ_i, the resistance the halves meet once sliding; with one mean
 // tan φ, N (tan φ1 + tan φ2)/2, a locked pair failed below it, slid back against that resistance

@@ -182,6 +182,32 @@ TEST(ChairSlide, SofteningJointsKeepTheButtressThatBrittleBondsLose) {
   EXPECT_NEAR(critical(withBrittleJoint(scene, "sliding_surface")), kSingleBlock, 0.1 * kSingleBlock);
 }
 
+// A bond that separates is damaged by its opening as by slip (softening joint, no tensile
+// strength). A block held on a 30° incline by cohesion alone (c = 2 c_cr, φ = 20°: benchmarks B1)
+// is thrown off it at 0.1 m/s along the outward normal and lands again after a hop of
+// v²/(2 g cos α) = 0.6 mm. With a weakening distance of 1 km the hop costs 6e-7 of the bond and
+// the block holds; with 10 µm the hop is worth the whole bond, and friction alone (tan 20° <
+// tan 30°) lets it slide away, at g (sin α − cos α tan φ) = 1.81 m/s². (Losing the bond to any
+// opening, as before, made the first block slide too.) The verdict's failure displacement is
+// 5 cm, above the hop's few millimetres and below the slide's metre.
+TEST(SofteningJoints, ASeparationCostsTheBondItsOpeningIsWorth) {
+  InclineSpec spec{30, 2, 1, 20, 0, 2600, 9.81};
+  spec.cohesion = 2 * model::criticalCohesion(spec);
+  spec.duration = 1.0;
+  calibration::VerdictSettings verdict;
+  verdict.failureDisplacement = 0.05;
+  const auto thrown = [&](double weakeningDistance) {
+    model::Scene scene = scenes::makeIncline(spec);
+    scene.joints[0].weakeningDistance = weakeningDistance;
+    const double a = 30 * M_PI / 180, v = 0.1;
+    scene.blocks[1].velocity.head<2>() = v * Vec2(-std::sin(a), std::cos(a));
+    return calibration::judgeStability(scene, verdict);
+  };
+  const calibration::TrialResult kept = thrown(1000), lost = thrown(1e-5);
+  EXPECT_TRUE(kept.stable) << kept.maxDisplacement << " m, " << calibration::name(kept.rule);
+  EXPECT_FALSE(lost.stable) << lost.maxDisplacement << " m, " << calibration::name(lost.rule);
+}
+
 // The chair slide's critical cohesion is the slope's, not the time step's: a search at Δt 0.5, 1
 // and 3 ms (the case's own step is 4.2 ms), on the shipped 50 m blocks and on 40 m blocks, lands
 // within issue #14's 10 % of the slices' limit equilibrium with the joints' 40° (48.50 kPa for
