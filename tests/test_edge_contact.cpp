@@ -150,7 +150,7 @@ TEST(EdgeContact, AnEndThatSeparatesKeepsItsBondOnlyWithoutTensileStrengthToCrac
   const contact::HalfState locked{ContactState::Locked, 0, true};
   const contact::ContactResponse heel{-250, 0, 0}, toe{1000, 100, 0};
   const contact::ContactStrength softNoTension{std::tan(M_PI / 6), 500, 0, true},
-      softTension{std::tan(M_PI / 6), 500, 200, true}, brittleNoTension{std::tan(M_PI / 6), 500, 0, false};
+      softTension{std::tan(M_PI / 6), 500, 200, true, true}, brittleNoTension{std::tan(M_PI / 6), 500, 0, false};
   auto [h, t] = contact::judgeEdgeContact(locked, locked, heel, toe, softNoTension, softNoTension);
   EXPECT_EQ(h.state, ContactState::Open);
   EXPECT_EQ(t.state, ContactState::Locked);

@@ -1,12 +1,14 @@
 // Joints that soften from peak to residual with slip (contact/joint_strength.hpp, issue #14).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
 #include "ddaslope/calibration/strength_search.hpp"
 #include "ddaslope/contact/joint_strength.hpp"
 #include "ddaslope/io/case_reader.hpp"
+#include "ddaslope/solver/simulation.hpp"
 #include "scene_builders.hpp"
 
 using namespace ddaslope;
@@ -182,30 +184,37 @@ TEST(ChairSlide, SofteningJointsKeepTheButtressThatBrittleBondsLose) {
   EXPECT_NEAR(critical(withBrittleJoint(scene, "sliding_surface")), kSingleBlock, 0.1 * kSingleBlock);
 }
 
-// A bond that separates is damaged by its opening as by slip (softening joint, no tensile
-// strength). A block held on a 30° incline by cohesion alone (c = 2 c_cr, φ = 20°: benchmarks B1)
-// is thrown off it at 0.1 m/s along the outward normal and lands again after a hop of
-// v²/(2 g cos α) = 0.6 mm. With a weakening distance of 1 km the hop costs 6e-7 of the bond and
-// the block holds; with 10 µm the hop is worth the whole bond, and friction alone (tan 20° <
-// tan 30°) lets it slide away, at g (sin α − cos α tan φ) = 1.81 m/s². (Losing the bond to any
-// opening, as before, made the first block slide too.) The verdict's failure displacement is
-// 5 cm, above the hop's few millimetres and below the slide's metre.
-TEST(SofteningJoints, ASeparationCostsTheBondItsOpeningIsWorth) {
+// A softening joint without tensile strength keeps its bond through a separation smaller than its
+// weakening distance and loses it at one that large. A 2 × 1 m block on a 30° incline, bonded
+// (c = 2 c_cr, φ = 20°: benchmarks B1), is thrown off it at v = 0.5 m/s along the outward normal
+// (with 2 v tan α up the slope, so that it comes down where it left). Its contacts record the
+// largest opening, the hop's height v²/(2 g cos α) = 14.7 mm (within 2 %: the springs' penetration
+// at rest and the first step's share), and at the top of the hop, before it lands, a weakening
+// distance of 1 km has kept the bond and one of 8 mm has lost it. (Losing the bond to any opening,
+// as before, lost both.)
+TEST(SofteningJoints, ASeparationBreaksTheBondAtTheWeakeningDistance) {
   InclineSpec spec{30, 2, 1, 20, 0, 2600, 9.81};
   spec.cohesion = 2 * model::criticalCohesion(spec);
-  spec.duration = 1.0;
-  calibration::VerdictSettings verdict;
-  verdict.failureDisplacement = 0.05;
+  const double a = 30 * M_PI / 180, v = 0.5, hop = v * v / (2 * 9.81 * std::cos(a));
   const auto thrown = [&](double weakeningDistance) {
     model::Scene scene = scenes::makeIncline(spec);
     scene.joints[0].weakeningDistance = weakeningDistance;
-    const double a = 30 * M_PI / 180, v = 0.1;
-    scene.blocks[1].velocity.head<2>() = v * Vec2(-std::sin(a), std::cos(a));
-    return calibration::judgeStability(scene, verdict);
+    scene.blocks[1].velocity.head<2>() =
+        v * Vec2(-std::sin(a), std::cos(a)) + 2 * v * std::tan(a) * Vec2(std::cos(a), std::sin(a));
+    solver::Simulation sim(scene);
+    sim.bringToEquilibrium(nullptr);
+    while (sim.time() < 1.1 * v / (9.81 * std::cos(a))) sim.advance();  // just past the top
+    return sim.contacts().contacts();
   };
-  const calibration::TrialResult kept = thrown(1000), lost = thrown(1e-5);
-  EXPECT_TRUE(kept.stable) << kept.maxDisplacement << " m, " << calibration::name(kept.rule);
-  EXPECT_FALSE(lost.stable) << lost.maxDisplacement << " m, " << calibration::name(lost.rule);
+  const auto kept = thrown(1000), lost = thrown(8e-3);
+  ASSERT_FALSE(kept.empty());
+  ASSERT_FALSE(lost.empty());
+  for (const contact::Contact& c : kept) {
+    EXPECT_FALSE(c.closed());
+    EXPECT_TRUE(c.bonded);
+    EXPECT_NEAR(c.opening, hop, 0.02 * hop);
+  }
+  for (const contact::Contact& c : lost) EXPECT_FALSE(c.bonded);
 }
 
 // The chair slide's critical cohesion is the slope's, not the time step's: a search at Δt 0.5, 1
@@ -216,14 +225,15 @@ TEST(SofteningJoints, ASeparationCostsTheBondItsOpeningIsWorth) {
 // steps leave the ringing that follows the release of the held start undamped; it used to end a
 // settling that found no rest with a 3 g kick and to break the bond of every edge-contact end it
 // lifted, and the answer followed Δt: 58.1 kPa at 1 ms and 66.9 at 0.5 ms, failed by the crown
-// block (docs/contact-model.md, "Separation without tensile strength").
+// block (docs/contact-model.md, "Separation without tensile strength"). Six searches, about 5 s.
 TEST(ChairSlide, CriticalCohesionDoesNotFollowTheTimeStep) {
   const std::string path = std::string(DDASLOPE_SOURCE_DIR) + "/cases/chair_slide.json";
   constexpr double kBracket = 500;
   struct Layout {
     double spacing, wedges, bound;
   };
-  for (const Layout& l : {Layout{50, 48.50e3, 44.123e3}, Layout{40, 49.0e3, 46.0e3}})
+  for (const Layout& l : {Layout{50, 48.50e3, 44.123e3}, Layout{40, 49.0e3, 46.0e3}}) {
+    double least = INFINITY, most = -INFINITY;
     for (double dt : {0.0005, 0.001, 0.003}) {
       const model::Scene scene =
           io::readCase(path, {io::CaseOverride("section.joint_sets[0].spacing", l.spacing),
@@ -231,7 +241,11 @@ TEST(ChairSlide, CriticalCohesionDoesNotFollowTheTimeStep) {
       const double c = criticalCohesionAt18(scene, "sliding_surface", kBracket);
       EXPECT_NEAR(c, l.wedges, 0.1 * l.wedges) << l.spacing << " m blocks, Δt " << dt;
       EXPECT_GE(c, l.bound - kBracket) << l.spacing << " m blocks, Δt " << dt;
+      least = std::min(least, c), most = std::max(most, c);
     }
+    // And no trend with Δt beyond half of that tolerance (the spread measured: 1.2 and 1.7 kPa).
+    EXPECT_LE(most - least, 0.05 * l.wedges) << l.spacing << " m blocks";
+  }
 }
 
 // A planar multi-block slide (cases/planar_multiblock_slide.json: a wedge on one 30° plane, thick

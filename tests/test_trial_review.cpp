@@ -168,6 +168,7 @@ TEST(SearchReview, ResolvesAContradictionByRunningTheTrialsLonger) {
   const auto r = calibration::factorOfSafetyOf(v, 0.005, twoAtOnce());
   ASSERT_TRUE(r.found) << r.message;
   EXPECT_FALSE(r.review.contradiction);
+  EXPECT_TRUE(std::isnan(r.review.mixedLow) && std::isnan(r.review.mixedHigh));  // mixed_range [null, null]
   EXPECT_GE(r.review.reruns, 1);
   EXPECT_NEAR(r.factor, 1.0, 0.005);
   bool rerunSeen = false;

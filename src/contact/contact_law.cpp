@@ -12,14 +12,14 @@ double shearStrength(bool bonded, double normalForce, const ContactStrength& s) 
 
 bool separatesWithBond(const ContactStrength& s) {
   // A bond with tensile strength that is pulled open has cracked: it is lost (original DDA,
-  // UDEC's Coulomb slip). Without tensile strength (σt = 0) there is nothing to crack: opening is
-  // separation, and a softening joint's cohesion (its asperities' interlock, whose scale is the
-  // weakening distance) is damaged by the largest opening as by slip (Simulation::commit). With
-  // penalty springs an end of an edge contact opens as soon as its block turns by the springs'
-  // penetration over the edge's length (0.15 mm over 50 m on the chair slide): losing half the
-  // bond to that made a slope's strength follow the ringing that smaller time steps leave
-  // undamped (docs/contact-model.md).
-  return s.bondSurvivesSlip && s.tensileForce <= 0;
+  // UDEC's Coulomb slip). Without tensile strength (σt = 0) UDEC and original DDA drop the
+  // cohesion at any separation too; a softening joint here keeps it until the opening reaches
+  // its weakening distance (Simulation::commit). The reason is numerical: with penalty springs an
+  // end of an edge contact opens as soon as its block turns by the springs' penetration over the
+  // edge's length (0.15 mm over 50 m on the chair slide), and losing half the bond to that made a
+  // slope's strength follow the ringing that smaller time steps leave undamped
+  // (docs/contact-model.md, "Separation without tensile strength").
+  return s.bondSurvivesSlip && !s.cracks;
 }
 
 ContactJudgement judgeVertexContact(ContactState state, int direction, bool bonded,

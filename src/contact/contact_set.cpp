@@ -97,6 +97,7 @@ void ContactSet::update(std::vector<ContactCandidate> candidates, const std::vec
         c.bonded = it->bonded;
         c.slipDistance = it->slipDistance;
         c.opening = it->opening;
+        c.openingAtStart = it->openingAtStart;
         c.intact = it->intact;
         c.slideDirection = it->slideDirection;
         c.normalForce = it->normalForce;

@@ -38,7 +38,7 @@ JointStrength jointStrength(const model::JointProperties& j) {
 ContactStrength contactStrength(const JointStrength& j, double intact, double length) {
   ContactStrength s{j.tanResidual + (j.tanPeak - j.tanResidual) * intact,
                     (j.residualCohesion + (j.cohesion - j.residualCohesion) * intact) * length,
-                    j.tensileStrength * intact * length, j.softens};
+                    j.tensileStrength * intact * length, j.softens, j.tensileStrength > 0};
   if (j.bartonBandis) {
     s.bartonBandis = true;
     s.jrc = j.jrcWears ? j.jrc * intact : j.jrc;  // roughness worn away with slip, to φr alone

@@ -162,13 +162,16 @@ Simulation::Settled Simulation::settleDynamically() {
   // be far from rest at the analysis Δt (3 g in one step from it on the chair slide at Δt 1 ms),
   // and the analysis, undamped, would start with that kick: blocks rock, the halves that open
   // lose their bond, and the verdict follows Δt.
+  // Only a full step at the analysis Δt under every contact's own law measures the kick the
+  // analysis will get (a cut or frozen step understates it).
   model::Scene quietestScene, candidateScene;
   contact::ContactSet quietestContacts, candidateContacts;
+  double quietestImplied = std::numeric_limits<double>::infinity();
   const auto stalled = [&] {
-    if (leastImplied == std::numeric_limits<double>::infinity()) return Settled::Failed;
+    if (travel > failingTravel || quietestImplied == std::numeric_limits<double>::infinity()) return Settled::Failed;
     scene_ = std::move(quietestScene);
     contacts_ = std::move(quietestContacts);
-    stats_.equilibriumResidual = leastImplied / std::max(scene_.gravity.norm(), 1e-3);
+    stats_.equilibriumResidual = quietestImplied / std::max(scene_.gravity.norm(), 1e-3);
     return Settled::Stalled;
   };
   for (int s = 0; s < budget; ++s) {
@@ -213,8 +216,9 @@ Simulation::Settled Simulation::settleDynamically() {
       } else {
         ++stalledPeaks;
       }
-      if (implied < leastImplied && a.converged) {
-        leastImplied = implied;
+      leastImplied = std::min(leastImplied, implied);
+      if (implied < quietestImplied && !a.frozeContacts && dt == scene_.settings.timeStep) {
+        quietestImplied = implied;
         quietestScene = std::move(candidateScene);
         quietestContacts = std::move(candidateContacts);
       }
@@ -236,7 +240,7 @@ Simulation::Settled Simulation::settleDynamically() {
     }
     lastKinetic = kinetic;
   }
-  return travel > failingTravel ? Settled::Failed : stalled();
+  return stalled();
 }
 
 void Simulation::polishRest(double staticDt) {

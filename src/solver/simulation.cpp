@@ -86,17 +86,23 @@ void Simulation::commit(Attempt& a, double dt, bool weakens) {
     if (c.closed()) stats_.maxPenetration = std::max(stats_.maxPenetration, c.normalForce / normalStiffness(c));
   contacts_.contacts() = std::move(a.contacts);
   a.contacts.clear();
-  if (weakens)
-    for (Contact& c : contacts_.contacts()) {
-      // A softening joint loses strength with the slip accumulated by the accepted steps, and
-      // with the largest opening of a contact that opened with its bond (a mixed-mode cohesive
-      // law: a hairline opening costs little, one of the weakening distance costs the bond).
-      c.slipDistance += std::abs(c.stepSlip);
-      if (!c.closed() && c.bonded) c.opening = std::max(c.opening, c.geometry.gap - c.normalOffset);
-      const model::JointProperties& j = scene_.joints[c.joint];
-      if (*j.weakeningDistance > 0)
-        c.intact = std::min(c.intact, contact::remainingStrength(j, c.slipDistance + c.opening));
+  for (Contact& c : contacts_.contacts()) {
+    if (!weakens) {
+      // Before t = 0 a separation is the slope's loading history, not damage: its gap is the zero.
+      c.openingAtStart = c.closed() ? 0.0 : openingAfterStep(c);
+      continue;
     }
+    // A softening joint loses strength with the slip accumulated by the accepted steps.
+    c.slipDistance += std::abs(c.stepSlip);
+    const model::JointProperties& j = scene_.joints[c.joint];
+    if (*j.weakeningDistance > 0) c.intact = std::min(c.intact, contact::remainingStrength(j, c.slipDistance));
+    // One that separated with its bond (no tensile strength to crack) keeps it through a hairline
+    // opening and loses it at an opening of the weakening distance; friction is slip's alone.
+    if (!c.closed() && c.bonded) {
+      c.opening = std::max(c.opening, openingAfterStep(c) - c.openingAtStart);
+      if (c.opening >= *j.weakeningDistance) c.bonded = false;
+    }
+  }
   recordSolverStatistics();
   stats_.times.update += sw.lap();
 }

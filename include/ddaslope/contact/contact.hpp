@@ -39,9 +39,11 @@ struct Contact {
   double shearForce = 0;           ///< shear spring force from the latest solution (N/m)
   double slipDistance = 0;         ///< slip accumulated while sliding, all steps (m)
   double stepSlip = 0;             ///< slip in the step being solved, while sliding (m)
-  /// Largest opening (m) since t = 0 while open with its bond: a softening joint's bond is damaged
-  /// by opening as by slip (contact/joint_strength.hpp).
+  /// Largest opening (m) while open with its bond after t = 0, beyond the gap it had at t = 0: a
+  /// softening joint without tensile strength loses its bond when it reaches the weakening
+  /// distance (contact_law.hpp, separatesWithBond).
   double opening = 0;
+  double openingAtStart = 0;  ///< its gap at t = 0 if open then (m): the loading history's, not damage
   /// Fraction of the joint's peak-above-residual strength left (contact/joint_strength.hpp).
   double intact = 1;
 

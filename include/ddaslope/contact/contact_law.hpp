@@ -31,17 +31,17 @@ struct ContactJudgement {
 /// Shear strength available: c·Lc + N tanφ while bonded, N tanφ after (never negative).
 double shearStrength(bool bonded, double normalForce, const ContactStrength& s);
 
-/// Whether a bond pulled open survives it: a softening joint without tensile strength, whose
-/// opening then damages the bond as slip does (Simulation::commit).
+/// Whether a bond pulled open survives it: a softening joint without tensile strength, until the
+/// opening reaches the weakening distance (Simulation::commit).
 bool separatesWithBond(const ContactStrength& s);
 
 /// Original DDA rule for one vertex-to-edge contact (Shi 1988):
 /// open → locked when the vertex penetrates; closed → open when the normal force is a tension
 /// beyond the bond's tensile capacity (0 once broken); locked → sliding when |shear| exceeds the
 /// strength; sliding → locked when the slip reverses against the friction. Opening breaks the
-/// bond for good; so does sliding, unless the joint softens with slip (`bondSurvivesSlip`): then
-/// a sliding contact resists with c·L + N tanφ of its current (softened) strength, and, if the
-/// joint has no tensile strength, an opened one keeps its bond (separatesWithBond).
+/// bond for good, and so does sliding, unless the joint softens with slip (`bondSurvivesSlip`):
+/// then a sliding contact resists with c·L + N tanφ of its current (softened) strength, and, if
+/// the joint has no tensile strength, an opened one keeps its bond (separatesWithBond).
 ContactJudgement judgeVertexContact(ContactState state, int direction, bool bonded,
                                     const ContactResponse& r, const ContactStrength& s,
                                     const StateTolerance& tol = {});

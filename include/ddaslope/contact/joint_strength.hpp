@@ -14,6 +14,9 @@ struct ContactStrength {
   /// A joint with a weakening distance keeps its bond while it slides (the strength falls with
   /// the slip instead); a brittle one loses it the moment it slides.
   bool bondSurvivesSlip = false;
+  /// The joint has tensile strength (σt > 0): pulled open, its bond cracks, whatever share of it
+  /// this contact carries.
+  bool cracks = false;
   /// Barton–Bandis (bartonBandis): the friction of a normal force N over the share `length` is
   /// N tan(φr + jrc·log10(jcs·length/N)) / reduction, the angle held within [φr, 70°] (Barton's
   /// cap at low stress; above JCS the law has no roughness left). tanPhi is tan φr.

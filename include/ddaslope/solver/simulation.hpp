@@ -339,6 +339,11 @@ class Simulation {
     const double kn = jointNormalStiffness_[c.joint];
     return kn > 0 && c.geometry.overlap > 0 ? kn * 0.5 * c.geometry.overlap : penalty_;
   }
+  /// How far contact c stands open after the step just solved (m): an open contact's stored
+  /// normal force is still its spring's, the penalty times its (negative) penetration.
+  double openingAfterStep(const contact::Contact& c) const {
+    return c.closed() ? 0.0 : std::max(0.0, -c.normalForce / normalStiffness(c));
+  }
   double shearStiffness(const contact::Contact& c) const {
     const double ks = jointShearStiffness_[c.joint];
     return ks > 0 && c.geometry.overlap > 0 ? ks * 0.5 * c.geometry.overlap : shearPenalty_;
