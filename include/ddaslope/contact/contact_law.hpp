@@ -60,8 +60,9 @@ struct HalfState {
 ///   while sliding if the joint softens with slip).
 /// - Tension is judged at the ends: two end springs stand for a linear stress distribution whose
 ///   end stress is N_k/(L/2), so an end separates when N_k < −σt·L/2 (pure tension: N1 + N2 <
-///   −σt·L). When an end separates the whole bond fails: that half opens and the other carries
-///   on alone as a vertex-to-edge contact at the pivot, friction only (toppling).
+///   −σt·L). That half opens and the other carries on alone as a vertex-to-edge contact at the
+///   pivot (toppling). A brittle bond fails as a whole there; a softening joint's pivot keeps its
+///   share, and so does the opened end if the joint has no tensile strength (separatesWithBond).
 /// - While either half is open the pair is not an edge contact: each half is judged alone with
 ///   half the bond (c·L/2, σt·L/2), as original DDA does.
 /// `s1`, `s2`: each half's strength over L/2 (the halves may have slipped, so softened, apart).
