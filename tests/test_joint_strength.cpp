@@ -217,6 +217,32 @@ TEST(SofteningJoints, ASeparationBreaksTheBondAtTheWeakeningDistance) {
   for (const contact::Contact& c : lost) EXPECT_FALSE(c.bonded);
 }
 
+// Stage 3 that stalls hands the analysis its quietest state. The chair slide at c = 55.6 kPa and
+// Δt 1 ms settles into a slow cycle of switching contacts and stops nearing rest; stage 2's state,
+// the start before, implies 3.1 g in one step from rest at that Δt (`ddaslope run
+// cases/chair_slide.json --at-fos 1 --time-step 0.001 --set joints.sliding_surface.cohesion=55556
+// --verbose`, the first settling step; its first analysis step gives a block's centroid 0.57 g).
+// The start must be the quietest one found, a hundredth of that at most (measured 0.008 g),
+// reported as stalled, not at rest.
+TEST(SofteningJoints, AStalledSettlingStartsFromItsQuietestState) {
+  model::Scene scene = io::readCase(std::string(DDASLOPE_SOURCE_DIR) + "/cases/chair_slide.json",
+                                    {io::CaseOverride("analysis.time_step", 0.001),
+                                     io::CaseOverride("joints.sliding_surface.cohesion", 55556)});
+  solver::Simulation sim(scene);
+  sim.bringToEquilibrium(nullptr);
+  const auto& st = sim.statistics();
+  EXPECT_STREQ(st.settling, "stalled");
+  EXPECT_FALSE(st.startedAtRest);
+  EXPECT_LT(st.equilibriumResidual, 0.031) << "g";
+  EXPECT_GT(st.equilibriumResidual, 1e-6) << "g: a stall is not a rest";
+  // The first analysis step from that start: no block's centroid gathers more than 0.031 g.
+  const double dt = scene.settings.timeStep;
+  sim.advance();
+  double fastest = 0;
+  for (const model::Block& b : sim.scene().blocks) fastest = std::max(fastest, b.velocity.head<2>().norm());
+  EXPECT_LT(fastest / dt / 9.81, 0.031) << "g";
+}
+
 // The chair slide's critical cohesion is the slope's, not the time step's: a search at Δt 0.5, 1
 // and 3 ms (the case's own step is 4.2 ms), on the shipped 50 m blocks and on 40 m blocks, lands
 // within issue #14's 10 % of the slices' limit equilibrium with the joints' 40° (48.50 kPa for

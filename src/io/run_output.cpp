@@ -150,7 +150,8 @@ void writeSummary(const fs::path& dir, const model::Scene& scene, const RunOptio
                       {"converged", st.equilibriumConverged},
                       {"relaxed", st.relaxationConverged},
                       {"settling_steps", st.settlingSteps},
-                      {"started_at_rest", st.startedAtRest}};
+                      {"started_at_rest", st.startedAtRest},
+                      {"settling", st.settling}};
   if (scene.seismic.active()) {
     ordered_json q = {{"k_h", scene.seismic.kh}, {"k_v", scene.seismic.kv}};
     const model::GroundMotion& g = scene.seismic.ground;

@@ -454,6 +454,7 @@ void Simulation::bringToEquilibrium(const HeldEquilibrium* shared) {
                                      : "equilibrium (relaxation): rest not confirmed at the analysis Δt; settling dynamically");
       const Settled settled = settleDynamically();
       stats_.startedAtRest = settled == Settled::AtRest;
+      stats_.settling = settled == Settled::AtRest ? "at_rest" : settled == Settled::Stalled ? "stalled" : "failed";
       // Without stage 2, "relaxed" reports whether the real contact law found rest at all.
       if (skipStaticRelaxation) {
         stats_.relaxationConverged = stats_.startedAtRest;

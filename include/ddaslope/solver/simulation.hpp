@@ -59,6 +59,9 @@ struct RunStatistics {
   bool startedAtRest = true;         ///< the analysis starts from a confirmed rest (stage 2 or 3;
                                      ///< false without initial_equilibrium)
   bool gaveWayWhileSettling = false;  ///< stages 2–3 ended as a block passed stopSettlingPast()'s limit
+  /// How stage 3 ended: "" (it did not run), "at_rest", "stalled" (the analysis starts from its
+  /// quietest state) or "failed" (from stage 2's state, or stage 1's).
+  const char* settling = "";
   int symbolicAnalyses = 0;
   long factorisations = 0;         ///< numeric Cholesky factorisations
   long factorUpdates = 0;          ///< low-rank factor updates that replaced one (factor updates)
