@@ -141,7 +141,7 @@ TEST(EdgeContact, RuleJudgesTotalsAndSplitsAtAPivot) {
 }
 
 // A softening joint without tensile strength has nothing to crack: an end pulled open separates
-// with its share of the bond (damaged later by the opening, Simulation::commit), and the pivot
+// with its share of the bond (lost later if it opens by the weakening distance), and the pivot
 // keeps its own. With σt > 0 the tension cracks the opened end's bond (the pivot keeps its own),
 // and a brittle joint loses the whole bond, the founding paper's rule. The same for a lone
 // vertex-to-edge contact (docs/contact-model.md, "Separation without tensile strength").

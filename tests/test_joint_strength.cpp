@@ -190,8 +190,8 @@ TEST(ChairSlide, SofteningJointsKeepTheButtressThatBrittleBondsLose) {
 // (with 2 v tan α up the slope, so that it comes down where it left). Its contacts record the
 // largest opening, the hop's height v²/(2 g cos α) = 14.7 mm (within 2 %: the springs' penetration
 // at rest and the first step's share), and at the top of the hop, before it lands, a weakening
-// distance of 1 km has kept the bond and one of 8 mm has lost it. (Losing the bond to any opening,
-// as before, lost both.)
+// distance of 1 km has kept the bond and one of 8 mm has lost it. (A rule that drops the bond at
+// any opening loses both.)
 TEST(SofteningJoints, ASeparationBreaksTheBondAtTheWeakeningDistance) {
   InclineSpec spec{30, 2, 1, 20, 0, 2600, 9.81};
   spec.cohesion = 2 * model::criticalCohesion(spec);
@@ -218,12 +218,11 @@ TEST(SofteningJoints, ASeparationBreaksTheBondAtTheWeakeningDistance) {
 }
 
 // Stage 3 that stalls hands the analysis its quietest state. The chair slide at c = 55.6 kPa and
-// Δt 1 ms settles into a slow cycle of switching contacts and stops nearing rest; stage 2's state,
-// the start before, implies 3.1 g in one step from rest at that Δt (`ddaslope run
-// cases/chair_slide.json --at-fos 1 --time-step 0.001 --set joints.sliding_surface.cohesion=55556
-// --verbose`, the first settling step; its first analysis step gives a block's centroid 0.57 g).
-// The start must be the quietest one found, a hundredth of that at most (measured 0.008 g),
-// reported as stalled, not at rest.
+// Δt 1 ms settles into a slow cycle of switching contacts and stops nearing rest; stage 2's state
+// implies 3.1 g in one step from rest at that Δt (`ddaslope run cases/chair_slide.json --at-fos 1
+// --time-step 0.001 --set joints.sliding_surface.cohesion=55556 --verbose`, the first settling
+// step), and started from it the first analysis step gives a block's centroid 0.57 g. The start
+// must be the quietest state found, a hundredth of that at most, reported as stalled, not at rest.
 TEST(SofteningJoints, AStalledSettlingStartsFromItsQuietestState) {
   model::Scene scene = io::readCase(std::string(DDASLOPE_SOURCE_DIR) + "/cases/chair_slide.json",
                                     {io::CaseOverride("analysis.time_step", 0.001),
@@ -248,10 +247,9 @@ TEST(SofteningJoints, AStalledSettlingStartsFromItsQuietestState) {
 // within issue #14's 10 % of the slices' limit equilibrium with the joints' 40° (48.50 kPa for
 // 50 m blocks, 49.0 for 40 m: scripts/chair_slide.py le) and above the blocks' static bound (44.12
 // and 46.0 kPa, scripts/block_equilibrium.py; tolerance the search's 500 Pa bracket). Smaller
-// steps leave the ringing that follows the release of the held start undamped; it used to end a
-// settling that found no rest with a 3 g kick and to break the bond of every edge-contact end it
-// lifted, and the answer followed Δt: 58.1 kPa at 1 ms and 66.9 at 0.5 ms, failed by the crown
-// block (docs/contact-model.md, "Separation without tensile strength"). Six searches, about 5 s.
+// steps leave the ringing that follows the release of the held start undamped: a kick from a
+// settling that found no rest, or bonds broken at every edge-contact end the ringing lifts, make
+// the answer follow Δt (docs/contact-model.md, "Separation without tensile strength").
 TEST(ChairSlide, CriticalCohesionDoesNotFollowTheTimeStep) {
   const std::string path = std::string(DDASLOPE_SOURCE_DIR) + "/cases/chair_slide.json";
   constexpr double kBracket = 500;
@@ -269,7 +267,7 @@ TEST(ChairSlide, CriticalCohesionDoesNotFollowTheTimeStep) {
       EXPECT_GE(c, l.bound - kBracket) << l.spacing << " m blocks, Δt " << dt;
       least = std::min(least, c), most = std::max(most, c);
     }
-    // And no trend with Δt beyond half of that tolerance (the spread measured: 1.2 and 1.7 kPa).
+    // And no trend with Δt beyond half of that tolerance.
     EXPECT_LE(most - least, 0.05 * l.wedges) << l.spacing << " m blocks";
   }
 }

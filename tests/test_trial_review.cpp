@@ -10,10 +10,13 @@
 #include <mutex>
 #include <set>
 
+#include <nlohmann/json.hpp>
+
 #include "ddaslope/calibration/strength_search.hpp"
 #include "ddaslope/calibration/trial_report.hpp"
 #include "ddaslope/calibration/verdict.hpp"
 #include "ddaslope/io/case_reader.hpp"
+#include "ddaslope/io/json_record.hpp"
 
 using namespace ddaslope;
 using calibration::TrialResult;
@@ -168,7 +171,9 @@ TEST(SearchReview, ResolvesAContradictionByRunningTheTrialsLonger) {
   const auto r = calibration::factorOfSafetyOf(v, 0.005, twoAtOnce());
   ASSERT_TRUE(r.found) << r.message;
   EXPECT_FALSE(r.review.contradiction);
-  EXPECT_TRUE(std::isnan(r.review.mixedLow) && std::isnan(r.review.mixedHigh));  // mixed_range [null, null]
+  io::JsonRecord j;
+  calibration::appendReview(j, r.review, r.stableEnd, r.failingEnd);
+  EXPECT_TRUE(nlohmann::json::parse(j.dump())["review"]["mixed_range"][0].is_null());
   EXPECT_GE(r.review.reruns, 1);
   EXPECT_NEAR(r.factor, 1.0, 0.005);
   bool rerunSeen = false;
@@ -192,9 +197,12 @@ TEST(SearchReview, ReportsAContradictionItCannotResolve) {
   EXPECT_LT(r.stableEnd, 0.77);
   EXPECT_GE(r.failingEnd, 1.0);
   EXPECT_LT(r.failingEnd, 1.0 + 0.1);
-  // The review carries that range (the result file's review.mixed_range), found or not.
-  EXPECT_EQ(r.review.mixedLow, r.stableEnd);
-  EXPECT_EQ(r.review.mixedHigh, r.failingEnd);
+  // The result file's review carries that range, though no answer was found.
+  io::JsonRecord j;
+  calibration::appendReview(j, r.review, r.stableEnd, r.failingEnd);
+  const nlohmann::json review = nlohmann::json::parse(j.dump())["review"];
+  EXPECT_EQ(review["mixed_range"][0].get<double>(), r.stableEnd);
+  EXPECT_EQ(review["mixed_range"][1].get<double>(), r.failingEnd);
 }
 
 // A trial that moved the failure displacement while it settled was decided by the equilibrium,

@@ -451,7 +451,6 @@ void reviewTrials(Result& r, CountedVerdict& v, bool stableBelow, std::pair<doub
         if (!t.stable && o(x) > hs && o(x) < above) above = o(x), aboveValue = x;
       }
       r.review.contradiction = true;
-      r.review.mixedLow = std::min(belowValue, aboveValue), r.review.mixedHigh = std::max(belowValue, aboveValue);
       // Trials that disagree by less than the precision asked for, or within a mixed range of 1 %
       // of the value (DDA near a critical strength: which block gives way first), do not unsettle
       // the answer, given over the whole mixed range.

@@ -1,6 +1,9 @@
 #include "ddaslope/calibration/trial_report.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <sstream>
+#include <vector>
 
 namespace ddaslope::calibration {
 namespace {
@@ -29,10 +32,11 @@ void appendTrials(io::JsonRecord& j, const std::vector<TrialRecord>& trials, con
   }
 }
 
-void appendReview(io::JsonRecord& j, const TrialReview& review) {
+void appendReview(io::JsonRecord& j, const TrialReview& review, double stableEnd, double failingEnd) {
   io::JsonRecord r;
   r.set("contradiction", review.contradiction).set("undecided", review.undecided).set("reruns", review.reruns);
-  r.set("mixed_range", std::vector<double>{review.mixedLow, review.mixedHigh});
+  r.set("mixed_range", review.contradiction ? std::vector<double>{std::min(stableEnd, failingEnd), std::max(stableEnd, failingEnd)}
+                                            : std::vector<double>{NAN, NAN});
   j.set("review", r);
 }
 

@@ -150,7 +150,7 @@ int jrcCommand(const std::string& casePath, const Overrides& o, ddaslope::model:
     j.set("forward_runs", totalRuns(r.runs, crack)).set("runs_ahead_unused", r.runsAheadUnused);
     j.set("wall_time_s", totalWallTime(r.wallTime, crack));
     j.set("message", r.message).set("settings", settingsLine(scene));
-    ddaslope::calibration::appendReview(j, r.review);
+    ddaslope::calibration::appendReview(j, r.review, r.stableEnd, r.failingEnd);
     ddaslope::calibration::appendTrials(j, r.trials, "jrc");
     if (scene.tensionCrack) appendCrackSearch(j, crack ? *crack : CrackSearch{}, scene, "critical jrc");
     writeResultFile(opt.outDir + "/critical.json", j.dump() + "\n");
@@ -247,7 +247,7 @@ int seismicCoefficientCommand(const std::string& casePath, const Overrides& o, d
     j.set("forward_runs", totalRuns(runs, crack)).set("runs_ahead_unused", ahead);
     j.set("wall_time_s", wall).set("message", r.message);
     j.set("settings", settingsLine(searched));
-    ddaslope::calibration::appendReview(j, r.review);
+    ddaslope::calibration::appendReview(j, r.review, r.stableEnd, r.failingEnd);
     ddaslope::calibration::appendTrials(j, r.trials, "k_h");
     if (scene.tensionCrack) appendCrackSearch(j, crack ? *crack : CrackSearch{}, scene, quantity);
     if (!opt.vtkDir.empty()) j.set("vtk", opt.vtkDir);
@@ -352,7 +352,7 @@ int criticalCommand(const std::string& casePath, const Overrides& o, const Criti
     j.set("forward_runs", totalRuns(r.runs, crack)).set("runs_ahead_unused", r.runsAheadUnused);
     j.set("wall_time_s", totalWallTime(r.wallTime, crack));
     j.set("message", r.message).set("settings", settingsLine(scene));
-    ddaslope::calibration::appendReview(j, r.review);
+    ddaslope::calibration::appendReview(j, r.review, r.stableEnd, r.failingEnd);
     ddaslope::calibration::appendTrials(j, r.trials, cohesion ? "cohesion_pa" : "friction_angle_deg");
     if (!opt.vtkDir.empty()) j.set("vtk", opt.vtkDir);
     j.set("mechanism_pictures", drawn).set("warnings", warnings);

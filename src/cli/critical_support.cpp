@@ -181,7 +181,7 @@ int supportCommand(const std::string& casePath, const Overrides& o, ddaslope::mo
     j.set("forward_runs", totalRuns(r.runs, crack)).set("runs_ahead_unused", r.runsAheadUnused);
     j.set("wall_time_s", totalWallTime(r.wallTime, crack));
     j.set("message", r.message).set("settings", settingsLine(scene));
-    cal::appendReview(j, r.review);
+    cal::appendReview(j, r.review, r.stableEnd, r.failingEnd);
     cal::appendTrials(j, r.trials, "value_n_per_m");
     if (scene.tensionCrack) appendCrackSearch(j, crack ? *crack : CrackSearch{}, scene, "critical support (N/m)");
     if (!opt.vtkDir.empty()) j.set("vtk", opt.vtkDir);

@@ -239,7 +239,7 @@ int fosCommand(const std::string& casePath, const Overrides& o, const FosOptions
     j.set("runs_ahead_unused", r.runsAheadUnused);
     j.set("wall_time_s", totalWallTime(r.wallTime, crack)).set("message", message);
     j.set("settings", settingsLine(scene)).set("trial_start", ddaslope::calibration::name(r.trialStart));
-    ddaslope::calibration::appendReview(j, r.review);
+    ddaslope::calibration::appendReview(j, r.review, r.stableEnd, r.failingEnd);
     ddaslope::calibration::appendTrials(j, r.trials, "factor");
     if (!opt.vtkDir.empty()) j.set("vtk", opt.vtkDir);
     j.set("mechanism_pictures", drawn).set("warnings", warnings);

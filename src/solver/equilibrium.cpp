@@ -159,7 +159,7 @@ Simulation::Settled Simulation::settleDynamically() {
   int stalledPeaks = 0, lastHalved = 0;
   // A settling that stalls leaves the scene in the quietest state it reached: the state at rest
   // from which a step implied the least acceleration. Stage 2's rest, the fallback otherwise, can
-  // be far from rest at the analysis Δt (3 g in one step from it on the chair slide at Δt 1 ms),
+  // be far from rest at the analysis Δt (docs/case-format.md, stage 3, has a case),
   // and the analysis, undamped, would start with that kick: blocks rock, the halves that open
   // lose their bond, and the verdict follows Δt.
   // Only a full step at the analysis Δt under every contact's own law measures the kick the

@@ -38,9 +38,6 @@ struct TrialReview {
   bool contradiction = false;  ///< trials still contradict after their re-runs
   bool undecided = false;      ///< the answer's bracket is bounded by undecided trials
   int reruns = 0;              ///< trials re-run longer
-  /// Where the verdicts are mixed when they contradict (the answer lies in it, found or not);
-  /// NaN otherwise.
-  double mixedLow = std::numeric_limits<double>::quiet_NaN(), mixedHigh = std::numeric_limits<double>::quiet_NaN();
 };
 
 enum class TrialStart { Settled, Held };

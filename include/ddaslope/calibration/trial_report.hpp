@@ -17,8 +17,10 @@ namespace ddaslope::calibration {
 void appendTrials(io::JsonRecord& j, const std::vector<TrialRecord>& trials, const std::string& valueKey);
 
 /// Appends the search's review of its trials under "review": whether trials still contradicted
-/// after their re-runs, whether undecided trials bound the answer, and how many trials were re-run.
-void appendReview(io::JsonRecord& j, const TrialReview& review);
+/// after their re-runs, whether undecided trials bound the answer, how many trials were re-run,
+/// and, when they contradict, the range where the verdicts are mixed (`mixed_range`: the search's
+/// stable and failing ends, which it sets to that range, found or not; nulls otherwise).
+void appendReview(io::JsonRecord& j, const TrialReview& review, double stableEnd, double failingEnd);
 
 /// A trial called failed while its monitors moved less than this fraction of the failure
 /// displacement deserves a look: its verdict rests on the trend of the motion, not its size.
