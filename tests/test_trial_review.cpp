@@ -86,6 +86,43 @@ TEST(SmallMotion, ASlideItsPaceCarriesPastTheFailureDisplacementRunsOnToIt) {
   EXPECT_NEAR(far.lastWindowMotion, 0.005 * (1 - 0.75 * 0.75), 0.05 * 0.0021875) << "m: a t²/2 from 0.75 to 1 s";
 }
 
+// A search's first run judged failing on its trend goes on in place to the review's re-run
+// length (VerdictSettings::runOnLength) and is judged there as a run that long from t = 0 is:
+// same rule, time and steps. The block accelerated at 0.01 m/s² from rest moves a t²/2:
+// against 4 cm it is still moving at 1 s (5 mm, over 10 % of it) and passes at √(2 · 0.04 / 0.01)
+// = 2.83 s; against 10 cm it is still moving at 2 s, and at 4 s (8 cm) its pace carries it past
+// within a window, which it passes at √20 = 4.47 s; against 30 cm it is still moving at 4 s.
+TEST(SmallMotion, ATrendFailureRunsOnInPlaceAsItsReRunWould) {
+  const struct {
+    double failure;
+    calibration::VerdictRule rule;
+    double time;
+  } cases[] = {{0.04, calibration::VerdictRule::PassedDisplacement, std::sqrt(2 * 0.04 / 0.01)},
+               {0.1, calibration::VerdictRule::PassedDisplacement, std::sqrt(2 * 0.1 / 0.01)},
+               {0.3, calibration::VerdictRule::StillMoving, calibration::kReRunLength}};
+  for (const auto& c : cases) {
+    calibration::VerdictSettings v;
+    v.failureDisplacement = c.failure;
+    v.runOnLength = calibration::kReRunLength;
+    const TrialResult ranOn = calibration::judgeStability(blockOnFrictionlessBase(0, 0.01, false), v);
+    v.runOnLength = 1;
+    model::Scene longer = blockOnFrictionlessBase(0, 0.01, false);
+    longer.settings.duration *= calibration::kReRunLength;
+    const TrialResult reRun = calibration::judgeStability(longer, v);
+    EXPECT_TRUE(ranOn.runOn) << c.failure;
+    EXPECT_FALSE(reRun.runOn) << c.failure;
+    EXPECT_EQ(ranOn.rule, c.rule) << c.failure << ": " << ranOn.reason;
+    EXPECT_EQ(reRun.rule, c.rule) << c.failure << ": " << reRun.reason;
+    EXPECT_NEAR(ranOn.timeReached, c.time, 0.002) << c.failure;
+    // The same path, to the round-off of summing the time steps in another order.
+    EXPECT_NEAR(ranOn.timeReached, reRun.timeReached, 1e-9 * c.time) << c.failure;
+    EXPECT_EQ(ranOn.steps, reRun.steps) << c.failure;
+    EXPECT_NEAR(ranOn.maxDisplacement, reRun.maxDisplacement, 1e-9 * c.failure) << c.failure;
+    EXPECT_NEAR(ranOn.maxDisplacement, std::min(c.failure, 0.5 * 0.01 * c.time * c.time), 0.05 * c.failure)
+        << c.failure << ": a t²/2";
+  }
+}
+
 // A block gliding at a constant 1 cm/s moves 4 cm in 4 s against a failure displacement of 1 m:
 // under 10 % of it, and neither growing nor stopping (Newton's first law: no force, no change). It
 // must be undecided after three extensions, not failure.
@@ -287,6 +324,32 @@ TEST(SearchReview, OneThreadSearchChecksItsFailingEnd) {
   ASSERT_TRUE(r.found) << r.message;
   EXPECT_NEAR(r.factor, 1.0, 0.005);
   EXPECT_GE(r.review.reruns, 1);
+}
+
+// Trend failures already run on to the re-run length (TrialResult::runOn) are their own
+// re-runs: the review runs nothing again, and the answer is the bisection's, F = 1.
+TEST(SearchReview, TrendFailuresRunOnAreNotRunAgain) {
+  std::mutex m;
+  int longerRuns = 0;
+  FakeVerdict v;
+  v.special = [&](double f, double length, TrialResult& r) {
+    if (!r.stable && f < 1.1) r.rule = calibration::VerdictRule::StillMoving, r.runOn = length == 1;
+    if (length > 1) {
+      const std::lock_guard<std::mutex> lock(m);
+      ++longerRuns;
+    }
+    return true;
+  };
+  for (int threads : {1, 2}) {
+    calibration::SearchSettings s;
+    s.threads = threads;
+    longerRuns = 0;
+    const auto r = calibration::factorOfSafetyOf(v, 0.005, s);
+    ASSERT_TRUE(r.found) << r.message;
+    EXPECT_NEAR(r.factor, 1.0, 0.005);
+    EXPECT_EQ(r.review.reruns, 0) << threads;
+    EXPECT_EQ(longerRuns, 0) << threads;
+  }
 }
 
 // A monotone verdict is left alone: no re-runs, the bisection's own answer.

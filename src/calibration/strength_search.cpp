@@ -205,6 +205,15 @@ std::optional<solver::HeldEquilibrium> sharedEquilibrium(const model::Scene& sce
   return sim.holdEquilibrium();
 }
 
+/// The verdict of a trial `length` times the case's duration: a first run (length 1) runs a
+/// trend failure on to the review's re-run length itself, so that the review need not run it
+/// again from t = 0 (VerdictSettings::runOnLength); a re-run is judged at its own length.
+VerdictSettings verdictOf(const SearchSettings& s, double length) {
+  VerdictSettings v = s.verdict;
+  v.runOnLength = length == 1 ? kReRunLength : 1;
+  return v;
+}
+
 /// The search's observer of final states, told the value tried; none if the search has none.
 TrialEndObserver endOf(const SearchSettings& s, double value) {
   if (!s.finalStates) return {};
@@ -407,6 +416,11 @@ void reviewTrials(Result& r, CountedVerdict& v, bool stableBelow, std::pair<doub
   std::set<double> rerun;
   std::set<std::pair<double, double>> narrowed;
   bool probed = false, changed = false;
+  // A trend failure run on in place to the re-run length (TrialResult::runOn) is its own re-run.
+  const auto takeRunsOn = [&] {
+    for (const TrialRecord& t : v.trials)
+      if (t.result.runOn) rerun.insert(t.value);
+  };
   const auto reRun = [&](const std::vector<double>& values) {
     // A trial that moved the failure displacement while it settled was decided before t = 0, by
     // the equilibrium alone, which the run's length does not enter: run longer, it fails on the
@@ -423,6 +437,7 @@ void reviewTrials(Result& r, CountedVerdict& v, bool stableBelow, std::pair<doub
     changed = true;
   };
   for (int round = 0; round < 12; ++round) {
+    takeRunsOn();
     const std::map<double, TrialResult> by = verdictsByValue(v.trials);
     bool anyStable = false;
     double hs = -INFINITY, lf = INFINITY, lfAny = INFINITY, hsValue = 0, lfValue = 0, lfAnyValue = 0;
@@ -464,7 +479,7 @@ void reviewTrials(Result& r, CountedVerdict& v, bool stableBelow, std::pair<doub
       if (by.at(lfAnyValue).rule == VerdictRule::MovedWhileSettling)
         m << "where it moved the failure displacement while it settled, before t = 0, which no run length changes; ";
       else if (rerun.count(lfAnyValue))
-        m << "also when re-run " << kReRunLength << " times longer; ";
+        m << "also when run " << kReRunLength << " times longer; ";
       else
         m << "and the review's rounds of re-runs are spent; ";
       if (r.found)
@@ -543,7 +558,7 @@ CriticalResult criticalCohesion(const model::Scene& scene, int joint, double fri
     trial.settings.duration *= length;
     trial.joints[joint].cohesion = c;
     trial.joints[joint].frictionAngle = degToRad(frictionDeg);
-    return judgeStability(trial, s.verdict, held ? &*held : nullptr, endOf(s, c));
+    return judgeStability(trial, verdictOf(s, length), held ? &*held : nullptr, endOf(s, c));
   }, s, "c (Pa)", width};
   CriticalResult r;
   double failing = 0, hi = initialGuess;
@@ -585,7 +600,7 @@ CriticalResult criticalFriction(const model::Scene& scene, int joint, double coh
     trial.settings.duration *= length;
     trial.joints[joint].cohesion = cohesion;
     trial.joints[joint].frictionAngle = degToRad(phiDeg);
-    return judgeStability(trial, s.verdict, held ? &*held : nullptr, endOf(s, phiDeg));
+    return judgeStability(trial, verdictOf(s, length), held ? &*held : nullptr, endOf(s, phiDeg));
   }, s, "φ (°)", width};
   const BisectionResult b = bisectWith(stableAt, 0.0, 89.9, width, s.threads);
   CriticalResult r;
@@ -613,7 +628,7 @@ CriticalResult criticalJrc(const model::Scene& scene, int joint, double width, c
     model::Scene trial = scene;
     trial.settings.duration *= length;
     trial.joints[joint].bartonBandis->jrc = jrc;
-    return judgeStability(trial, s.verdict, held ? &*held : nullptr, endOf(s, jrc));
+    return judgeStability(trial, verdictOf(s, length), held ? &*held : nullptr, endOf(s, jrc));
   }, s, "JRC", width};
   constexpr double kLargest = 20;
   const BisectionResult b = bisectWith(stableAt, 0.0, kLargest, width, s.threads);
@@ -643,7 +658,7 @@ CriticalResult criticalSeismicCoefficient(const model::Scene& scene, int directi
     trial.seismic.kh = direction * k;
     trial.seismic.ground = {};  // k_y belongs to the slope, not to a record
     // Told k_h as applied; k = 0 is one trial whatever the direction (not −0 and 0).
-    return judgeStability(trial, s.verdict, nullptr, endOf(s, k == 0 ? 0.0 : direction * k));
+    return judgeStability(trial, verdictOf(s, length), nullptr, endOf(s, k == 0 ? 0.0 : direction * k));
   }, s, "k_h (g)", width};
   constexpr double kFirst = 0.05, kLargest = 2.0;
   CriticalResult r;
@@ -701,7 +716,7 @@ CriticalResult criticalSupport(const model::Scene& scene, const std::string& id,
     model::Scene trial = reduced;
     trial.settings.duration *= length;
     trial.setSupportQuantity(id, x);
-    return judgeStability(trial, s.verdict, nullptr, endOf(s, x));
+    return judgeStability(trial, verdictOf(s, length), nullptr, endOf(s, x));
   }, s, "support (N/m)", width};
   CriticalResult r;
   constexpr double kLargest = 1e12;
@@ -831,11 +846,11 @@ FactorOfSafetyResult factorOfSafety(const model::Scene& scene, const std::vector
         for (int j : reduced) trial.joints[j] = scene.joints[j].reducedBy(f);
         if (first.exchange(false)) {
           const bool keep = held && f == 1 && length == 1;
-          TrialResult r = judgeStability(trial, s.verdict, held ? &*held : nullptr, endOf(s, f), keep ? &settled : nullptr);
+          TrialResult r = judgeStability(trial, verdictOf(s, length), held ? &*held : nullptr, endOf(s, f), keep ? &settled : nullptr);
           if (!r.stable) settled.reset();
           return r;
         }
-        return judgeStability(trial, s.verdict, settled ? &*settled : held ? &*held : nullptr, endOf(s, f));
+        return judgeStability(trial, verdictOf(s, length), settled ? &*settled : held ? &*held : nullptr, endOf(s, f));
       },
       width, s);
   r.trialStart = settled ? TrialStart::Settled : TrialStart::Held;

@@ -28,6 +28,7 @@ void appendTrials(io::JsonRecord& j, const std::vector<TrialRecord>& trials, con
     item.set("time_s", r.timeReached).set("steps", r.steps);
     item.set("equilibrium_steps", r.equilibriumSteps).set("extended", r.extended).set("extensions", r.extensions);
     item.set("marginal", r.marginal).set("rerun", t.rerun).set("early_rest", r.earlyRest);
+    item.set("run_on", r.runOn);
     j.append("trials", item);
   }
 }

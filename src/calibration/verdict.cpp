@@ -340,6 +340,10 @@ TrialResult judgeStability(const model::Scene& scene, const VerdictSettings& set
     return r;
   };
   bool ranOn = false;  // a failing slide run on to the failure displacement
+  // The run's unit: its duration, or the run-on length once a trend failure is run on (an
+  // extension adds one unit, judged on quarters of the whole, as a re-run that long would be).
+  double unit = scene.settings.duration;
+  int extensions = 0;  // extensions of the current unit
   try {
     // Rule (0) is decided the moment a point passes the threshold while the scene settles.
     sim.stopSettlingPast(threshold);
@@ -392,13 +396,29 @@ TrialResult judgeStability(const model::Scene& scene, const VerdictSettings& set
       const bool failing = j.verdict == WindowVerdict::StillMoving;
       // A marginal verdict is not guessed, and a small motion is failure only if it grows: run as
       // long again, then judge on quarters of the whole.
-      if ((j.marginal && r.extensions == 0) || (!failing && j.smallMotion && r.extensions < kMaxExtensions)) {
-        ++r.extensions;
+      if ((j.marginal && extensions == 0) || (!failing && j.smallMotion && extensions < kMaxExtensions)) {
+        ++extensions, ++r.extensions;
         r.extended = true;
-        sim.extendDuration(scene.settings.duration);
+        sim.extendDuration(unit);
         continue;
       }
       if (!failing && j.smallMotion) return finish(VerdictRule::Undecided);
+      // A trend failure is run on in place to settings.runOnLength times the duration and judged
+      // afresh there: the path and the judgement of a search review's re-run that long from t = 0
+      // (VerdictSettings::runOnLength), without running the first stretch twice.
+      const double runOnTo = settings.runOnLength * scene.settings.duration;
+      if (failing && !r.runOn && settings.runOnLength > 1) {
+        r.runOn = true;
+        unit = runOnTo;
+        extensions = 0;
+        for (std::vector<double>& sp : points.speeds) sp.clear();
+        if (sim.time() < runOnTo * (1 - 1e-9)) {
+          ++r.extensions;
+          r.extended = true;
+          sim.extendDuration(runOnTo - sim.time());
+          continue;
+        }
+      }
       // A slide that its last window's pace, not slowing, carries past the failure displacement
       // within one more window is run on (as long again, stopping there: rule (a), certain)
       // rather than called failing on its trend, which a search's review re-runs from the start
@@ -407,7 +427,7 @@ TrialResult judgeStability(const model::Scene& scene, const VerdictSettings& set
         ranOn = true;
         ++r.extensions;
         r.extended = true;
-        sim.extendDuration(scene.settings.duration);
+        sim.extendDuration(unit);
         continue;
       }
       r.marginal = j.marginal;

@@ -386,7 +386,7 @@ std::string trialValueKey(const json& trial) {
   static const std::vector<std::string> verdictKeys = {
       "stable", "undecided", "rule", "max_displacement_m", "failure_displacement_m", "settling_displacement_m",
       "last_window_motion_m", "previous_window_motion_m", "noise_floor_m", "final_speed_m_s", "moved_most",
-      "decided_by", "time_s", "steps", "equilibrium_steps", "extended", "extensions", "marginal", "rerun", "early_rest"};
+      "decided_by", "time_s", "steps", "equilibrium_steps", "extended", "extensions", "marginal", "rerun", "early_rest", "run_on"};
   for (const auto& [k, v] : trial.items())
     if (v.is_number() && std::find(verdictKeys.begin(), verdictKeys.end(), k) == verdictKeys.end()) return k;
   return "";
@@ -427,6 +427,7 @@ std::string trialsTable(const json& trials) {
     note(t.value("extended", false), "run extended " + std::to_string(t.value("extensions", 0)) + " times");
     note(t.value("marginal", false), "marginal (the 90 % rule)");
     note(t.value("rerun", false), "run again");
+    note(t.value("run_on", false), "a trend failure run on in place, standing as its own re-run");
     note(t.value("early_rest", false), "stopped early: at rest for certain");
     h += "<tr><td>" + std::to_string(++n) + "</td><td>" + (key.empty() ? "&ndash;" : scalar(t.at(key))) + "</td><td>" +
          verdict + "</td><td>" + escape(rules.count(rule) ? rules[rule] : rule) + "</td><td>" +

@@ -28,6 +28,8 @@ namespace ddaslope::calibration {
 ///     duration, stopping at the threshold). Rule (a) decides it if it gets there; if it does not,
 ///     the windows of the longer run do, as after any extension. The path is the one a longer
 ///     run follows, so the verdict is the one a search's re-run of a trend failure would reach.
+///     In a search (VerdictSettings::runOnLength), a trend failure is run on further, to the
+///     length of the review's re-run, and judged afresh there.
 /// A still-moving motion under 10 % of `failureDisplacement` that neither grows nor stops within
 /// three extensions of the run (each by its duration) is **undecided**: reported as such, never as
 /// failure: a contact chattering at a T-junction moves a little and steadily, and is no failure.
@@ -59,6 +61,12 @@ struct VerdictSettings {
   /// m/s; ≤ 0: 1e-4 of failureDisplacement per second. A net motion slower than this over a
   /// window counts as rest whatever the noise.
   double restingSpeed = 0;
+  /// > 1: a run judged failing on its trend (rule b) before this many times its duration goes on
+  /// in place to that length and is judged afresh there, on quarters of the whole (its extensions
+  /// then each that long), as a run that long from t = 0 along the same path would be
+  /// (TrialResult::runOn). A search sets its review's re-run length (kReRunLength) so that no
+  /// trend failure is run twice; 1: judged at the duration.
+  double runOnLength = 1;
 };
 
 /// Which rule decided a verdict.
@@ -101,6 +109,9 @@ struct TrialResult {
   bool marginal = false;           ///< still marginal after the extension: decided by the 90 % rule
   bool converged = true;           ///< false if the run hit non-convergence (counted as failing)
   bool earlyRest = false;          ///< stopped before its duration: at rest for good (early rest)
+  /// Judged failing on its trend and run on to VerdictSettings::runOnLength times its duration:
+  /// the verdict is that of the longer run (a search's review takes it as its own re-run).
+  bool runOn = false;
   const char* reason = "";         ///< describe(rule)
 };
 
