@@ -405,3 +405,29 @@ TEST(SearchReview, AnUnconvergedFailingEndIsReported) {
   const auto plain = calibration::factorOfSafetyOf(FakeVerdict{}, 0.005, twoAtOnce());
   EXPECT_EQ(calibration::unconvergedEndWarning(plain.trials, plain.found, plain.failingEnd, "F"), "");
 }
+
+// A failing end that did not start from rest is reported when its start could have decided it: a
+// stalled settling whose quietest state implied more than kStartKick (the chair at penalty factor
+// 2000: 2.36 g), or a settling that travelled like a failing scene without passing the failure
+// displacement; not a stalled start as quiet as the shipped searches' (0.022 g at most), nor a
+// failure while settling (rule 0, decided before t = 0 on the settling's own path).
+TEST(SearchReview, AFailingEndThatDidNotStartFromRestIsReported) {
+  const auto warning = [](const char* settling, double kick, calibration::VerdictRule rule) {
+    FakeVerdict v;
+    v.special = [&](double, double, TrialResult& r) {
+      if (!r.stable) r.settling = settling, r.startAcceleration = kick, r.rule = rule;
+      return true;
+    };
+    const auto r = calibration::factorOfSafetyOf(v, 0.005, twoAtOnce());
+    EXPECT_TRUE(r.found) << r.message;
+    return calibration::unrestedEndWarning(r.trials, r.found, r.failingEnd, "F", "slope.json");
+  };
+  using calibration::VerdictRule;
+  const std::string kicked = warning("stalled", 2.36, VerdictRule::PassedDisplacement);
+  EXPECT_NE(kicked.find("implied 2.36 g"), std::string::npos) << kicked;
+  EXPECT_NE(kicked.find("--at-fos"), std::string::npos) << kicked;
+  EXPECT_NE(warning("failed", 0, VerdictRule::StillMoving).find("did not start from rest"), std::string::npos);
+  EXPECT_EQ(warning("stalled", 0.022, VerdictRule::PassedDisplacement), "");
+  EXPECT_EQ(warning("failed", 0, VerdictRule::MovedWhileSettling), "");
+  EXPECT_EQ(warning("at_rest", 0, VerdictRule::PassedDisplacement), "");
+}

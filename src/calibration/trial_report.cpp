@@ -28,7 +28,7 @@ void appendTrials(io::JsonRecord& j, const std::vector<TrialRecord>& trials, con
     item.set("time_s", r.timeReached).set("steps", r.steps);
     item.set("equilibrium_steps", r.equilibriumSteps).set("extended", r.extended).set("extensions", r.extensions);
     item.set("marginal", r.marginal).set("rerun", t.rerun).set("early_rest", r.earlyRest);
-    item.set("run_on", r.runOn);
+    item.set("run_on", r.runOn).set("settling", r.settling).set("start_acceleration_g", r.startAcceleration);
     j.append("trials", item);
   }
 }
@@ -72,21 +72,54 @@ std::string smallMotionWarning(const std::vector<TrialRecord>& trials, const std
   return m.str();
 }
 
-std::string unconvergedEndWarning(const std::vector<TrialRecord>& trials, bool found, double failingEnd,
-                                  const std::string& valueLabel, const std::string& caseLabel) {
-  if (!found) return "";
-  // The verdict in force at the failing end: its re-run's, if it was re-run.
+namespace {
+/// The record in force at the failing end: its re-run's, if it was re-run.
+const TrialRecord* failingEndRecord(const std::vector<TrialRecord>& trials, double failingEnd) {
   const TrialRecord* end = nullptr;
   for (const TrialRecord& t : trials)
     if (t.value == failingEnd && (!end || t.rerun)) end = &t;
+  return end;
+}
+
+std::string runCommand(const std::string& valueLabel, const std::string& caseLabel, double value) {
+  return valueLabel == "F" ? "`ddaslope run " + caseLabel + " --at-fos " + shortNumber(value) + " --verbose`"
+                           : "`ddaslope run " + caseLabel + " --set ... --verbose` at that value";
+}
+}  // namespace
+
+std::string unrestedEndWarning(const std::vector<TrialRecord>& trials, bool found, double failingEnd,
+                               const std::string& valueLabel, const std::string& caseLabel) {
+  if (!found) return "";
+  const TrialRecord* end = failingEndRecord(trials, failingEnd);
+  if (!end || end->result.stable) return "";
+  const TrialResult& r = end->result;
+  const bool kicked = r.settling == "stalled" && r.startAcceleration > kStartKick;
+  const bool fromRelaxation = r.settling == "failed" && r.rule != VerdictRule::MovedWhileSettling;
+  if (!kicked && !fromRelaxation) return "";
+  std::ostringstream m;
+  m << "the bracket's failing end, " << valueLabel << " = " << shortNumber(failingEnd) << ", did not start from rest: ";
+  if (kicked)
+    m << "its settling found no rest, and a step from the quietest state it reached implied " << shortNumber(r.startAcceleration)
+      << " g";
+  else
+    m << "its settling moved like a failing scene without passing the failure displacement, and the analysis started "
+         "from the equilibrium's static state (stage 2's or stage 1's)";
+  m << ". Its failure may be that start's, not its strengths', and the answer may then follow Δt and the contact "
+       "stiffness (as on the chair slide at analysis.penalty_factor 1000 and above: docs/contact-model.md). Check it "
+       "with another --time-step or --set analysis.penalty_factor, and see its settling with "
+    << runCommand(valueLabel, caseLabel, failingEnd);
+  return m.str();
+}
+
+std::string unconvergedEndWarning(const std::vector<TrialRecord>& trials, bool found, double failingEnd,
+                                  const std::string& valueLabel, const std::string& caseLabel) {
+  if (!found) return "";
+  const TrialRecord* end = failingEndRecord(trials, failingEnd);
   if (!end || end->result.converged) return "";
   std::ostringstream m;
   m << "the bracket's failing end, " << valueLabel << " = " << shortNumber(failingEnd)
     << ", is a run that did not converge: it counts as failing, so the slope may stand there and the answer lie "
-    << "beyond it. See why with "
-    << (valueLabel == "F" ? "`ddaslope run " + caseLabel + " --at-fos " + shortNumber(failingEnd) + " --verbose`"
-                          : "`ddaslope run " + caseLabel + " --set ... --verbose` at that value")
-    << " (a budget spent: analysis.wall_clock_limit or analysis.max_steps; or Δt cut to its limit)";
+    << "beyond it. See why with " << runCommand(valueLabel, caseLabel, failingEnd) << " (a budget spent: analysis.wall_clock_limit or analysis.max_steps; or Δt cut to its limit)";
   return m.str();
 }
 

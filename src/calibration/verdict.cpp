@@ -349,6 +349,8 @@ TrialResult judgeStability(const model::Scene& scene, const VerdictSettings& set
     sim.stopSettlingPast(threshold);
     sim.bringToEquilibrium(shared);
     if (settled && shared && sim.statistics().startedAtRest) *settled = sim.settledState(*shared);
+    r.settling = sim.statistics().settling;
+    if (!sim.statistics().startedAtRest) r.startAcceleration = sim.statistics().equilibriumResidual;
     // Rule 0 counts the motion once contacts may slip (stages 2 and 3), not the elastic settlement
     // with every contact held (stage 1), which a soft rock makes large on a slope that stands.
     const std::vector<Vec2>& held = sim.monitorsAfterHeldEquilibrium();

@@ -276,6 +276,8 @@ int seismicCoefficientCommand(const std::string& casePath, const Overrides& o, d
   warnAboutTrials(casePath, ddaslope::calibration::smallMotionWarning(r.trials, "k_h", shellWord(casePath)));
   warnAboutTrials(casePath, ddaslope::calibration::unconvergedEndWarning(r.trials, r.found, r.failingEnd, "k_h",
                                                                           shellWord(casePath)));
+  warnAboutTrials(casePath, ddaslope::calibration::unrestedEndWarning(r.trials, r.found, r.failingEnd, "k_h",
+                                                                       shellWord(casePath)));
   return r.found ? kExitOk : kExitNonConvergence;
 }
 
@@ -341,6 +343,8 @@ int criticalCommand(const std::string& casePath, const Overrides& o, const Criti
   for (std::string w : {ddaslope::calibration::smallMotionWarning(r.trials, cohesion ? "c" : "φ", shellWord(casePath)),
                         ddaslope::calibration::unconvergedEndWarning(r.trials, r.found, r.failingEnd, cohesion ? "c" : "φ",
                                                                      shellWord(casePath)),
+                        ddaslope::calibration::unrestedEndWarning(r.trials, r.found, r.failingEnd, cohesion ? "c" : "φ",
+                                                                  shellWord(casePath)),
                         slightBendNote(scene), notchWarning(scene), dtWarning})
     if (!w.empty()) warnings.push_back(std::move(w));
   {

@@ -229,6 +229,7 @@ int supportCommand(const std::string& casePath, const Overrides& o, ddaslope::mo
   }
   warnAboutTrials(casePath, cal::smallMotionWarning(r.trials, "support", shellWord(casePath)));
   warnAboutTrials(casePath, cal::unconvergedEndWarning(r.trials, r.found, r.failingEnd, "support", shellWord(casePath)));
+  warnAboutTrials(casePath, cal::unrestedEndWarning(r.trials, r.found, r.failingEnd, "support", shellWord(casePath)));
   return r.found ? kExitOk : kExitNonConvergence;
 }
 

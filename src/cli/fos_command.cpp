@@ -227,6 +227,7 @@ int fosCommand(const std::string& casePath, const Overrides& o, const FosOptions
   std::vector<std::string> warnings;
   for (std::string w : {ddaslope::calibration::smallMotionWarning(r.trials, "F", shellWord(casePath)),
                         ddaslope::calibration::unconvergedEndWarning(r.trials, r.found, r.failingEnd, "F", shellWord(casePath)),
+                        ddaslope::calibration::unrestedEndWarning(r.trials, r.found, r.failingEnd, "F", shellWord(casePath)),
                         slightBendNote(scene), notchWarning(scene), dtWarning})
     if (!w.empty()) warnings.push_back(std::move(w));
   {

@@ -386,7 +386,7 @@ std::string trialValueKey(const json& trial) {
   static const std::vector<std::string> verdictKeys = {
       "stable", "undecided", "rule", "max_displacement_m", "failure_displacement_m", "settling_displacement_m",
       "last_window_motion_m", "previous_window_motion_m", "noise_floor_m", "final_speed_m_s", "moved_most",
-      "decided_by", "time_s", "steps", "equilibrium_steps", "extended", "extensions", "marginal", "rerun", "early_rest", "run_on"};
+      "decided_by", "time_s", "steps", "equilibrium_steps", "extended", "extensions", "marginal", "rerun", "early_rest", "run_on", "settling", "start_acceleration_g"};
   for (const auto& [k, v] : trial.items())
     if (v.is_number() && std::find(verdictKeys.begin(), verdictKeys.end(), k) == verdictKeys.end()) return k;
   return "";

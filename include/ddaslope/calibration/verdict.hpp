@@ -112,6 +112,13 @@ struct TrialResult {
   /// Judged failing on its trend and run on to VerdictSettings::runOnLength times its duration:
   /// the verdict is that of the longer run (a search's review takes it as its own re-run).
   bool runOn = false;
+  /// How the equilibrium's settling ended (solver::RunStatistics::settling): "at_rest",
+  /// "stalled" (the analysis starts from the quietest state it reached), "failed" (from stage 2's
+  /// or stage 1's state), or "" (no settling: stage 2 confirmed rest, or none was asked for).
+  std::string settling;
+  /// The acceleration a step from the state the analysis starts from implied, in g, when that
+  /// state is not a confirmed rest (0 otherwise): the kick the analysis starts with.
+  double startAcceleration = 0;
   const char* reason = "";         ///< describe(rule)
 };
 
