@@ -428,6 +428,11 @@ std::string trialsTable(const json& trials) {
     note(t.value("marginal", false), "marginal (the 90 % rule)");
     note(t.value("rerun", false), "run again");
     note(t.value("run_on", false), "a trend failure run on in place, standing as its own re-run");
+    note(t.value("settling", "") == "stalled",
+         "started from the quietest state of a settling that found no rest (a step from it implied " +
+             scalar(t.value("start_acceleration_g", json(0.0))) + " g)");
+    note(t.value("settling", "") == "failed" && t.value("rule", "") != "moved_while_settling",
+         "its settling moved like a failing scene: started from the equilibrium's static state");
     note(t.value("early_rest", false), "stopped early: at rest for certain");
     h += "<tr><td>" + std::to_string(++n) + "</td><td>" + (key.empty() ? "&ndash;" : scalar(t.at(key))) + "</td><td>" +
          verdict + "</td><td>" + escape(rules.count(rule) ? rules[rule] : rule) + "</td><td>" +
