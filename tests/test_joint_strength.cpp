@@ -274,9 +274,10 @@ TEST(ChairSlide, CriticalCohesionDoesNotFollowTheTimeStep) {
 }
 
 // Stiff contacts (analysis.penalty_factor 2000 against the case's 40) make the chair's settling
-// chatter: near the answer its trials start from a settling that found no rest, and the verdict
-// follows which values are tried (one thread: 51.7 kPa; two: 66.9 kPa; `run` fails at 66 666.67 Pa
-// and stands at 66 667). The search must say so rather than give that answer with a straight face;
+// chatter: trials start from settlings that found no rest, and the verdict stops being monotone
+// in c (`run` stands at 55-66 kPa, fails at c = 200000/3 Pa, stands at 66 667). A search on two
+// threads lands on such a failure and answers 66.9 kPa (one thread: 51.7, where `run` puts the
+// change from failing to standing). It must say that its failing end did not start from rest;
 // at the case's own stiffness it has nothing to say.
 TEST(ChairSlide, AFailingEndThatDidNotStartFromRestIsReported) {
   const std::string path = std::string(DDASLOPE_SOURCE_DIR) + "/cases/chair_slide.json";

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <sstream>
 #include <vector>
 
@@ -81,9 +82,18 @@ const TrialRecord* failingEndRecord(const std::vector<TrialRecord>& trials, doub
   return end;
 }
 
-std::string runCommand(const std::string& valueLabel, const std::string& caseLabel, double value) {
-  return valueLabel == "F" ? "`ddaslope run " + caseLabel + " --at-fos " + shortNumber(value) + " --verbose`"
-                           : "`ddaslope run " + caseLabel + " --set ... --verbose` at that value";
+/// All the digits of a value: a trial near a chaotic verdict must be run again at exactly its value.
+std::string preciseNumber(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.17g", v);
+  return buf;
+}
+
+std::string runCommand(const std::string& valueLabel, const std::string& caseLabel, double value,
+                       const std::string& written = "") {
+  const std::string x = written.empty() ? shortNumber(value) : written;
+  return valueLabel == "F" ? "`ddaslope run " + caseLabel + " --at-fos " + x + " --verbose`"
+                           : "`ddaslope run " + caseLabel + " --set ... --verbose` at " + valueLabel + " = " + x;
 }
 }  // namespace
 
@@ -91,23 +101,23 @@ std::string unrestedEndWarning(const std::vector<TrialRecord>& trials, bool foun
                                const std::string& valueLabel, const std::string& caseLabel) {
   if (!found) return "";
   const TrialRecord* end = failingEndRecord(trials, failingEnd);
-  if (!end || end->result.stable) return "";
+  if (!end || end->result.stable || end->result.rule == VerdictRule::MovedWhileSettling) return "";
   const TrialResult& r = end->result;
-  const bool kicked = r.settling == "stalled" && r.startAcceleration > kStartKick;
-  const bool fromRelaxation = r.settling == "failed" && r.rule != VerdictRule::MovedWhileSettling;
-  if (!kicked && !fromRelaxation) return "";
+  const bool unmeasured = r.settling == "unsettled";
+  const bool kicked = r.settling == "stalled" && r.startAcceleration > kFreeFall;
+  if (!unmeasured && !kicked) return "";
   std::ostringstream m;
-  m << "the bracket's failing end, " << valueLabel << " = " << shortNumber(failingEnd) << ", did not start from rest: ";
+  m << "the bracket's failing end, " << valueLabel << " = " << preciseNumber(failingEnd) << ", did not start from rest: ";
   if (kicked)
     m << "its settling found no rest, and a step from the quietest state it reached implied " << shortNumber(r.startAcceleration)
-      << " g";
+      << " g, more than free fall: contact springs, not the slope's weight, drive that start";
   else
-    m << "its settling moved like a failing scene without passing the failure displacement, and the analysis started "
-         "from the equilibrium's static state (stage 2's or stage 1's)";
+    m << "its settling measured no quiet state (no step from rest at the analysis Δt converged without cutting Δt or "
+         "freezing contacts), and the analysis started from the equilibrium's static state, whose kick is unknown";
   m << ". Its failure may be that start's, not its strengths', and the answer may then follow Δt and the contact "
        "stiffness (as on the chair slide at analysis.penalty_factor 1000 and above: docs/contact-model.md). Check it "
        "with another --time-step or --set analysis.penalty_factor, and see its settling with "
-    << runCommand(valueLabel, caseLabel, failingEnd);
+    << runCommand(valueLabel, caseLabel, failingEnd, preciseNumber(failingEnd));
   return m.str();
 }
 

@@ -350,7 +350,7 @@ TrialResult judgeStability(const model::Scene& scene, const VerdictSettings& set
     sim.bringToEquilibrium(shared);
     if (settled && shared && sim.statistics().startedAtRest) *settled = sim.settledState(*shared);
     r.settling = sim.statistics().settling;
-    if (!sim.statistics().startedAtRest) r.startAcceleration = sim.statistics().equilibriumResidual;
+    if (r.settling == "stalled") r.startAcceleration = sim.statistics().equilibriumResidual;
     // Rule 0 counts the motion once contacts may slip (stages 2 and 3), not the elastic settlement
     // with every contact held (stage 1), which a soft rock makes large on a slope that stands.
     const std::vector<Vec2>& held = sim.monitorsAfterHeldEquilibrium();
@@ -406,7 +406,7 @@ TrialResult judgeStability(const model::Scene& scene, const VerdictSettings& set
       }
       if (!failing && j.smallMotion) return finish(VerdictRule::Undecided);
       // A trend failure is run on in place to settings.runOnLength times the duration and judged
-      // afresh there: the path and the judgement of a search review's re-run that long from t = 0
+      // afresh there, as a search review's re-run that long from t = 0 would be judged
       // (VerdictSettings::runOnLength), without running the first stretch twice.
       const double runOnTo = settings.runOnLength * scene.settings.duration;
       if (failing && !r.runOn && settings.runOnLength > 1) {
@@ -418,13 +418,14 @@ TrialResult judgeStability(const model::Scene& scene, const VerdictSettings& set
           ++r.extensions;
           r.extended = true;
           sim.extendDuration(runOnTo - sim.time());
-          continue;
         }
+        // Judged afresh at that length (here at once if its extensions already reached it).
+        continue;
       }
       // A slide that its last window's pace, not slowing, carries past the failure displacement
       // within one more window is run on (as long again, stopping there: rule (a), certain)
-      // rather than called failing on its trend, which a search's review re-runs from the start
-      // along the same path. If it stops short, the longer run's windows judge it.
+      // rather than called failing on its trend, which a search confirms by a run four times as
+      // long. If it stops short, the longer run's windows judge it.
       if (failing && !ranOn && j.travelled + j.motion.last >= threshold && j.motion.last >= j.motion.previous) {
         ranOn = true;
         ++r.extensions;

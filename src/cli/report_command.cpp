@@ -433,6 +433,8 @@ std::string trialsTable(const json& trials) {
              scalar(t.value("start_acceleration_g", json(0.0))) + " g)");
     note(t.value("settling", "") == "failed" && t.value("rule", "") != "moved_while_settling",
          "its settling moved like a failing scene: started from the equilibrium's static state");
+    note(t.value("settling", "") == "unsettled",
+         "its settling measured no quiet state: started from the equilibrium's static state, its kick unknown");
     note(t.value("early_rest", false), "stopped early: at rest for certain");
     h += "<tr><td>" + std::to_string(++n) + "</td><td>" + (key.empty() ? "&ndash;" : scalar(t.at(key))) + "</td><td>" +
          verdict + "</td><td>" + escape(rules.count(rule) ? rules[rule] : rule) + "</td><td>" +

@@ -168,7 +168,8 @@ Simulation::Settled Simulation::settleDynamically() {
   contact::ContactSet quietestContacts, candidateContacts;
   double quietestImplied = std::numeric_limits<double>::infinity();
   const auto stalled = [&] {
-    if (travel > failingTravel || quietestImplied == std::numeric_limits<double>::infinity()) return Settled::Failed;
+    if (travel > failingTravel) return Settled::Failed;
+    if (quietestImplied == std::numeric_limits<double>::infinity()) return Settled::Unsettled;
     scene_ = std::move(quietestScene);
     contacts_ = std::move(quietestContacts);
     stats_.equilibriumResidual = quietestImplied / std::max(scene_.gravity.norm(), 1e-3);
@@ -188,7 +189,7 @@ Simulation::Settled Simulation::settleDynamically() {
       dt *= scene_.settings.stepCutFactor;
       a = tryStep(dt, Regime::Settling, k >= 1, holdSmallViolations);
     }
-    if (!a.converged) return Settled::Failed;
+    if (!a.converged) return Settled::Unsettled;
     commit(a, dt, false);
     ++stats_.settlingSteps;
     if (equilibriumProgress_) equilibriumProgress_("settling", s + 1, budget);
@@ -454,7 +455,10 @@ void Simulation::bringToEquilibrium(const HeldEquilibrium* shared) {
                                      : "equilibrium (relaxation): rest not confirmed at the analysis Δt; settling dynamically");
       const Settled settled = settleDynamically();
       stats_.startedAtRest = settled == Settled::AtRest;
-      stats_.settling = settled == Settled::AtRest ? "at_rest" : settled == Settled::Stalled ? "stalled" : "failed";
+      stats_.settling = settled == Settled::AtRest    ? "at_rest"
+                        : settled == Settled::Stalled ? "stalled"
+                        : settled == Settled::Failed  ? "failed"
+                                                      : "unsettled";
       // Without stage 2, "relaxed" reports whether the real contact law found rest at all.
       if (skipStaticRelaxation) {
         stats_.relaxationConverged = stats_.startedAtRest;
@@ -466,7 +470,7 @@ void Simulation::bringToEquilibrium(const HeldEquilibrium* shared) {
           << "implies " << stats_.equilibriumResidual << " g)";
         log_(m.str());
       }
-      if (settled == Settled::Failed && !stats_.gaveWayWhileSettling) {
+      if ((settled == Settled::Failed || settled == Settled::Unsettled) && !stats_.gaveWayWhileSettling) {
         // Failing: start from stage 2's rest, or from stage 1's state if stage 2 found none, as
         // without stage 3, so that the analysis, not the settling, moves the scene.
         const bool relaxed = rest == Rest::Unconfirmed;

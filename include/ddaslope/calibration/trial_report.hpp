@@ -36,18 +36,17 @@ std::string smallMotionWarning(const std::vector<TrialRecord>& trials, const std
 std::string unconvergedEndWarning(const std::vector<TrialRecord>& trials, bool found, double failingEnd,
                                   const std::string& valueLabel, const std::string& caseLabel = "CASE");
 
-/// A start kick above this (g) may decide a failure by itself: the shipped searches' failing ends
-/// that started from a stalled settling implied at most 0.022 g (Goodman & Bray's toppling slope),
-/// while a start of 0.57 g on the chair slide at Δt 1 ms moved its critical cohesion (test
-/// SofteningJoints.AStalledSettlingStartsFromItsQuietestState).
-constexpr double kStartKick = 0.1;
+/// A step from rest that implies more than free fall (g) is driven by contact springs, not by the
+/// weight of a slope under gravity.
+constexpr double kFreeFall = 1;
 
 /// The warning (empty if none) when the bracket's failing end did not start from rest and its
-/// failure may be that start's, not its strengths': its settling stalled with a first step
-/// implying more than kStartKick, or travelled like a failing scene without passing the failure
-/// displacement (the analysis then starts from the static relaxation's or the held state).
-/// Seen where the verdict stops being monotone in the value: the chair slide at
-/// analysis.penalty_factor 1000 and 2000.
+/// start may have decided it (a failure while settling, rule 0, is the settling's own): its
+/// settling found no quiet state (a step did not converge, or no step from rest at the analysis
+/// Δt converged without a cut or a frozen contact: settling "unsettled"), so the analysis started
+/// from the equilibrium's static state, whose kick is unknown; or it stalled in a state a step
+/// from which implied more than kFreeFall. Seen where the verdict stops being monotone in the
+/// value: the chair slide at analysis.penalty_factor 1000 and 2000.
 std::string unrestedEndWarning(const std::vector<TrialRecord>& trials, bool found, double failingEnd,
                                const std::string& valueLabel, const std::string& caseLabel = "CASE");
 

@@ -105,7 +105,7 @@ struct TrialResult {
   int steps = 0;                   ///< accepted steps after t = 0
   int equilibriumSteps = 0;        ///< steps before t = 0: the equilibrium's static and settling steps
   bool extended = false;           ///< run longer than its duration (a marginal verdict, a small motion, or a slide run on)
-  int extensions = 0;              ///< how many times, each by the duration
+  int extensions = 0;              ///< how many times (by the duration, or by the run-on length once run on)
   bool marginal = false;           ///< still marginal after the extension: decided by the 90 % rule
   bool converged = true;           ///< false if the run hit non-convergence (counted as failing)
   bool earlyRest = false;          ///< stopped before its duration: at rest for good (early rest)
@@ -113,11 +113,12 @@ struct TrialResult {
   /// the verdict is that of the longer run (a search's review takes it as its own re-run).
   bool runOn = false;
   /// How the equilibrium's settling ended (solver::RunStatistics::settling): "at_rest",
-  /// "stalled" (the analysis starts from the quietest state it reached), "failed" (from stage 2's
-  /// or stage 1's state), or "" (no settling: stage 2 confirmed rest, or none was asked for).
+  /// "stalled" (the analysis starts from the quietest state it reached), "failed" (it moved like a
+  /// failing scene), "unsettled" (no quiet state measured; both from stage 2's or stage 1's
+  /// state), or "" (no settling: stage 2 confirmed rest, or none was asked for).
   std::string settling;
-  /// The acceleration a step from the state the analysis starts from implied, in g, when that
-  /// state is not a confirmed rest (0 otherwise): the kick the analysis starts with.
+  /// With settling "stalled": the acceleration a step from the quietest state implied, in g, the
+  /// kick the analysis starts with (a failing slope's own out-of-balance force among it); else 0.
   double startAcceleration = 0;
   const char* reason = "";         ///< describe(rule)
 };

@@ -60,7 +60,9 @@ struct RunStatistics {
                                      ///< false without initial_equilibrium)
   bool gaveWayWhileSettling = false;  ///< stages 2–3 ended as a block passed stopSettlingPast()'s limit
   /// How stage 3 ended: "" (it did not run), "at_rest", "stalled" (the analysis starts from its
-  /// quietest state) or "failed" (from stage 2's state, or stage 1's).
+  /// quietest state), "failed" (it moved like a failing scene; the analysis starts from stage 2's
+  /// state, or stage 1's) or "unsettled" (no quiet state measured: a step did not converge, or no
+  /// step from rest at the analysis Δt converged unfrozen; from stage 2's or stage 1's state too).
   const char* settling = "";
   int symbolicAnalyses = 0;
   long factorisations = 0;         ///< numeric Cholesky factorisations
@@ -253,7 +255,9 @@ class Simulation {
     Stalled,  ///< it stopped nearing rest, or spent its budget, without travelling like a failing
               ///< scene: the scene is left in the quietest state it reached (the least implied
               ///< acceleration from rest), at rest
-    Failed,   ///< it travelled g2·w0, passed stopSettlingPast()'s limit, or a step did not converge
+    Failed,   ///< it travelled g2·w0 (a failing scene) or passed stopSettlingPast()'s limit
+    Unsettled,  ///< a step did not converge, or it stalled without one full, unfrozen step from
+                ///< rest at the analysis Δt: no quiet state was measured to start from
   };
   /// Stage 3: dynamic steps at the analysis Δt with kinetic damping until a step from rest stays
   /// at rest, or until the scene travels g2·w0, stops nearing rest or the budget runs out.
