@@ -1,7 +1,9 @@
 #!/bin/sh
 # Users' critical-value searches: critical cohesion and friction, the support or load
 # for a factor of safety, and the yield seismic coefficient, on shipped cases, with what a search's
-# cost is made of: forward runs, runs made ahead of need and not used, wall time; and the answer,
+# cost is made of: forward runs, runs made ahead of need and not used, wall time, steps summed over
+# the trials (after t = 0, and before it: the equilibrium's static and settling steps; a search
+# whose trials are not listed at the top level leaves them empty); and the answer,
 # which must not change when the search gets faster. Prints one CSV line per search.
 #
 #   bench/critical_searches.sh [BUILD_DIR] [THREADS] [EXTRA ARGUMENTS...]
@@ -14,7 +16,7 @@ build=${1:-build}
 threads=${2:-2}
 [ $# -ge 2 ] && shift 2 || shift $#
 here=$(cd "$(dirname "$0")/.." && pwd)
-echo "search,critical,forward_runs,runs_ahead_unused,wall_s"
+echo "search,critical,forward_runs,runs_ahead_unused,wall_s,steps,equilibrium_steps"
 while IFS='|' read -r name args; do
   out=$(mktemp)
   start=$(date +%s.%N)
@@ -25,7 +27,10 @@ while IFS='|' read -r name args; do
 import json, sys
 name, path, start, end = sys.argv[1], sys.argv[2], float(sys.argv[3]), float(sys.argv[4])
 d = json.load(open(path))
-print(f"{name},{d.get('critical')},{d.get('forward_runs')},{d.get('runs_ahead_unused', '')},{end - start:.2f}")
+trials = d.get("trials")
+steps = sum(t["steps"] for t in trials) if trials else ""
+before = sum(t["equilibrium_steps"] for t in trials) if trials else ""
+print(f"{name},{d.get('critical')},{d.get('forward_runs')},{d.get('runs_ahead_unused', '')},{end - start:.2f},{steps},{before}")
 PY
   rm -f "$out"
 done <<LIST
