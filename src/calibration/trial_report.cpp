@@ -129,7 +129,8 @@ std::string unconvergedEndWarning(const std::vector<TrialRecord>& trials, bool f
   std::ostringstream m;
   m << "the bracket's failing end, " << valueLabel << " = " << shortNumber(failingEnd)
     << ", is a run that did not converge: it counts as failing, so the slope may stand there and the answer lie "
-    << "beyond it. See why with " << runCommand(valueLabel, caseLabel, failingEnd) << " (a budget spent: analysis.wall_clock_limit or analysis.max_steps; or Δt cut to its limit)";
+    << "beyond it. See why with " << runCommand(valueLabel, caseLabel, failingEnd)
+    << " (a budget spent: analysis.wall_clock_limit or analysis.max_steps; or Δt cut to its limit)";
   return m.str();
 }
 
