@@ -471,8 +471,9 @@ void Simulation::bringToEquilibrium(const HeldEquilibrium* shared) {
         log_(m.str());
       }
       if ((settled == Settled::Failed || settled == Settled::Unsettled) && !stats_.gaveWayWhileSettling) {
-        // Failing: start from stage 2's rest, or from stage 1's state if stage 2 found none, as
-        // without stage 3, so that the analysis, not the settling, moves the scene.
+        // Failing, or no quiet state measured to start from: start from stage 2's rest, or from
+        // stage 1's state if stage 2 found none, as without stage 3, so that the analysis, not the
+        // settling, moves the scene.
         const bool relaxed = rest == Rest::Unconfirmed;
         if (log_)
           log_(std::string("settling: no rest found; the analysis starts from the ") +

@@ -45,8 +45,8 @@ constexpr double kFreeFall = 1;
 /// settling found no quiet state (a step did not converge, or no step from rest at the analysis
 /// Δt converged without a cut or a frozen contact: settling "unsettled"), so the analysis started
 /// from the equilibrium's static state, whose kick is unknown; or it stalled in a state a step
-/// from which implied more than kFreeFall. Seen where the verdict stops being monotone in the
-/// value: the chair slide at analysis.penalty_factor 1000 and 2000.
+/// from which implied more than kFreeFall. Such starts come with verdicts that stop being
+/// monotone in the value (docs/contact-model.md, the stiff end of the contact stiffness).
 std::string unrestedEndWarning(const std::vector<TrialRecord>& trials, bool found, double failingEnd,
                                const std::string& valueLabel, const std::string& caseLabel = "CASE");
 
