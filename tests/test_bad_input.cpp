@@ -775,6 +775,14 @@ TEST(RobustInput, CommandLineNumbersAndOutputsAreChecked) {
   EXPECT_EQ(runCli("critical " + path + " --joint joint --solve friction --cohesion inf", &err), 2) << err;
   EXPECT_EQ(runCli("fos " + path + " --width nan", &err), 2) << err;
   EXPECT_EQ(runCli("fos " + path + " --width 1e-300", &err), 2) << err;
+  // fos --check: a factor, one scene (not a sweep's, not a searched crack's).
+  EXPECT_EQ(runCli("fos " + path + " --check 0 --out /tmp/ddaslope_never", &err), 2) << err;
+  EXPECT_EQ(runCli("fos " + path + " --check nan --out /tmp/ddaslope_never", &err), 2) << err;
+  EXPECT_EQ(runCli("fos " + path + " --check 1.2 --sweep materials.rock.density=2000:2600:3 --out /tmp/ddaslope_never", &err), 2)
+      << err;
+  const std::string crack = std::string(DDASLOPE_SOURCE_DIR) + "/cases/planar_failure_crack.json";
+  EXPECT_EQ(runCli("fos " + crack + " --check 1.1 --out /tmp/ddaslope_never", &err), 2) << err;
+  EXPECT_NE(err.find("section.tension_crack.search"), std::string::npos) << err;
   EXPECT_EQ(runCli("run " + path + " --set gravity[1]=inf --out /tmp/ddaslope_never", &err), 2) << err;
   // --out naming an existing file, or a path under one.
   const std::string file = writeTemp("not_a_dir", "x");

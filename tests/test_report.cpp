@@ -128,3 +128,22 @@ TEST(Report, WarningsAreShownAndADamagedResultIsRefused) {
   EXPECT_NE(err.find("fos.json"), std::string::npos) << err;
   fs::remove_all(dir);
 }
+
+// A required F checked (`fos --check`) is reported as a check, with the picture of its own trial
+// only: a picture an earlier search left in the folder is not taken for the check's.
+TEST(Report, ACheckOfARequiredFactorIsReportedAsOne) {
+  const fs::path dir = fs::temp_directory_path() / ("ddaslope_report_check_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  const std::string c = std::string(DDASLOPE_SOURCE_DIR) + "/cases/planar_failure.json";
+  std::string err;
+  clitest::captureCli("fos " + c + " --quiet --out " + dir.string(), &err);
+  ASSERT_TRUE(fs::exists(dir / "mechanism_stable.png"));
+  // Hoek & Bray's F is 1.1133: 1.3 is not met.
+  clitest::captureCli("fos " + c + " --check 1.3 --quiet --out " + dir.string(), &err);
+  const std::string printed = clitest::captureCli("report " + dir.string(), &err);
+  EXPECT_NE(printed.find("Required factor of safety checked (fos --check)"), std::string::npos) << printed;
+  EXPECT_NE(printed.find("F = 1.3 not met"), std::string::npos) << printed;
+  EXPECT_NE(printed.find("(1 picture embedded)"), std::string::npos) << printed;
+  EXPECT_FALSE(fs::exists(dir / "mechanism_stable.png"));
+  fs::remove_all(dir);
+}

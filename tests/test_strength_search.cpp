@@ -330,6 +330,54 @@ TEST(StrengthReduction, RunAtFosShowsTheSearchsVerdicts) {
   fs::remove_all(dir);
 }
 
+// `fos --check F` answers "does the slope meet F?" with one forward run (issue #42): the trial the
+// search itself runs at F. On Hoek & Bray's planar failure (closed form 1.1133, docs/validation.md
+// C) it is met 2 % below that and not met 2 % above (the search's own tolerance against the closed
+// form, PlanarFailureMatchesHoekAndBray); on it and on the Alejano & Alonso toppling slope, a
+// mechanism of columns rather than one sliding block, it gives the verdicts fos's trials gave at
+// the ends of fos's bracket. The JSON says the verdict, one forward run, and fos.json is the
+// check's, with the picture of its own trial only (a report embeds every picture of the folder).
+TEST(StrengthReduction, CheckAtARequiredFactorIsTheSearchsTrialThere) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / ("ddaslope_check_" + std::to_string(::getpid()));
+  std::string err;
+  const auto check = [&](const std::string& c, double f) {
+    char digits[32];
+    std::snprintf(digits, sizeof digits, "%.17g", f);
+    const auto j = nlohmann::json::parse(
+        clitest::captureCli("fos " + c + " --check " + digits + " --json --quiet --out " + (dir / "check").string(), &err));
+    EXPECT_DOUBLE_EQ(j["check"].get<double>(), f);
+    EXPECT_EQ(j["forward_runs"], 1);
+    EXPECT_EQ(j["trials"].size(), 1u);
+    const auto file = nlohmann::json::parse(std::ifstream(dir / "check" / "fos.json"));
+    EXPECT_EQ(file["verdict"], j["verdict"]);
+    const bool stable = j["verdict"] == "stable";
+    EXPECT_EQ(j["meets_factor"], stable) << j.dump();
+    EXPECT_EQ(fs::exists(dir / "check" / "mechanism_stable.png"), stable);
+    EXPECT_EQ(fs::exists(dir / "check" / "mechanism_failed.png"), j["verdict"] == "failing");
+    return j["verdict"].get<std::string>();
+  };
+  const std::string planar = std::string(DDASLOPE_SOURCE_DIR) + "/cases/planar_failure.json";
+  EXPECT_EQ(check(planar, 0.98 * 1.1133), "stable");
+  EXPECT_EQ(check(planar, 1.02 * 1.1133), "failing");
+  for (const std::string name : {"planar_failure", "toppling_slope"}) {
+    SCOPED_TRACE(name);
+    const std::string c = std::string(DDASLOPE_SOURCE_DIR) + "/cases/" + name + ".json";
+    const auto fos = nlohmann::json::parse(
+        clitest::captureCli("fos " + c + " --json --quiet --out " + (dir / "fos").string(), &err));
+    ASSERT_TRUE(fos["found"].get<bool>());
+    int ends = 0;
+    for (const auto& t : fos["trials"]) {
+      const double f = t["factor"];
+      if (f != fos["bracket"][0].get<double>() && f != fos["bracket"][1].get<double>()) continue;
+      EXPECT_EQ(check(c, f), t["stable"].get<bool>() ? "stable" : "failing") << "F = " << f;
+      ++ends;
+    }
+    EXPECT_EQ(ends, 2);
+  }
+  fs::remove_all(dir);
+}
+
 // `fos` draws the mechanism (issue #43): on the shipped planar and toppling cases it writes the
 // pictures of the trials at its bracket's ends, mechanism_stable.png and mechanism_failed.png,
 // into --out and lists them in its JSON; `critical` does the same for its bracket.

@@ -857,6 +857,27 @@ FactorOfSafetyResult factorOfSafety(const model::Scene& scene, const std::vector
   return r;
 }
 
+std::vector<TrialRecord> strengthReductionTrial(const model::Scene& scene, const std::vector<int>& joints, double f,
+                                                const SearchSettings& s) {
+  model::Scene trial = scene;
+  if (joints.empty())
+    for (model::JointProperties& j : trial.joints) j = j.reducedBy(f);
+  for (int j : joints) trial.joints[static_cast<size_t>(j)] = scene.joints[static_cast<size_t>(j)].reducedBy(f);
+  const auto held = sharedEquilibrium(scene);
+  // As factorOfSafety's trials after the first: from the rest at F = 1 when asked and it stands.
+  std::optional<solver::HeldEquilibrium> settled;
+  if (held && s.trialStart == TrialStart::Settled) settled = settledStart(scene, *held, verdictOf(s, 1));
+  const solver::HeldEquilibrium* start = settled ? &*settled : held ? &*held : nullptr;
+  std::vector<TrialRecord> runs{{f, judgeStability(trial, verdictOf(s, 1), start, endOf(s, f)), false}};
+  // The review's re-run (reviewTrials): a trend failure has run on to its length already; an
+  // undecided small motion runs again that long from t = 0.
+  if (runs.front().result.undecided) {
+    trial.settings.duration *= kReRunLength;
+    runs.push_back({f, judgeStability(trial, verdictOf(s, kReRunLength), start, endOf(s, f)), true});
+  }
+  return runs;
+}
+
 std::optional<solver::HeldEquilibrium> settledStart(const model::Scene& scene, const solver::HeldEquilibrium& held,
                                                     const VerdictSettings& verdict) {
   std::optional<solver::HeldEquilibrium> settled;

@@ -192,12 +192,93 @@ int fosSweep(const std::string& casePath, const Overrides& o, const FosOptions& 
   return all ? kExitOk : kExitNonConvergence;
 }
 
+/// Removes the mechanism pictures an earlier command left in `dir`: a report embeds every picture
+/// of the folder, and one of another trial would be taken for this result's.
+void removeOldMechanismPictures(const std::string& dir) {
+  std::error_code ignored;
+  for (const char* file : {"mechanism_stable.png", "mechanism_failed.png"})
+    std::filesystem::remove(std::filesystem::path(dir) / file, ignored);
+}
+
+/// --check F: one trial at F, judged as the search judges its bracket's failing end, instead of a
+/// search: whether the slope meets a required factor of safety, in one forward run.
+int fosCheck(const std::string& casePath, const Overrides& o, const FosOptions& opt) {
+  ddaslope::model::Scene scene = loadCase(casePath, o);
+  if (scene.crackSearch)
+    throw ddaslope::InputError(casePath, "section.tension_crack.search",
+                               "--check judges one scene, and this case searches its tension crack's position: run fos "
+                               "without --check for the least safe position, or give the crack a fixed place (no search)");
+  std::vector<int> joints;
+  for (const auto& n : opt.joints) joints.push_back(jointIndex(scene, n, casePath));
+  const std::string dtWarning = timeStepWarning(scene);
+  warnAboutTrials(casePath, dtWarning);
+  ddaslope::calibration::SearchSettings s;
+  s.threads = 1;
+  s.trialStart = trialStartOf(opt.trialStart);
+  s.caseLabel = shellWord(casePath);
+  recordTrialStates(s, opt.vtkDir, scene);
+  MechanismPictures pictures(s, scene);
+  const auto t0 = std::chrono::steady_clock::now();
+  const std::vector<ddaslope::calibration::TrialRecord> runs =
+      ddaslope::calibration::strengthReductionTrial(scene, joints, opt.check, s);
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const ddaslope::calibration::TrialResult& r = runs.back().result;
+  const bool decided = !r.undecided && r.converged;
+  removeOldMechanismPictures(opt.outDir);
+  const std::vector<std::string> drawn = pictures.write(opt.outDir, casePath, "F", opt.check, opt.check);
+  std::vector<std::string> warnings;
+  for (std::string w : {ddaslope::calibration::smallMotionWarning(runs, "F", shellWord(casePath)),
+                        ddaslope::calibration::unconvergedEndWarning(runs, true, opt.check, "F", shellWord(casePath)),
+                        ddaslope::calibration::unrestedEndWarning(runs, true, opt.check, "F", shellWord(casePath)),
+                        slightBendNote(scene), notchWarning(scene), dtWarning})
+    if (!w.empty()) warnings.push_back(std::move(w));
+  const std::string verdict = !r.converged ? "not_converged" : r.undecided ? "undecided" : r.stable ? "stable" : "failing";
+  {
+    ddaslope::io::JsonRecord j;
+    j.set("case", casePath).set("check", opt.check).set("verdict", verdict);
+    // Met: stable at F. Not met: failing at F. Null when the trial could not say.
+    if (decided) j.set("meets_factor", r.stable);
+    else j.set("meets_factor", NAN);  // null
+    j.set("forward_runs", static_cast<int>(runs.size())).set("wall_time_s", wall);
+    j.set("settings", settingsLine(scene)).set("trial_start", opt.trialStart);
+    ddaslope::calibration::appendTrials(j, runs, "factor");
+    if (!opt.vtkDir.empty()) j.set("vtk", opt.vtkDir);
+    j.set("mechanism_pictures", drawn).set("warnings", warnings);
+    writeResultFile(opt.outDir + "/fos.json", j.dump() + "\n");
+    if (opt.json) std::printf("%s\n", j.dump().c_str());
+  }
+  if (!opt.json) {
+    const std::string on = opt.joints.empty() ? "all joints" : "the named joints";
+    if (decided)
+      std::printf("F %s %.6g (strength reduction on %s): the slope %s with c/%.6g and tan φ/%.6g\n",
+                  r.stable ? "≥" : "<", opt.check, on.c_str(), r.stable ? "stands" : "fails", opt.check, opt.check);
+    else
+      std::printf("F = %.6g (strength reduction on %s): %s\n", opt.check, on.c_str(),
+                  r.converged ? "undecided" : "the trial did not converge");
+    std::printf("  why: %s", r.reason);
+    if (r.rule == ddaslope::calibration::VerdictRule::MovedWhileSettling)
+      std::printf(" (%s by %.3g m)\n", r.movedMost.c_str(), r.settlingDisplacement);
+    else
+      std::printf(" (%s; largest motion %.3g m after t = 0, run to %.4g s)\n", r.decidedBy.c_str(), r.maxDisplacement,
+                  r.timeReached);
+    std::printf("  %d forward run%s, %.2f s wall; %s\n", static_cast<int>(runs.size()), runs.size() == 1 ? "" : "s",
+                wall, settingsLine(scene).c_str());
+    std::printf("  one trial, judged as fos judges its trials; like fos, it takes the slope to fail at every F above "
+                "one where it fails (docs/calibration.md, \"Checking a required F\")\n");
+    for (const auto& f : drawn) std::printf("  the mechanism: %s\n", f.c_str());
+  }
+  for (const auto& w : warnings)
+    if (w != dtWarning) warnAboutTrials(casePath, w);
+  return decided ? kExitOk : kExitNonConvergence;
+}
+
 }  // namespace
 
 int fosCommand(const std::string& casePath, const Overrides& o, const FosOptions& opt) {
   if (!opt.vtkDir.empty() && !opt.sweep.empty())
     throw ddaslope::InputError("--vtk", opt.vtkDir, "writes the trials of one search, not of a sweep's searches (drop --sweep)");
   if (!opt.sweep.empty()) return fosSweep(casePath, o, opt);
+  if (opt.check > 0) return fosCheck(casePath, o, opt);
   ddaslope::model::Scene scene = loadCase(casePath, o);
   // A tension crack searched: F at its least safe position, the search's table printed first.
   // Near the least safe position F is flat (docs/case-format.md, "Tension crack"): the positions
@@ -221,6 +302,7 @@ int fosCommand(const std::string& casePath, const Overrides& o, const FosOptions
   const auto r = factorFor(scene, casePath, opt, ddaslope::io::sinkOf(log.get()), &pictures);
   const std::string& message = r.message;
   log->finish(r.found, r.found ? "F " + std::to_string(r.factor) : message);
+  removeOldMechanismPictures(opt.outDir);
   const std::vector<std::string> drawn =
       r.found ? pictures->write(opt.outDir, casePath, "F", r.stableEnd, r.failingEnd) : std::vector<std::string>{};
   // Said on stderr and kept in fos.json, so that a report carries them.
@@ -288,7 +370,13 @@ void addFosOptions(CLI::App* cmd, std::string& casePath, Overrides& overrides, F
   cmd->add_option("--width", opt.width, "final bracket width of F")->capture_default_str()
       ->check(finiteIn(1e-4, 1, "a width of F in [1e-4, 1]"));
   cmd->add_option("--threads", opt.threads, "trial factors per round, run at once")->capture_default_str()->check(CLI::Range(1, 256));
-  cmd->add_option("--sweep", opt.sweep, "json.path=min:max:n: F at n values of one case number (CSV and PNG in --out)");
+  CLI::Option* sweep =
+      cmd->add_option("--sweep", opt.sweep, "json.path=min:max:n: F at n values of one case number (CSV and PNG in --out)");
+  cmd->add_option("--check", opt.check,
+                  "whether the slope meets a required F: one trial at that F, judged as the search judges its trials, "
+                  "instead of a search (docs/calibration.md)")
+      ->check(finiteIn(0.01, 100, "a factor in [0.01, 100]"))
+      ->excludes(sweep);
   cmd->add_option("--out", opt.outDir, "output directory: the mechanism pictures (and --sweep's CSV and PNG)")
       ->capture_default_str();
   cmd->add_option("--vtk", opt.vtkDir, "write each trial's final state as a VTK series in this folder (ParaView)");

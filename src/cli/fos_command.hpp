@@ -1,6 +1,6 @@
 #pragma once
-// `ddaslope fos CASE`: the strength-reduction factor of safety, and F against one case number
-// (--sweep).
+// `ddaslope fos CASE`: the strength-reduction factor of safety, F against one case number
+// (--sweep), and whether a required F is met (--check).
 #include <string>
 #include <vector>
 
@@ -21,6 +21,7 @@ struct FosOptions {
   std::string vtkDir;  ///< every trial's final state as a VTK series (recordTrialStates)
   std::string trialStart = "held";  ///< settled or held (calibration::TrialStart)
   bool noLookAhead = false;         ///< calibration::SearchSettings::lookAhead off
+  double check = 0;                 ///< --check F: one trial at F instead of a search (0: none)
 };
 
 /// Registers the subcommand's options on `cmd` (its case, the model options into `overrides`, …).

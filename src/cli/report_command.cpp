@@ -245,7 +245,16 @@ Analysis identifyOne(const fs::path& dir) {
   if (fs::exists(dir / "fos.json")) {
     a = {"Factor of safety (fos)", "fos.json", readJson(dir / "fos.json"), "", {}, ""};
     const json& r = a.result;
-    if (r.value("found", false))
+    if (r.contains("check") && r["check"].is_number()) {
+      // fos --check: one trial at a required F.
+      a.kind = "Required factor of safety checked (fos --check)";
+      const std::string verdict = r.value("verdict", "");
+      std::snprintf(text, sizeof text, "F = %.6g %s (%d forward run%s)", number(r, "check"),
+                    verdict == "stable"    ? "met: the slope stands with its strengths divided by it"
+                    : verdict == "failing" ? "not met: the slope fails with its strengths divided by it"
+                                           : "undecided: the trial could not say (see its trial)",
+                    r.value("forward_runs", 0), r.value("forward_runs", 0) == 1 ? "" : "s");
+    } else if (r.value("found", false))
       std::snprintf(text, sizeof text, "F = %.4f: stable at %.4f, failing at %.4f (%d forward runs)",
                     number(r, "factor_of_safety"), r["bracket"][0].get<double>(), r["bracket"][1].get<double>(),
                     r.value("forward_runs", 0));
