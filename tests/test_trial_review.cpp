@@ -142,6 +142,27 @@ TEST(SmallMotion, SteadyGlideIsUndecidedNotFailure) {
   EXPECT_EQ(r.decidedBy, "block block");  // no monitors: the block itself decides
 }
 
+// `fos --check` (strengthReductionTrial) treats an undecided trial as a search's review treats its
+// bracket's failing end: it runs it again four times longer, from t = 0. The steady glide above is
+// undecided after its first run and three extensions (4 cm in 4 s, under 10 % of 1 m); run 4 s long,
+// its extensions of 4 s find 8 cm at 8 s, still small and not growing, then 12 cm at 12 s, over
+// 10 % of the failure displacement and not slowing: failing on its trend. The frictionless joint
+// has no strength for F to reduce.
+TEST(SmallMotion, ACheckRunsAnUndecidedTrialAgainAsTheReviewWould) {
+  calibration::SearchSettings s;
+  s.verdict.failureDisplacement = 1.0;
+  const std::vector<calibration::TrialRecord> runs =
+      calibration::strengthReductionTrial(blockOnFrictionlessBase(0.01, 0), {}, 1.3, s);
+  ASSERT_EQ(runs.size(), 2u);
+  EXPECT_TRUE(runs[0].result.undecided) << runs[0].result.reason;
+  EXPECT_FALSE(runs[0].rerun);
+  EXPECT_TRUE(runs[1].rerun);
+  EXPECT_EQ(runs[1].value, 1.3);
+  EXPECT_EQ(runs[1].result.rule, calibration::VerdictRule::StillMoving) << runs[1].result.reason;
+  EXPECT_NEAR(runs[1].result.timeReached, 12.0, 1e-6);
+  EXPECT_NEAR(runs[1].result.maxDisplacement, 0.12, 0.01 * 0.12) << "m: 1 cm/s over 12 s";
+}
+
 // A block accelerated at 0.01 m/s² from rest (gravity's horizontal component, no friction) moves
 // a t²/2: 4.5 cm in 3 s, under 10 % of the 1 m failure displacement, but its speed over the last
 // window grows by 2 and then 1.5 from one extension to the next: failure, before the budget.
