@@ -142,7 +142,7 @@ TEST(Report, ACheckOfARequiredFactorIsReportedAsOne) {
   clitest::captureCli("fos " + c + " --check 1.3 --quiet --out " + dir.string(), &err);
   const std::string printed = clitest::captureCli("report " + dir.string(), &err);
   EXPECT_NE(printed.find("Required factor of safety checked (fos --check)"), std::string::npos) << printed;
-  EXPECT_NE(printed.find("F = 1.3 not met"), std::string::npos) << printed;
+  EXPECT_NE(printed.find("required F = 1.3: not met"), std::string::npos) << printed;
   EXPECT_NE(printed.find("(1 picture embedded)"), std::string::npos) << printed;
   EXPECT_FALSE(fs::exists(dir / "mechanism_stable.png"));
   fs::remove_all(dir);

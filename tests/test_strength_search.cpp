@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <map>
 
 #include "ddaslope/calibration/strength_search.hpp"
 #include <filesystem>
@@ -330,51 +331,80 @@ TEST(StrengthReduction, RunAtFosShowsTheSearchsVerdicts) {
   fs::remove_all(dir);
 }
 
-// `fos --check F` answers "does the slope meet F?" with one forward run (issue #42): the trial the
-// search itself runs at F. On Hoek & Bray's planar failure (closed form 1.1133, docs/validation.md
-// C) it is met 2 % below that and not met 2 % above (the search's own tolerance against the closed
-// form, PlanarFailureMatchesHoekAndBray); on it and on the Alejano & Alonso toppling slope, a
-// mechanism of columns rather than one sliding block, it gives the verdicts fos's trials gave at
-// the ends of fos's bracket. The JSON says the verdict, one forward run, and fos.json is the
-// check's, with the picture of its own trial only (a report embeds every picture of the folder).
+// `fos --check F` answers "does the slope meet F?" without a search (issue #42): it runs the trial
+// the search itself runs at F. On Hoek & Bray's planar failure (closed form 1.1133, docs/validation.md
+// C) F is met 2 % below that and not met 2 % above (the search's own tolerance against the closed
+// form, PlanarFailureMatchesHoekAndBray). At every factor a search tried, held and settled, the
+// check's trial is the search's trial: same rule, steps after and before t = 0, time and motion (the
+// trial in force: a re-run's where the review made one). So it is on the Alejano & Alonso toppling
+// slope (columns that topple, not a sliding block) and on the bilinear slab with its bedding reduced
+// alone, at the bracket's ends. The JSON says the verdict, the joints, the runs (a settled start's
+// trial at F = 1 counted), and the picture is of the check's own trial only.
 TEST(StrengthReduction, CheckAtARequiredFactorIsTheSearchsTrialThere) {
   namespace fs = std::filesystem;
   const fs::path dir = fs::temp_directory_path() / ("ddaslope_check_" + std::to_string(::getpid()));
   std::string err;
-  const auto check = [&](const std::string& c, double f) {
+  const auto check = [&](const std::string& c, double f, const std::string& options) {
     char digits[32];
     std::snprintf(digits, sizeof digits, "%.17g", f);
-    const auto j = nlohmann::json::parse(
-        clitest::captureCli("fos " + c + " --check " + digits + " --json --quiet --out " + (dir / "check").string(), &err));
+    const auto j = nlohmann::json::parse(clitest::captureCli(
+        "fos " + c + " --check " + digits + " " + options + " --json --quiet --out " + (dir / "check").string(), &err));
     EXPECT_DOUBLE_EQ(j["check"].get<double>(), f);
-    EXPECT_EQ(j["forward_runs"], 1);
-    EXPECT_EQ(j["trials"].size(), 1u);
+    EXPECT_EQ(j["forward_runs"], j["trials"].size());
     const auto file = nlohmann::json::parse(std::ifstream(dir / "check" / "fos.json"));
     EXPECT_EQ(file["verdict"], j["verdict"]);
     const bool stable = j["verdict"] == "stable";
     EXPECT_EQ(j["meets_factor"], stable) << j.dump();
     EXPECT_EQ(fs::exists(dir / "check" / "mechanism_stable.png"), stable);
     EXPECT_EQ(fs::exists(dir / "check" / "mechanism_failed.png"), j["verdict"] == "failing");
-    return j["verdict"].get<std::string>();
+    return j;
   };
   const std::string planar = std::string(DDASLOPE_SOURCE_DIR) + "/cases/planar_failure.json";
-  EXPECT_EQ(check(planar, 0.98 * 1.1133), "stable");
-  EXPECT_EQ(check(planar, 1.02 * 1.1133), "failing");
-  for (const std::string name : {"planar_failure", "toppling_slope"}) {
-    SCOPED_TRACE(name);
-    const std::string c = std::string(DDASLOPE_SOURCE_DIR) + "/cases/" + name + ".json";
+  EXPECT_EQ(check(planar, 0.98 * 1.1133, "")["verdict"], "stable");
+  EXPECT_EQ(check(planar, 1.02 * 1.1133, "")["verdict"], "failing");
+  const struct {
+    std::string name, options;
+    bool everyTrial;
+  } searches[] = {{"planar_failure", "", true},
+                  {"planar_failure", "--trial-start settled", true},
+                  {"toppling_slope", "", false},
+                  {"bilinear_slab", "--joints bedding", false}};
+  for (const auto& search : searches) {
+    SCOPED_TRACE(search.name + " " + search.options);
+    const std::string c = std::string(DDASLOPE_SOURCE_DIR) + "/cases/" + search.name + ".json";
     const auto fos = nlohmann::json::parse(
-        clitest::captureCli("fos " + c + " --json --quiet --out " + (dir / "fos").string(), &err));
+        clitest::captureCli("fos " + c + " " + search.options + " --json --quiet --out " + (dir / "fos").string(), &err));
     ASSERT_TRUE(fos["found"].get<bool>());
-    int ends = 0;
-    for (const auto& t : fos["trials"]) {
-      const double f = t["factor"];
-      if (f != fos["bracket"][0].get<double>() && f != fos["bracket"][1].get<double>()) continue;
-      EXPECT_EQ(check(c, f), t["stable"].get<bool>() ? "stable" : "failing") << "F = " << f;
-      ++ends;
+    std::map<double, nlohmann::json> inForce;
+    for (const auto& t : fos["trials"])
+      if (t["rerun"].get<bool>() || !inForce.count(t["factor"].get<double>())) inForce[t["factor"].get<double>()] = t;
+    int compared = 0;
+    for (const auto& [f, t] : inForce) {
+      if (!search.everyTrial && f != fos["bracket"][0].get<double>() && f != fos["bracket"][1].get<double>()) continue;
+      const auto j = check(c, f, search.options);
+      const auto& mine = j["trials"].back();
+      for (const char* key : {"stable", "rule", "steps", "equilibrium_steps", "time_s", "max_displacement_m",
+                              "settling_displacement_m", "run_on", "rerun"})
+        EXPECT_EQ(mine[key], t[key]) << "F = " << f << ": " << key;
+      EXPECT_EQ(j["verdict"], t["stable"].get<bool>() ? "stable" : "failing") << "F = " << f;
+      // The search's trial at F = 1 starts held, as it must to find the rest the others start from.
+      EXPECT_EQ(j["trial_start"], f == 1 ? "held" : fos["trial_start"]) << "F = " << f;
+      ++compared;
     }
-    EXPECT_EQ(ends, 2);
+    EXPECT_GE(compared, search.everyTrial ? 9 : 2);
+    if (search.options == "--joints bedding") EXPECT_EQ(check(c, 1.2, search.options)["joints"], nlohmann::json::array({"bedding"}));
   }
+  // A trial that cannot converge (no Δt cut allowed, one open-close iteration) says so: exit 3, no
+  // verdict on F, no picture of a mechanism it did not show.
+  std::string out;
+  EXPECT_EQ(clitest::runCliCapturing("fos " + planar + " --check 1.12 --set analysis.max_step_cuts=0 --set "
+                                     "analysis.open_close_max_iterations=1 --json --quiet --out " + (dir / "nc").string(),
+                                     &out, &err),
+            3);
+  const auto nc = nlohmann::json::parse(out);
+  EXPECT_EQ(nc["verdict"], "not_converged");
+  EXPECT_TRUE(nc["meets_factor"].is_null());
+  EXPECT_FALSE(fs::exists(dir / "nc" / "mechanism_failed.png"));
   fs::remove_all(dir);
 }
 

@@ -152,7 +152,7 @@ TEST(SmallMotion, ACheckRunsAnUndecidedTrialAgainAsTheReviewWould) {
   calibration::SearchSettings s;
   s.verdict.failureDisplacement = 1.0;
   const std::vector<calibration::TrialRecord> runs =
-      calibration::strengthReductionTrial(blockOnFrictionlessBase(0.01, 0), {}, 1.3, s);
+      calibration::strengthReductionTrial(blockOnFrictionlessBase(0.01, 0), {}, 1.3, s).runs;
   ASSERT_EQ(runs.size(), 2u);
   EXPECT_TRUE(runs[0].result.undecided) << runs[0].result.reason;
   EXPECT_FALSE(runs[0].rerun);

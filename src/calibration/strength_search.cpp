@@ -857,25 +857,36 @@ FactorOfSafetyResult factorOfSafety(const model::Scene& scene, const std::vector
   return r;
 }
 
-std::vector<TrialRecord> strengthReductionTrial(const model::Scene& scene, const std::vector<int>& joints, double f,
-                                                const SearchSettings& s) {
-  model::Scene trial = scene;
-  if (joints.empty())
-    for (model::JointProperties& j : trial.joints) j = j.reducedBy(f);
-  for (int j : joints) trial.joints[static_cast<size_t>(j)] = scene.joints[static_cast<size_t>(j)].reducedBy(f);
+StrengthReductionCheck strengthReductionTrial(const model::Scene& scene, const std::vector<int>& joints, double f,
+                                              const SearchSettings& s) {
+  std::vector<int> reduced = joints;
+  if (reduced.empty())
+    for (size_t j = 0; j < scene.joints.size(); ++j) reduced.push_back(static_cast<int>(j));
+  const auto reducedBy = [&](double factor) {
+    model::Scene trial = scene;
+    for (int j : reduced) trial.joints[static_cast<size_t>(j)] = scene.joints[static_cast<size_t>(j)].reducedBy(factor);
+    return trial;
+  };
+  model::Scene trial = reducedBy(f);
   const auto held = sharedEquilibrium(scene);
-  // As factorOfSafety's trials after the first: from the rest at F = 1 when asked and it stands.
+  StrengthReductionCheck check;
+  // As factorOfSafety's trials: the one at F = 1 from every contact held; the others, when asked,
+  // from its rest if it stands.
   std::optional<solver::HeldEquilibrium> settled;
-  if (held && s.trialStart == TrialStart::Settled) settled = settledStart(scene, *held, verdictOf(s, 1));
+  if (held && s.trialStart == TrialStart::Settled && f != 1) {
+    check.runs.push_back({1.0, judgeStability(reducedBy(1), verdictOf(s, 1), &*held, {}, &settled), false});
+    if (!check.runs.back().result.stable) settled.reset();
+  }
+  check.start = settled ? TrialStart::Settled : TrialStart::Held;
   const solver::HeldEquilibrium* start = settled ? &*settled : held ? &*held : nullptr;
-  std::vector<TrialRecord> runs{{f, judgeStability(trial, verdictOf(s, 1), start, endOf(s, f)), false}};
+  check.runs.push_back({f, judgeStability(trial, verdictOf(s, 1), start, endOf(s, f)), false});
   // The review's re-run (reviewTrials): a trend failure has run on to its length already; an
   // undecided small motion runs again that long from t = 0.
-  if (runs.front().result.undecided) {
+  if (check.verdict().undecided) {
     trial.settings.duration *= kReRunLength;
-    runs.push_back({f, judgeStability(trial, verdictOf(s, kReRunLength), start, endOf(s, f)), true});
+    check.runs.push_back({f, judgeStability(trial, verdictOf(s, kReRunLength), start, endOf(s, f)), true});
   }
-  return runs;
+  return check;
 }
 
 std::optional<solver::HeldEquilibrium> settledStart(const model::Scene& scene, const solver::HeldEquilibrium& held,

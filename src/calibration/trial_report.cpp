@@ -98,7 +98,7 @@ std::string runCommand(const std::string& valueLabel, const std::string& caseLab
 }  // namespace
 
 std::string unrestedEndWarning(const std::vector<TrialRecord>& trials, bool found, double failingEnd,
-                               const std::string& valueLabel, const std::string& caseLabel) {
+                               const std::string& valueLabel, const std::string& caseLabel, const std::string& subject) {
   if (!found) return "";
   const TrialRecord* end = failingEndRecord(trials, failingEnd);
   if (!end || end->result.stable || end->result.rule == VerdictRule::MovedWhileSettling) return "";
@@ -107,7 +107,7 @@ std::string unrestedEndWarning(const std::vector<TrialRecord>& trials, bool foun
   const bool kicked = r.settling == "stalled" && r.startAcceleration > kFreeFall;
   if (!unmeasured && !kicked) return "";
   std::ostringstream m;
-  m << "the bracket's failing end, " << valueLabel << " = " << preciseNumber(failingEnd) << ", did not start from rest: ";
+  m << subject << ", " << valueLabel << " = " << preciseNumber(failingEnd) << ", did not start from rest: ";
   if (kicked)
     m << "its settling found no rest, and a step from the quietest state it reached implied " << shortNumber(r.startAcceleration)
       << " g, more than free fall: contact springs, not the slope's weight, drive that start";

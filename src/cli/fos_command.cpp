@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <memory>
@@ -200,16 +201,23 @@ void removeOldMechanismPictures(const std::string& dir) {
     std::filesystem::remove(std::filesystem::path(dir) / file, ignored);
 }
 
-/// --check F: one trial at F, judged as the search judges its bracket's failing end, instead of a
-/// search: whether the slope meets a required factor of safety, in one forward run.
+/// --check F: the trial the search would run at F, judged as the search judges its bracket's
+/// failing end, instead of a search: whether the slope meets a required factor of safety.
 int fosCheck(const std::string& casePath, const Overrides& o, const FosOptions& opt) {
   ddaslope::model::Scene scene = loadCase(casePath, o);
   if (scene.crackSearch)
     throw ddaslope::InputError(casePath, "section.tension_crack.search",
                                "--check judges one scene, and this case searches its tension crack's position: run fos "
-                               "without --check for the least safe position, or give the crack a fixed place (no search)");
+                               "without --check for the least safe position, or check a copy of the case without "
+                               "section.tension_crack.search, its crack placed by section.tension_crack.x");
   std::vector<int> joints;
   for (const auto& n : opt.joints) joints.push_back(jointIndex(scene, n, casePath));
+  std::vector<std::string> names;
+  for (size_t j = 0; j < scene.joints.size(); ++j)
+    if (joints.empty() || std::find(joints.begin(), joints.end(), static_cast<int>(j)) != joints.end())
+      names.push_back(scene.joints[j].name);
+  // A search's results in the default folder are left alone: a check is not a search.
+  const std::string outDir = opt.outGiven ? opt.outDir : "out/fos_check";
   const std::string dtWarning = timeStepWarning(scene);
   warnAboutTrials(casePath, dtWarning);
   ddaslope::calibration::SearchSettings s;
@@ -219,53 +227,71 @@ int fosCheck(const std::string& casePath, const Overrides& o, const FosOptions& 
   recordTrialStates(s, opt.vtkDir, scene);
   MechanismPictures pictures(s, scene);
   const auto t0 = std::chrono::steady_clock::now();
-  const std::vector<ddaslope::calibration::TrialRecord> runs =
+  const ddaslope::calibration::StrengthReductionCheck check =
       ddaslope::calibration::strengthReductionTrial(scene, joints, opt.check, s);
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  const ddaslope::calibration::TrialResult& r = runs.back().result;
+  const ddaslope::calibration::TrialResult& r = check.verdict();
   const bool decided = !r.undecided && r.converged;
-  removeOldMechanismPictures(opt.outDir);
-  const std::vector<std::string> drawn = pictures.write(opt.outDir, casePath, "F", opt.check, opt.check);
+  const std::string verdict = !r.converged ? "not_converged" : r.undecided ? "undecided" : r.stable ? "stable" : "failing";
+  // The picture of a decided trial only: one that could not say is neither the slope standing nor
+  // its mechanism.
+  removeOldMechanismPictures(outDir);
+  const std::vector<std::string> drawn =
+      decided ? pictures.write(outDir, casePath, "F", opt.check, opt.check) : std::vector<std::string>{};
   std::vector<std::string> warnings;
-  for (std::string w : {ddaslope::calibration::smallMotionWarning(runs, "F", shellWord(casePath)),
-                        ddaslope::calibration::unconvergedEndWarning(runs, true, opt.check, "F", shellWord(casePath)),
-                        ddaslope::calibration::unrestedEndWarning(runs, true, opt.check, "F", shellWord(casePath)),
+  for (std::string w : {ddaslope::calibration::smallMotionWarning(check.runs, "F", shellWord(casePath)),
+                        ddaslope::calibration::unrestedEndWarning(check.runs, decided, opt.check, "F", shellWord(casePath),
+                                                                  "the trial"),
                         slightBendNote(scene), notchWarning(scene), dtWarning})
     if (!w.empty()) warnings.push_back(std::move(w));
-  const std::string verdict = !r.converged ? "not_converged" : r.undecided ? "undecided" : r.stable ? "stable" : "failing";
+  const int runs = static_cast<int>(check.runs.size());
   {
     ddaslope::io::JsonRecord j;
-    j.set("case", casePath).set("check", opt.check).set("verdict", verdict);
+    j.set("case", casePath).set("check", opt.check).set("joints", names).set("verdict", verdict);
     // Met: stable at F. Not met: failing at F. Null when the trial could not say.
     if (decided) j.set("meets_factor", r.stable);
     else j.set("meets_factor", NAN);  // null
-    j.set("forward_runs", static_cast<int>(runs.size())).set("wall_time_s", wall);
-    j.set("settings", settingsLine(scene)).set("trial_start", opt.trialStart);
-    ddaslope::calibration::appendTrials(j, runs, "factor");
+    j.set("forward_runs", runs).set("wall_time_s", wall);
+    j.set("settings", settingsLine(scene)).set("trial_start", ddaslope::calibration::name(check.start));
+    ddaslope::calibration::appendTrials(j, check.runs, "factor");
     if (!opt.vtkDir.empty()) j.set("vtk", opt.vtkDir);
     j.set("mechanism_pictures", drawn).set("warnings", warnings);
-    writeResultFile(opt.outDir + "/fos.json", j.dump() + "\n");
+    writeResultFile(outDir + "/fos.json", j.dump() + "\n");
     if (opt.json) std::printf("%s\n", j.dump().c_str());
   }
   if (!opt.json) {
-    const std::string on = opt.joints.empty() ? "all joints" : "the named joints";
+    std::string on;
+    for (const auto& n : names) on += (on.empty() ? "" : ", ") + n;
+    // The factor as given: the fewest digits that read back as it.
+    char f[32];
+    for (int digits = 6; digits <= 17; ++digits)
+      if (std::snprintf(f, sizeof f, "%.*g", digits, opt.check); std::strtod(f, nullptr) == opt.check) break;
     if (decided)
-      std::printf("F %s %.6g (strength reduction on %s): the slope %s with c/%.6g and tan φ/%.6g\n",
-                  r.stable ? "≥" : "<", opt.check, on.c_str(), r.stable ? "stands" : "fails", opt.check, opt.check);
+      std::printf("F = %s %s: the slope %s with the strengths of %s divided by %s, as fos reduces them\n", f,
+                  r.stable ? "met" : "not met", r.stable ? "stands" : "fails", on.c_str(), f);
     else
-      std::printf("F = %.6g (strength reduction on %s): %s\n", opt.check, on.c_str(),
-                  r.converged ? "undecided" : "the trial did not converge");
+      std::printf("F = %s: %s with the strengths of %s divided by %s\n", f,
+                  r.converged ? "undecided" : "the trial did not converge", on.c_str(), f);
     std::printf("  why: %s", r.reason);
     if (r.rule == ddaslope::calibration::VerdictRule::MovedWhileSettling)
       std::printf(" (%s by %.3g m)\n", r.movedMost.c_str(), r.settlingDisplacement);
-    else
+    else if (!r.decidedBy.empty())
       std::printf(" (%s; largest motion %.3g m after t = 0, run to %.4g s)\n", r.decidedBy.c_str(), r.maxDisplacement,
                   r.timeReached);
-    std::printf("  %d forward run%s, %.2f s wall; %s\n", static_cast<int>(runs.size()), runs.size() == 1 ? "" : "s",
-                wall, settingsLine(scene).c_str());
-    std::printf("  one trial, judged as fos judges its trials; like fos, it takes the slope to fail at every F above "
-                "one where it fails (docs/calibration.md, \"Checking a required F\")\n");
-    for (const auto& f : drawn) std::printf("  the mechanism: %s\n", f.c_str());
+    else
+      std::printf(" (run to %.4g s)\n", r.timeReached);
+    if (!r.converged)
+      std::printf("  see why with: ddaslope run %s --at-fos %s --verbose --out DIR\n", shellWord(casePath).c_str(), f);
+    else if (r.undecided)
+      std::printf("  a small motion that neither grew nor stopped, also run %g times longer: run fos for F\n",
+                  ddaslope::calibration::kReRunLength);
+    std::printf("  %d forward run%s, %.2f s wall; %s\n", runs, runs == 1 ? "" : "s", wall, settingsLine(scene).c_str());
+    // Said when asked for, as fos says it.
+    if (scene.settings.initialEquilibrium && opt.trialStart == "settled")
+      std::printf("  %s\n", trialStartNote("the trial", check.start, opt.trialStart).c_str());
+    std::printf("  one trial says nothing of other factors, and near the slope's F trials can disagree; fos finds F "
+                "and checks its trials against each other (docs/calibration.md, \"Checking a required F\")\n");
+    for (const auto& d : drawn) std::printf("  the mechanism: %s\n", d.c_str());
   }
   for (const auto& w : warnings)
     if (w != dtWarning) warnAboutTrials(casePath, w);
@@ -372,19 +398,24 @@ void addFosOptions(CLI::App* cmd, std::string& casePath, Overrides& overrides, F
   cmd->add_option("--threads", opt.threads, "trial factors per round, run at once")->capture_default_str()->check(CLI::Range(1, 256));
   CLI::Option* sweep =
       cmd->add_option("--sweep", opt.sweep, "json.path=min:max:n: F at n values of one case number (CSV and PNG in --out)");
-  cmd->add_option("--check", opt.check,
-                  "whether the slope meets a required F: one trial at that F, judged as the search judges its trials, "
-                  "instead of a search (docs/calibration.md)")
-      ->check(finiteIn(0.01, 100, "a factor in [0.01, 100]"))
-      ->excludes(sweep);
+  CLI::Option* check = cmd->add_option("--check", opt.check,
+                                       "whether the slope meets a required F: the trial the search would run at F, "
+                                       "judged as the search judges its trials, instead of a search (--out default "
+                                       "out/fos_check; docs/calibration.md)")
+                           ->check(finiteIn(0.01, 100, "a factor in [0.01, 100]"))
+                           ->excludes(sweep);
   cmd->add_option("--out", opt.outDir, "output directory: the mechanism pictures (and --sweep's CSV and PNG)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->each([&opt](const std::string&) { opt.outGiven = true; });
   cmd->add_option("--vtk", opt.vtkDir, "write each trial's final state as a VTK series in this folder (ParaView)");
   addTrialStartOption(cmd, opt.trialStart);
   cmd->add_flag("--no-look-ahead", opt.noLookAhead, "run no trial ahead of need: with several threads, the threads a round leaves idle otherwise run the trials the next round may need (the same trials and answer, sooner; docs/calibration.md)");
   addModelOptions(cmd, overrides);
   cmd->add_flag("--json", opt.json, "print the result as JSON");
   addProgressOptions(cmd, opt.progress);
+  // What only a search uses.
+  for (const char* name : {"--width", "--threads", "--no-look-ahead", "--log-json"})
+    if (CLI::Option* other = cmd->get_option_no_throw(name)) check->excludes(other);
 }
 
 

@@ -22,6 +22,7 @@ struct FosOptions {
   std::string trialStart = "held";  ///< settled or held (calibration::TrialStart)
   bool noLookAhead = false;         ///< calibration::SearchSettings::lookAhead off
   double check = 0;                 ///< --check F: one trial at F instead of a search (0: none)
+  bool outGiven = false;            ///< --out given (a check's default folder is not a search's)
 };
 
 /// Registers the subcommand's options on `cmd` (its case, the model options into `overrides`, …).

@@ -249,10 +249,11 @@ Analysis identifyOne(const fs::path& dir) {
       // fos --check: one trial at a required F.
       a.kind = "Required factor of safety checked (fos --check)";
       const std::string verdict = r.value("verdict", "");
-      std::snprintf(text, sizeof text, "F = %.6g %s (%d forward run%s)", number(r, "check"),
-                    verdict == "stable"    ? "met: the slope stands with its strengths divided by it"
-                    : verdict == "failing" ? "not met: the slope fails with its strengths divided by it"
-                                           : "undecided: the trial could not say (see its trial)",
+      std::snprintf(text, sizeof text, "required F = %.6g: %s (%d forward run%s)", number(r, "check"),
+                    verdict == "stable"      ? "met, the slope stands with its strengths divided by it"
+                    : verdict == "failing"   ? "not met, the slope fails with its strengths divided by it"
+                    : verdict == "undecided" ? "undecided, a small motion that neither grew nor stopped (see the trials)"
+                                             : "not converged, the trial could not say (see the trials)",
                     r.value("forward_runs", 0), r.value("forward_runs", 0) == 1 ? "" : "s");
     } else if (r.value("found", false))
       std::snprintf(text, sizeof text, "F = %.4f: stable at %.4f, failing at %.4f (%d forward runs)",
@@ -367,8 +368,12 @@ std::vector<fs::path> pictures(const fs::path& dir, const std::string& file) {
 }
 
 
-/// What a picture shows, for its caption (the file's name follows it).
-std::string caption(const std::string& file) {
+/// What a picture shows, for its caption (the file's name follows it); `check`: the folder holds a
+/// `fos --check`, whose picture is of its one trial.
+std::string caption(const std::string& file, bool check) {
+  if (check && file.rfind("mechanism_", 0) == 0)
+    return file.rfind("mechanism_stable", 0) == 0 ? "The trial at the required F, standing: blocks coloured by displacement"
+                                                  : "The trial at the required F, failing: its mechanism";
   static const std::vector<std::pair<std::string, std::string>> known = {
       {"mechanism_stable", "The search's last stable trial: blocks coloured by displacement, arrows, joint states"},
       {"mechanism_failed", "The search's first failing trial: the mechanism at the bracket's failing end"},
@@ -496,7 +501,7 @@ int reportCommand(const std::string& dirText, const std::string& outFile) {
   if (!png.empty()) {
     h << "<h2>Pictures</h2>\n";
     for (const auto& p : png) {
-      const std::string what = caption(p.filename().string());
+      const std::string what = caption(p.filename().string(), r.contains("check"));
       h << "<figure><img alt=\"" << escape(what.empty() ? p.filename().string() : what) << "\" src=\"data:image/png;base64,"
         << base64(slurp(p)) << "\"><figcaption>" << escape(what) << (what.empty() ? "" : " ") << "("
         << escape(p.filename().string()) << ")</figcaption></figure>\n";
@@ -504,8 +509,11 @@ int reportCommand(const std::string& dirText, const std::string& outFile) {
   }
   json rest = r;
   if (const std::string trials = r.contains("trials") ? trialsTable(r["trials"]) : ""; !trials.empty()) {
-    h << "<h2>Trials</h2>\n<p>Each forward run of the search, in the order run, with the rule of the verdict "
-         "(docs/calibration.md) that decided it.</p>\n"
+    h << "<h2>Trials</h2>\n<p>Each forward run of the "
+      << (r.contains("check") ? "check (the trial at the required F, after the trial at F = 1 a settled start needs, "
+                                "before its re-run if it was undecided)"
+                              : "search")
+      << ", with the rule of the verdict (docs/calibration.md) that decided it.</p>\n"
       << trials << "\n";
     rest.erase("trials");
   }

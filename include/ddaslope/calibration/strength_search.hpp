@@ -174,14 +174,22 @@ struct FactorOfSafetyResult {
 /// shrinks the bracket by threads + 1.
 FactorOfSafetyResult factorOfSafety(const model::Scene& scene, const std::vector<int>& joints, double width,
                                     const SearchSettings& s = {});
+/// What strengthReductionTrial ran: every forward run (the trial at F = 1 a settled start needs,
+/// the trial at F, its re-run), the verdict in force last, and the start the trial at F took.
+struct StrengthReductionCheck {
+  std::vector<TrialRecord> runs;
+  TrialStart start = TrialStart::Held;
+  const TrialResult& verdict() const { return runs.back().result; }
+};
+
 /// One trial of factorOfSafety at F, judged as the search judges the failing end of its bracket:
-/// whether the scene stands with c/F and atan(tan φ/F) on `joints` (all if empty). It starts where
-/// the search's trials start (s.trialStart), runs a failure decided on its trend on to the
-/// review's length, and runs an undecided trial again that much longer, as the review does
-/// (`fos --check`: a required F checked with one forward run instead of a search). Returns the
-/// runs made, the re-run last; the last one's verdict stands.
-std::vector<TrialRecord> strengthReductionTrial(const model::Scene& scene, const std::vector<int>& joints, double f,
-                                                const SearchSettings& s = {});
+/// whether the scene stands with c/F, σt/F and atan(tan φ/F) on `joints` (all if empty). It starts
+/// where the search's trials start (s.trialStart: from the rest at F = 1 when it stands, which
+/// takes a run at F = 1), runs a failure decided on its trend on to the review's length, and runs
+/// an undecided trial again that much longer, as the review does (`fos --check`: a required F
+/// checked without a search).
+StrengthReductionCheck strengthReductionTrial(const model::Scene& scene, const std::vector<int>& joints, double f,
+                                              const SearchSettings& s = {});
 /// The start factorOfSafety's trials take with TrialStart::Settled: the rest of the scene at its
 /// own strengths, from `held` (its stage 1), if a trial there stands; none otherwise. `run
 /// --at-fos` starts from it as the search's trials do.

@@ -47,7 +47,10 @@ constexpr double kFreeFall = 1;
 /// from the equilibrium's static state, whose kick is unknown; or it stalled in a state a step
 /// from which implied more than kFreeFall. Such starts come with verdicts that stop being
 /// monotone in the value (docs/contact-model.md, the stiff end of the contact stiffness).
+/// `subject` names the trial in the text (a search's "the bracket's failing end", `fos --check`'s
+/// "the trial").
 std::string unrestedEndWarning(const std::vector<TrialRecord>& trials, bool found, double failingEnd,
-                               const std::string& valueLabel, const std::string& caseLabel = "CASE");
+                               const std::string& valueLabel, const std::string& caseLabel = "CASE",
+                               const std::string& subject = "the bracket's failing end");
 
 }  // namespace ddaslope::calibration
