@@ -780,6 +780,11 @@ TEST(RobustInput, CommandLineNumbersAndOutputsAreChecked) {
   EXPECT_EQ(runCli("fos " + path + " --check nan --out /tmp/ddaslope_never", &err), 2) << err;
   EXPECT_EQ(runCli("fos " + path + " --check 1.2 --sweep materials.rock.density=2000:2600:3 --out /tmp/ddaslope_never", &err), 2)
       << err;
+  // A search's options are refused with --check, not silently ignored.
+  for (const char* option : {"--width 0.01", "--threads 2", "--no-look-ahead", "--log-json /tmp/ddaslope_never.json"}) {
+    EXPECT_EQ(runCli("fos " + path + " --check 1.2 " + option + " --out /tmp/ddaslope_never", &err), 2) << option;
+    EXPECT_NE(err.find("--check"), std::string::npos) << err;
+  }
   const std::string crack = std::string(DDASLOPE_SOURCE_DIR) + "/cases/planar_failure_crack.json";
   EXPECT_EQ(runCli("fos " + crack + " --check 1.1 --out /tmp/ddaslope_never", &err), 2) << err;
   EXPECT_NE(err.find("section.tension_crack.search"), std::string::npos) << err;

@@ -405,6 +405,14 @@ TEST(StrengthReduction, CheckAtARequiredFactorIsTheSearchsTrialThere) {
   EXPECT_EQ(nc["verdict"], "not_converged");
   EXPECT_TRUE(nc["meets_factor"].is_null());
   EXPECT_FALSE(fs::exists(dir / "nc" / "mechanism_failed.png"));
+  // Without --out a check writes out/fos_check, and leaves a search's out/fos alone.
+  const fs::path here = fs::current_path();
+  fs::create_directories(dir / "cwd");
+  fs::current_path(dir / "cwd");
+  clitest::captureCli("fos " + planar + " --check 1.3 --quiet", &err);
+  fs::current_path(here);
+  EXPECT_TRUE(fs::exists(dir / "cwd" / "out" / "fos_check" / "fos.json"));
+  EXPECT_FALSE(fs::exists(dir / "cwd" / "out" / "fos"));
   fs::remove_all(dir);
 }
 

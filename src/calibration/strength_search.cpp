@@ -874,7 +874,7 @@ StrengthReductionCheck strengthReductionTrial(const model::Scene& scene, const s
   // from its rest if it stands.
   std::optional<solver::HeldEquilibrium> settled;
   if (held && s.trialStart == TrialStart::Settled && f != 1) {
-    check.runs.push_back({1.0, judgeStability(reducedBy(1), verdictOf(s, 1), &*held, {}, &settled), false});
+    check.runs.push_back({1.0, judgeStability(reducedBy(1), verdictOf(s, 1), &*held, endOf(s, 1), &settled), false});
     if (!check.runs.back().result.stable) settled.reset();
   }
   check.start = settled ? TrialStart::Settled : TrialStart::Held;

@@ -267,11 +267,11 @@ int fosCheck(const std::string& casePath, const Overrides& o, const FosOptions& 
     for (int digits = 6; digits <= 17; ++digits)
       if (std::snprintf(f, sizeof f, "%.*g", digits, opt.check); std::strtod(f, nullptr) == opt.check) break;
     if (decided)
-      std::printf("F = %s %s: the slope %s with the strengths of %s divided by %s, as fos reduces them\n", f,
-                  r.stable ? "met" : "not met", r.stable ? "stands" : "fails", on.c_str(), f);
+      std::printf("F = %s %s: the slope %s with its joints' strengths divided by %s as fos reduces them (joints: %s)\n",
+                  f, r.stable ? "met" : "not met", r.stable ? "stands" : "fails", f, on.c_str());
     else
-      std::printf("F = %s: %s with the strengths of %s divided by %s\n", f,
-                  r.converged ? "undecided" : "the trial did not converge", on.c_str(), f);
+      std::printf("F = %s: %s, its joints' strengths divided by %s (joints: %s)\n", f,
+                  r.converged ? "undecided" : "the trial did not converge", f, on.c_str());
     std::printf("  why: %s", r.reason);
     if (r.rule == ddaslope::calibration::VerdictRule::MovedWhileSettling)
       std::printf(" (%s by %.3g m)\n", r.movedMost.c_str(), r.settlingDisplacement);
@@ -280,15 +280,24 @@ int fosCheck(const std::string& casePath, const Overrides& o, const FosOptions& 
                   r.timeReached);
     else
       std::printf(" (run to %.4g s)\n", r.timeReached);
-    if (!r.converged)
-      std::printf("  see why with: ddaslope run %s --at-fos %s --verbose --out DIR\n", shellWord(casePath).c_str(), f);
+    if (!r.converged) {
+      // The trial itself: its joints and start, and the model options of this command.
+      std::string joints;
+      for (const auto& n : opt.joints) joints += (joints.empty() ? " --joints " : ",") + n;
+      std::printf("  see why with: ddaslope run %s --at-fos %s%s%s --verbose --out DIR (with this command's model "
+                  "options)\n",
+                  shellWord(casePath).c_str(), f, joints.c_str(),
+                  check.start == ddaslope::calibration::TrialStart::Settled ? " --trial-start settled" : "");
+    }
     else if (r.undecided)
       std::printf("  a small motion that neither grew nor stopped, also run %g times longer: run fos for F\n",
                   ddaslope::calibration::kReRunLength);
     std::printf("  %d forward run%s, %.2f s wall; %s\n", runs, runs == 1 ? "" : "s", wall, settingsLine(scene).c_str());
     // Said when asked for, as fos says it.
     if (scene.settings.initialEquilibrium && opt.trialStart == "settled")
-      std::printf("  %s\n", trialStartNote("the trial", check.start, opt.trialStart).c_str());
+      std::printf("  %s\n", opt.check == 1 ? "the trial at F = 1 settled from every contact held, as the search's first "
+                                             "trial does: the rest the others start from (--trial-start settled) is its own"
+                                           : trialStartNote("the trial", check.start, opt.trialStart).c_str());
     std::printf("  one trial says nothing of other factors, and near the slope's F trials can disagree; fos finds F "
                 "and checks its trials against each other (docs/calibration.md, \"Checking a required F\")\n");
     for (const auto& d : drawn) std::printf("  the mechanism: %s\n", d.c_str());
@@ -404,7 +413,8 @@ void addFosOptions(CLI::App* cmd, std::string& casePath, Overrides& overrides, F
                                        "out/fos_check; docs/calibration.md)")
                            ->check(finiteIn(0.01, 100, "a factor in [0.01, 100]"))
                            ->excludes(sweep);
-  cmd->add_option("--out", opt.outDir, "output directory: the mechanism pictures (and --sweep's CSV and PNG)")
+  cmd->add_option("--out", opt.outDir,
+                  "output directory: the mechanism pictures (and --sweep's CSV and PNG; --check's default: out/fos_check)")
       ->capture_default_str()
       ->each([&opt](const std::string&) { opt.outGiven = true; });
   cmd->add_option("--vtk", opt.vtkDir, "write each trial's final state as a VTK series in this folder (ParaView)");

@@ -249,12 +249,16 @@ Analysis identifyOne(const fs::path& dir) {
       // fos --check: one trial at a required F.
       a.kind = "Required factor of safety checked (fos --check)";
       const std::string verdict = r.value("verdict", "");
-      std::snprintf(text, sizeof text, "required F = %.6g: %s (%d forward run%s)", number(r, "check"),
-                    verdict == "stable"      ? "met, the slope stands with its strengths divided by it"
-                    : verdict == "failing"   ? "not met, the slope fails with its strengths divided by it"
+      std::string joints;
+      if (r.contains("joints") && r["joints"].is_array())
+        for (const auto& n : r["joints"])
+          if (n.is_string()) joints += (joints.empty() ? "" : ", ") + n.get<std::string>();
+      std::snprintf(text, sizeof text, "required F = %.6g: %s (joints: %s; %d forward run%s)", number(r, "check"),
+                    verdict == "stable"      ? "met, the slope stands with its joints' strengths divided by it"
+                    : verdict == "failing"   ? "not met, the slope fails with its joints' strengths divided by it"
                     : verdict == "undecided" ? "undecided, a small motion that neither grew nor stopped (see the trials)"
                                              : "not converged, the trial could not say (see the trials)",
-                    r.value("forward_runs", 0), r.value("forward_runs", 0) == 1 ? "" : "s");
+                    joints.c_str(), r.value("forward_runs", 0), r.value("forward_runs", 0) == 1 ? "" : "s");
     } else if (r.value("found", false))
       std::snprintf(text, sizeof text, "F = %.4f: stable at %.4f, failing at %.4f (%d forward runs)",
                     number(r, "factor_of_safety"), r["bracket"][0].get<double>(), r["bracket"][1].get<double>(),
@@ -450,6 +454,9 @@ std::string trialsTable(const json& trials) {
     note(t.value("settling", "") == "unsettled",
          "its settling measured no quiet state: started from the equilibrium's static state, its kick unknown");
     note(t.value("early_rest", false), "stopped early: at rest for certain");
+    // Rule (0) decides before t = 0: its evidence is the settling's motion, not the run's.
+    note(rule == "moved_while_settling",
+         "moved " + scalar(t.value("settling_displacement_m", json(0.0))) + " m while the scene settled");
     h += "<tr><td>" + std::to_string(++n) + "</td><td>" + (key.empty() ? "&ndash;" : scalar(t.at(key))) + "</td><td>" +
          verdict + "</td><td>" + escape(rules.count(rule) ? rules[rule] : rule) + "</td><td>" +
          num(t, "max_displacement_m") + "</td><td>" + num(t, "failure_displacement_m") + "</td><td>" +
@@ -510,8 +517,8 @@ int reportCommand(const std::string& dirText, const std::string& outFile) {
   json rest = r;
   if (const std::string trials = r.contains("trials") ? trialsTable(r["trials"]) : ""; !trials.empty()) {
     h << "<h2>Trials</h2>\n<p>Each forward run of the "
-      << (r.contains("check") ? "check (the trial at the required F, after the trial at F = 1 a settled start needs, "
-                                "before its re-run if it was undecided)"
+      << (r.contains("check") ? "check (the trial at the required F; where there were, the trial at F = 1 a settled "
+                                "start needs before it and the re-run of an undecided trial after it)"
                               : "search")
       << ", with the rule of the verdict (docs/calibration.md) that decided it.</p>\n"
       << trials << "\n";
