@@ -416,6 +416,38 @@ TEST(StrengthReduction, CheckAtARequiredFactorIsTheSearchsTrialThere) {
   fs::remove_all(dir);
 }
 
+// A check whose trial stays undecided says so (issue #42): a block gliding at 1 cm/s on a
+// frictionless base, against a failure displacement of 10 m, moves 4 cm in its first run and its
+// three extensions (4 s), and 16 cm in the re-run four times longer (16 s), under 10 % of 10 m
+// both times and never growing (SmallMotion.SteadyGlideIsUndecidedNotFailure): undecided, exit 3,
+// no verdict on F, two forward runs, no picture.
+TEST(StrengthReduction, ACheckThatStaysUndecidedSaysSo) {
+  namespace fs = std::filesystem;
+  const std::string c = clitest::writeTemp("glide.json", R"({
+    "gravity": [0, -9.81],
+    "materials": {"rock": {"density": 2500, "young_modulus": 1e10, "poisson_ratio": 0.25}},
+    "joints": {"smooth": {"friction_angle": 0, "cohesion": 0, "tensile_strength": 0}},
+    "blocks": [
+      {"id": "base", "material": "rock", "fixed": true, "vertices": [[0, -2], [100, -2], [100, 0], [0, 0]]},
+      {"id": "block", "material": "rock", "vertices": [[10, 0], [11, 0], [11, 1], [10, 1]], "velocity": [0.01, 0]}],
+    "analysis": {"duration": 1.0, "time_step": 0.001, "failure_displacement": 10}})");
+  const fs::path dir = fs::temp_directory_path() / ("ddaslope_undecided_" + std::to_string(::getpid()));
+  std::string out, err;
+  EXPECT_EQ(clitest::runCliCapturing("fos " + c + " --check 1.3 --json --quiet --out " + dir.string(), &out, &err), 3)
+      << err;
+  const auto j = nlohmann::json::parse(out);
+  EXPECT_EQ(j["verdict"], "undecided");
+  EXPECT_TRUE(j["meets_factor"].is_null());
+  EXPECT_EQ(j["forward_runs"], 2);
+  ASSERT_EQ(j["trials"].size(), 2u);
+  EXPECT_TRUE(j["trials"][1]["rerun"].get<bool>());
+  EXPECT_NEAR(j["trials"][1]["max_displacement_m"].get<double>(), 0.16, 0.01 * 0.16) << "m: 1 cm/s over 16 s";
+  EXPECT_FALSE(fs::exists(dir / "mechanism_stable.png") || fs::exists(dir / "mechanism_failed.png"));
+  EXPECT_EQ(clitest::runCliCapturing("fos " + c + " --check 1.3 --out " + dir.string(), &out, &err), 3);
+  EXPECT_NE(out.find("F = 1.3: undecided"), std::string::npos) << out;
+  fs::remove_all(dir);
+}
+
 // `fos` draws the mechanism (issue #43): on the shipped planar and toppling cases it writes the
 // pictures of the trials at its bracket's ends, mechanism_stable.png and mechanism_failed.png,
 // into --out and lists them in its JSON; `critical` does the same for its bracket.
