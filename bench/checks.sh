@@ -1,5 +1,5 @@
 #!/bin/sh
-# A design's question (issue #42): does each shipped real slope meet a required F? `fos --check F`
+# A design's question: does each shipped real slope meet a required F? `fos --check F`
 # runs the one trial a search would run at F instead of the search (docs/calibration.md, "Checking a
 # required F"). Prints one CSV line per case and F: the verdict, forward runs, steps after t = 0
 # and before it (the equilibrium's static and settling steps), and wall time; compare the wall with

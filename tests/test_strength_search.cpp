@@ -331,7 +331,7 @@ TEST(StrengthReduction, RunAtFosShowsTheSearchsVerdicts) {
   fs::remove_all(dir);
 }
 
-// `fos --check F` answers "does the slope meet F?" without a search (issue #42): it runs the trial
+// `fos --check F` answers "does the slope meet F?" without a search: it runs the trial
 // the search itself runs at F. On Hoek & Bray's planar failure (closed form 1.1133, docs/validation.md
 // C) F is met 2 % below that and not met 2 % above (the search's own tolerance against the closed
 // form, PlanarFailureMatchesHoekAndBray). At every factor a search tried, held and settled, the
@@ -416,7 +416,7 @@ TEST(StrengthReduction, CheckAtARequiredFactorIsTheSearchsTrialThere) {
   fs::remove_all(dir);
 }
 
-// A check whose trial stays undecided says so (issue #42): a block gliding at 1 cm/s on a
+// A check whose trial stays undecided says so: a block gliding at 1 cm/s on a
 // frictionless base, against a failure displacement of 10 m, moves 4 cm in its first run and its
 // three extensions (4 s), and 16 cm in the re-run four times longer (16 s), under 10 % of 10 m
 // both times and never growing (SmallMotion.SteadyGlideIsUndecidedNotFailure): undecided, exit 3,

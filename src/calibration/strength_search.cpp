@@ -828,11 +828,21 @@ std::vector<CurvePoint> criticalCurve(const model::Scene& scene, int joint, doub
   return curve;
 }
 
+namespace {
+/// A strength-reduction trial's scene: `joints` (all if empty) reduced by f, run `length` times the
+/// case's duration.
+model::Scene reducedScene(const model::Scene& scene, const std::vector<int>& joints, double f, double length = 1) {
+  model::Scene trial = scene;
+  trial.settings.duration *= length;
+  if (joints.empty())
+    for (model::JointProperties& j : trial.joints) j = j.reducedBy(f);
+  for (int j : joints) trial.joints[static_cast<size_t>(j)] = scene.joints[static_cast<size_t>(j)].reducedBy(f);
+  return trial;
+}
+}  // namespace
+
 FactorOfSafetyResult factorOfSafety(const model::Scene& scene, const std::vector<int>& joints, double width,
                                     const SearchSettings& s) {
-  std::vector<int> reduced = joints;
-  if (reduced.empty())
-    for (size_t j = 0; j < scene.joints.size(); ++j) reduced.push_back(static_cast<int>(j));
   const auto held = sharedEquilibrium(scene);
   // The rest of the first trial, at F = 1 (factorOfSafetyOf runs it alone, before any other,
   // when the trials start from it), once that trial stands: where the later trials start with
@@ -841,9 +851,7 @@ FactorOfSafetyResult factorOfSafety(const model::Scene& scene, const std::vector
   std::atomic<bool> first{s.trialStart == TrialStart::Settled};
   FactorOfSafetyResult r = factorOfSafetyOf(
       [&](double f, double length) {
-        model::Scene trial = scene;
-        trial.settings.duration *= length;
-        for (int j : reduced) trial.joints[j] = scene.joints[j].reducedBy(f);
+        const model::Scene trial = reducedScene(scene, joints, f, length);
         if (first.exchange(false)) {
           const bool keep = held && f == 1 && length == 1;
           TrialResult r = judgeStability(trial, verdictOf(s, length), held ? &*held : nullptr, endOf(s, f), keep ? &settled : nullptr);
@@ -859,33 +867,25 @@ FactorOfSafetyResult factorOfSafety(const model::Scene& scene, const std::vector
 
 StrengthReductionCheck strengthReductionTrial(const model::Scene& scene, const std::vector<int>& joints, double f,
                                               const SearchSettings& s) {
-  std::vector<int> reduced = joints;
-  if (reduced.empty())
-    for (size_t j = 0; j < scene.joints.size(); ++j) reduced.push_back(static_cast<int>(j));
-  const auto reducedBy = [&](double factor) {
-    model::Scene trial = scene;
-    for (int j : reduced) trial.joints[static_cast<size_t>(j)] = scene.joints[static_cast<size_t>(j)].reducedBy(factor);
-    return trial;
-  };
-  model::Scene trial = reducedBy(f);
   const auto held = sharedEquilibrium(scene);
   StrengthReductionCheck check;
   // As factorOfSafety's trials: the one at F = 1 from every contact held; the others, when asked,
   // from its rest if it stands.
   std::optional<solver::HeldEquilibrium> settled;
   if (held && s.trialStart == TrialStart::Settled && f != 1) {
-    check.runs.push_back({1.0, judgeStability(reducedBy(1), verdictOf(s, 1), &*held, endOf(s, 1), &settled), false});
+    check.runs.push_back({1.0, judgeStability(reducedScene(scene, joints, 1), verdictOf(s, 1), &*held, endOf(s, 1), &settled), false});
     if (!check.runs.back().result.stable) settled.reset();
   }
   check.start = settled ? TrialStart::Settled : TrialStart::Held;
   const solver::HeldEquilibrium* start = settled ? &*settled : held ? &*held : nullptr;
-  check.runs.push_back({f, judgeStability(trial, verdictOf(s, 1), start, endOf(s, f)), false});
+  check.runs.push_back({f, judgeStability(reducedScene(scene, joints, f), verdictOf(s, 1), start, endOf(s, f)), false});
   // The review's re-run (reviewTrials): a trend failure has run on to its length already; an
   // undecided small motion runs again that long from t = 0.
-  if (check.verdict().undecided) {
-    trial.settings.duration *= kReRunLength;
-    check.runs.push_back({f, judgeStability(trial, verdictOf(s, kReRunLength), start, endOf(s, f)), true});
-  }
+  if (check.verdict().undecided)
+    check.runs.push_back({f,
+                          judgeStability(reducedScene(scene, joints, f, kReRunLength), verdictOf(s, kReRunLength), start,
+                                         endOf(s, f)),
+                          true});
   return check;
 }
 
