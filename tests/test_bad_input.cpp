@@ -784,6 +784,7 @@ TEST(RobustInput, CommandLineNumbersAndOutputsAreChecked) {
   for (const char* option : {"--width 0.01", "--threads 2", "--no-look-ahead", "--log-json /tmp/ddaslope_never.json"}) {
     EXPECT_EQ(runCli("fos " + path + " --check 1.2 " + option + " --out /tmp/ddaslope_never", &err), 2) << option;
     EXPECT_NE(err.find("--check"), std::string::npos) << err;
+    EXPECT_NE(err.find("belongs to a search for F"), std::string::npos) << err;
   }
   const std::string crack = std::string(DDASLOPE_SOURCE_DIR) + "/cases/planar_failure_crack.json";
   EXPECT_EQ(runCli("fos " + crack + " --check 1.1 --out /tmp/ddaslope_never", &err), 2) << err;

@@ -1,6 +1,7 @@
 #include "ddaslope/calibration/trial_report.hpp"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <sstream>
@@ -82,11 +83,12 @@ const TrialRecord* failingEndRecord(const std::vector<TrialRecord>& trials, doub
   return end;
 }
 
-/// All the digits of a value: a trial near a chaotic verdict must be run again at exactly its value.
+/// The shortest digits that read back as exactly this value: a trial near a chaotic verdict must be
+/// run again at exactly its value, and a value the user typed reads as typed.
 std::string preciseNumber(double v) {
   char buf[32];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
-  return buf;
+  const auto r = std::to_chars(buf, buf + sizeof buf, v);
+  return std::string(buf, r.ptr);
 }
 
 std::string runCommand(const std::string& valueLabel, const std::string& caseLabel, double value,

@@ -423,9 +423,15 @@ void addFosOptions(CLI::App* cmd, std::string& casePath, Overrides& overrides, F
   addModelOptions(cmd, overrides);
   cmd->add_flag("--json", opt.json, "print the result as JSON");
   addProgressOptions(cmd, opt.progress);
-  // What only a search uses.
-  for (const char* name : {"--width", "--threads", "--no-look-ahead", "--log-json"})
-    if (CLI::Option* other = cmd->get_option_no_throw(name)) check->excludes(other);
+  // What only a search uses: refused with a check, saying why.
+  cmd->parse_complete_callback([cmd, check]() {
+    if (check->count() == 0) return;
+    for (const char* name : {"--width", "--threads", "--no-look-ahead", "--log-json"})
+      if (const CLI::Option* other = cmd->get_option_no_throw(name); other && other->count() > 0)
+        throw CLI::ValidationError(name, std::string("belongs to a search for F; --check runs the one trial a search "
+                                                     "would run at the required F, with no bracket, rounds or progress "
+                                                     "log. Drop ") + name + " or --check");
+  });
 }
 
 
