@@ -157,3 +157,29 @@ TEST(Overlap, FarFromTheOriginAsNearIt) {
   EXPECT_NEAR(o.area, 0.25, 1e-3);  // coordinates resolve 1.2e-4 m at 1e12
   EXPECT_NEAR(o.perimeter, 2.0, 1e-3);
 }
+
+// A column on a 20° ground line, as a CAD export writes it: its base split at a vertex, each base
+// vertex within 5e-7 m of the line on either side (coordinates to the micrometre), the ground a
+// non-convex outline. They share at most slivers of that thickness along the 3.4 m base; the
+// same column sunk 5 cm into the ground shares the 5 cm strip (3.4 m × 0.05 m, to the sliver).
+TEST(Overlap, ABaseWithinRoundOffOfTheGroundSharesOnlySlivers) {
+  const std::vector<Vec2> ground{{-10, -15}, {90, -15}, {90, 23.941409999999905}, {65.77848300000187, 23.941409999999905},
+                                 {0, 0}, {-10, 0}};
+  std::vector<Vec2> column{{28.190778999996837, 10.260604000000058}, {29.130471333337482, 10.602624333333324},
+                           {31.009855999960564, 11.286665000000085}, {27.58965499995975, 20.68359099999998},
+                           {24.770576999988407, 19.657531000000063}};
+  const double base = (column[2] - column[0]).norm();
+  for (const Vec2& shift : {Vec2(0, 0), Vec2(512345.678, 5123456.789)}) {
+    std::vector<Vec2> g = ground, c = column;
+    for (Vec2& v : g) v += shift;
+    for (Vec2& v : c) v += shift;
+    const double tol = 1e-9 * 100;  // the case reader's: 1e-9 of the scene
+    EXPECT_LT(geometry::overlapOf(g, c, tol).area, base * 1e-6) << shift.transpose();
+    EXPECT_LT(geometry::overlapOf(c, g, tol).area, base * 1e-6) << shift.transpose();
+    // Sunk 5 cm normal to the 20° line.
+    const Vec2 down = 0.05 * Vec2(std::sin(degToRad(20)), -std::cos(degToRad(20)));
+    std::vector<Vec2> sunk = c;
+    for (Vec2& v : sunk) v += down;
+    EXPECT_NEAR(geometry::overlapOf(g, sunk, tol).area, base * 0.05, base * 1e-5) << shift.transpose();
+  }
+}

@@ -1,6 +1,9 @@
 #include "ddaslope/geometry/polygon.hpp"
 
+#include "ddaslope/geometry/cutting.hpp"
+
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -284,6 +287,63 @@ void addBoundaryInside(const std::vector<Vec2>& a, const std::vector<Vec2>& b, d
   }
 }
 
+/// Triangles of a counter-clockwise simple polygon, by ear clipping. A polygon whose rounding
+/// leaves no clean ear (near-collinear vertices) loses its most convex corner instead: a sliver
+/// of round-off size, harmless to an area.
+std::vector<std::array<Vec2, 3>> triangles(std::vector<Vec2> p) {
+  std::vector<std::array<Vec2, 3>> out;
+  const auto strictlyInside = [](const Vec2& x, const Vec2& u, const Vec2& v, const Vec2& w) {
+    return cross(v - u, x - u) > 0 && cross(w - v, x - v) > 0 && cross(u - w, x - w) > 0;
+  };
+  size_t start = 0;
+  while (p.size() > 3) {
+    const size_t n = p.size();
+    size_t ear = n, fallback = 0;
+    double mostConvex = -std::numeric_limits<double>::infinity();
+    for (size_t step = 0; step < n && ear == n; ++step) {
+      const size_t i = (start + step) % n;
+      const Vec2 &u = p[(i + n - 1) % n], &v = p[i], &w = p[(i + 1) % n];
+      const double c = cross(v - u, w - v);
+      if (c > mostConvex) mostConvex = c, fallback = i;
+      if (!(c > 0)) continue;
+      bool empty = true;
+      for (size_t k = 0; k < n && empty; ++k)
+        if (k != i && k != (i + 1) % n && k != (i + n - 1) % n && strictlyInside(p[k], u, v, w)) empty = false;
+      if (empty) ear = i;
+    }
+    if (ear == n) ear = fallback;
+    out.push_back({p[(ear + n - 1) % n], p[ear], p[(ear + 1) % n]});
+    p.erase(p.begin() + static_cast<std::ptrdiff_t>(ear));
+    start = ear == 0 ? 0 : ear - 1;  // the neighbours are the likeliest next ears
+  }
+  if (p.size() == 3) out.push_back({p[0], p[1], p[2]});
+  return out;
+}
+
+/// The area two counter-clockwise simple polygons share, as the sum over their triangles of the
+/// convex intersections (Sutherland–Hodgman). Every term is a clipped region's own area, so a
+/// boundary that nearly coincides with the other's adds at most a sliver: the Green's-theorem sum
+/// below needs each piece classified consistently from both sides, and a piece classified
+/// differently there leaves a loop unclosed, adding the area of a triangle to a far origin.
+double sharedAreaByTriangles(const std::vector<Vec2>& a, const std::vector<Vec2>& b) {
+  const auto ta = triangles(a), tb = triangles(b);
+  std::vector<Aabb> boxesB;
+  boxesB.reserve(tb.size());
+  for (const auto& u : tb) boxesB.push_back(boundingBox({u[0], u[1], u[2]}));
+  double area = 0;
+  for (const auto& t : ta) {
+    const Aabb bt = boundingBox({t[0], t[1], t[2]});
+    for (size_t j = 0; j < tb.size(); ++j) {
+      const Aabb& bu = boxesB[j];
+      if (bu.lo.x() > bt.hi.x() || bt.lo.x() > bu.hi.x() || bu.lo.y() > bt.hi.y() || bt.lo.y() > bu.hi.y()) continue;
+      std::vector<Vec2> piece{t[0], t[1], t[2]};
+      for (int e = 0; e < 3 && piece.size() >= 3; ++e) piece = clipToLeft(piece, tb[j][e], tb[j][(e + 1) % 3] - tb[j][e]);
+      if (piece.size() >= 3) area += std::max(0.0, signedArea(piece));
+    }
+  }
+  return area;
+}
+
 }  // namespace
 
 Overlap overlapOf(const std::vector<Vec2>& a, const std::vector<Vec2>& b, double tol) {
@@ -296,7 +356,9 @@ Overlap overlapOf(const std::vector<Vec2>& a, const std::vector<Vec2>& b, double
   double twiceArea = 0;
   addBoundaryInside(la, lb, tol, true, o, twiceArea);
   addBoundaryInside(lb, la, tol, false, o, twiceArea);
-  o.area = std::max(0.0, 0.5 * twiceArea);
+  // Green's theorem over the pieces leaves neighbours along a common edge, within tol, sharing
+  // exactly nothing; the triangles bound it where a piece was classified differently from each side.
+  o.area = std::min(std::max(0.0, 0.5 * twiceArea), sharedAreaByTriangles(la, lb));
   o.point += origin;
   return o;
 }
