@@ -142,6 +142,13 @@ TEST(CaseReader, UnknownReferences) {
   d = minimal();
   d["monitors"][0]["block"] = "nowhere";
   expectError(d, "monitors[0].block", "unknown block");
+  // One joint per pair of blocks: two entries for a pair, in either order of its ids, would let
+  // the entry written last decide.
+  d = minimal();
+  d["joints"]["fault"] = {{"friction_angle", 10}};
+  d["joint_pairs"] = json::array({{{"blocks", {"base", "slider"}}, {"joint", "bedding"}},
+                                  {{"blocks", {"slider", "base"}}, {"joint", "fault"}}});
+  expectError(d, "joint_pairs[1].blocks", "already given a joint by joint_pairs[0]");
 }
 
 TEST(CaseReader, OutOfRangeValues) {

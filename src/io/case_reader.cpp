@@ -273,6 +273,7 @@ void readJointPairs(const Reader& r, const json& doc, model::Scene& s, const std
   if (!doc.contains("joint_pairs")) return;
   const json& pairs = doc.at("joint_pairs");
   if (!pairs.is_array()) r.fail("joint_pairs", "expected an array, found " + typeName(pairs));
+  std::map<std::pair<int, int>, size_t> first;  // each pair's entry
   for (size_t i = 0; i < pairs.size(); ++i) {
     const std::string p = Reader::index("joint_pairs", i);
     r.onlyKeys(pairs[i], p, {"blocks", "joint"});
@@ -287,7 +288,13 @@ void readJointPairs(const Reader& r, const json& doc, model::Scene& s, const std
     if (ids[0] == ids[1]) r.fail(p + ".blocks", "expected two different blocks");
     const std::string jn = r.string(r.required(pairs[i], p, "joint"), p + ".joint");
     if (!jointIds.count(jn)) r.fail(p + ".joint", "unknown joint \"" + jn + "\" (not in joints)");
-    s.pairJoints[{std::min(ids[0], ids[1]), std::max(ids[0], ids[1])}] = jointIds.at(jn);
+    const std::pair<int, int> key{std::min(ids[0], ids[1]), std::max(ids[0], ids[1])};
+    if (const auto seen = first.find(key); seen != first.end())
+      r.fail(p + ".blocks", "the pair of blocks \"" + s.blocks[key.first].id + "\" and \"" + s.blocks[key.second].id +
+                                "\" is already given a joint by joint_pairs[" + std::to_string(seen->second) +
+                                "]: expected one joint per pair of blocks");
+    first[key] = i;
+    s.pairJoints[key] = jointIds.at(jn);
   }
 }
 
