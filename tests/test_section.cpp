@@ -87,6 +87,24 @@ TEST(Section, BadSectionsAreReported) {
   s = basin();
   s.baseDepth = 0;
   EXPECT_THROW(model::cutSection(s), InputError);
+  // Crown and toe on the ground: within 1e-3 of the section's size (0.1 m here) a digitising
+  // error is absorbed; the toe 12 m in the air or the crown 2 m down is refused, not a face or
+  // crest redrawn through it.
+  for (const auto& [end, at] : {std::pair{size_t{3}, Vec2(90, 32)}, std::pair{size_t{0}, Vec2(10, 18)}}) {
+    s = basin();
+    s.slidingSurface[end] = at;
+    try {
+      model::cutSection(s);
+      ADD_FAILURE() << "accepted an end off the ground at " << at.transpose();
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.jsonPath(), "sliding_surface[" + std::to_string(end) + "]");
+      EXPECT_NE(std::string(e.what()).find(end == 0 ? "crown on the ground" : "toe on the ground"), std::string::npos)
+          << e.what();
+    }
+  }
+  s = basin();
+  s.slidingSurface[3] = {90, 20.05};
+  EXPECT_NO_THROW(model::cutSection(s));
 }
 
 TEST(Cutting, HalfPlaneClipOfASquare) {

@@ -6,6 +6,7 @@
 
 #include "ddaslope/core/errors.hpp"
 #include "ddaslope/geometry/cutting.hpp"
+#include "ddaslope/geometry/polygon.hpp"
 #include "ddaslope/model/input_limits.hpp"
 #include "ddaslope/model/kinks.hpp"
 
@@ -149,6 +150,23 @@ Extent checkLines(const SectionSpec& s) {
   for (const Vec2& p : s.slidingSurface) lowest = std::min(lowest, p.y()), highest = std::max(highest, p.y());
   size = std::max(s.ground.back().x() - s.ground.front().x(), highest - lowest);
   const double tol = 1e-9 * size;
+  // Crown and toe on the ground: a digitised section may miss it by a little, which the mass and
+  // base absorb; farther off, they would invent or remove rock (a face redrawn through the toe).
+  const double offGround = 1e-3 * size;
+  for (const size_t i : {size_t{0}, s.slidingSurface.size() - 1}) {
+    const Vec2 p = s.slidingSurface[i];
+    double nearest = INFINITY;
+    for (size_t k = 0; k + 1 < s.ground.size(); ++k)
+      nearest = std::min(nearest, geometry::distanceToSegment(p, s.ground[k], s.ground[k + 1], nullptr));
+    if (nearest > offGround) {
+      std::ostringstream m;
+      m << "expected the " << (i == 0 ? "crown" : "toe") << " on the ground (within " << offGround
+        << " m, 1e-3 of the section's size); (" << p.x() << ", " << p.y() << ") is " << nearest
+        << " m from it, the ground at x = " << p.x() << " being at y = " << groundAt(s.ground, p.x())
+        << " m. Draw the sliding surface's ends on the ground line";
+      fail("sliding_surface[" + std::to_string(i) + "]", m.str());
+    }
+  }
   for (size_t i = 1; i + 1 < s.slidingSurface.size(); ++i)
     if (s.slidingSurface[i].y() >= groundAt(s.ground, s.slidingSurface[i].x()) - tol)
       fail("sliding_surface[" + std::to_string(i) + "]", "expected the sliding surface below the ground between crown and toe");
