@@ -736,8 +736,9 @@ TEST(RobustInput, SlidingSurfaceAboveTheGroundIsRefused) {
   json& surface = d["section"]["sliding_surface"];
   const json crown = surface.front(), toe = surface.back();
   surface = {crown, toe};
-  d["section"]["ground"] = {{crown[0].get<double>() - 100, crown[1].get<double>()},
-                            {crown[0].get<double>() + 1, crown[1].get<double>() - 400},
+  // Crown and toe on the ground, which dips 400 m between them: the chord runs above it.
+  d["section"]["ground"] = {{crown[0].get<double>() - 100, crown[1].get<double>()}, crown,
+                            {crown[0].get<double>() + 1, crown[1].get<double>() - 400}, toe,
                             {toe[0].get<double>() + 100, toe[1].get<double>()}};
   expectError(d, "section.sliding_surface", "below the ground");
 }

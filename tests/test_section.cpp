@@ -195,6 +195,12 @@ TEST(Kinks, AJointEndingOnABendIsToldFromABlockSpanningIt) {
   std::string warnings;
   clitest::captureCli("fos " + slab + drawn + " --quiet", &warnings);
   EXPECT_NE(warnings.find("may follow the contact stiffness"), std::string::npos) << warnings;
+  EXPECT_EQ(warnings.find("was moved"), std::string::npos) << warnings;
+  // Moved (as shipped), the answer is the moved outline's, and the searches say so: the automatic
+  // move grows with the whole scene, the fixed base included (5e-3 w0 = 0.5 m here).
+  clitest::captureCli("fos " + slab + " --quiet --width 0.05", &warnings);
+  EXPECT_NE(warnings.find("was moved 0.5 m up the upper face"), std::string::npos) << warnings;
+  EXPECT_NE(warnings.find("grows with the whole scene's size"), std::string::npos) << warnings;
 }
 
 // A joint ending on a concave bend of the base (the bilinear slab's cross joint), in a block

@@ -392,7 +392,9 @@ TEST(StrengthReduction, CheckAtARequiredFactorIsTheSearchsTrialThere) {
       ++compared;
     }
     EXPECT_GE(compared, search.everyTrial ? 9 : 2);
-    if (search.options == "--joints bedding") EXPECT_EQ(check(c, 1.2, search.options)["joints"], nlohmann::json::array({"bedding"}));
+    if (search.options == "--joints bedding") {
+      EXPECT_EQ(check(c, 1.2, search.options)["joints"], nlohmann::json::array({"bedding"}));
+    }
   }
   // A trial that cannot converge (no Δt cut allowed, one open-close iteration) says so: exit 3, no
   // verdict on F, no picture of a mechanism it did not show.

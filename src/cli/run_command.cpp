@@ -80,6 +80,7 @@ std::vector<std::string> reduceStrengths(model::Scene& scene, const std::string&
 int runCommand(const std::string& casePath, const Overrides& o, const RunCommandOptions& c) {
   model::Scene scene = loadCase(casePath, o);
   warnAboutTrials(casePath, timeStepWarning(scene));
+  warnAboutTrials(casePath, movedJointWarning(scene));
   std::vector<std::string> reduced;
   // --at-fos starts where fos's trials start: from the rest at the case's own strengths, when
   // the case stands there.

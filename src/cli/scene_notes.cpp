@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <iomanip>
 #include <sstream>
 
 #include "crack_search.hpp"
@@ -143,6 +144,27 @@ std::string notchWarning(const ddaslope::model::Scene& scene) {
       return m.str();
     }
   return "";
+}
+
+std::string movedJointWarning(const ddaslope::model::Scene& scene) {
+  if (scene.movedJointEnds.empty()) return "";
+  const auto& m = scene.movedJointEnds.front();
+  std::ostringstream w;
+  w.precision(3);
+  w << "the joint between " << scene.blocks[m.upper].id << " and " << scene.blocks[m.lower].id
+    << " ended on a concave bend of " << scene.blocks[m.fixedBlock].id << " at (" << std::setprecision(10)
+    << m.kink.x() + scene.origin.x() << ", " << m.kink.y() + scene.origin.y() << std::setprecision(3)
+    << ") and was moved " << m.shift.norm() << " m up the upper face";
+  if (scene.movedJointEnds.size() > 1) w << " (and " << scene.movedJointEnds.size() - 1 << " more)";
+  w << ": the answer is that of the moved outline, not the drawn one, where a corner in the notch would follow the "
+       "contact stiffness (docs/research/bilinear-slab.md). ";
+  if (scene.settings.jointEndOffset < 0)
+    w << "The move is analysis.joint_end_offset's automatic max(5e-3 w0, 2 × failure displacement), which grows with "
+         "the whole scene's size, the fixed blocks' included: set it (e.g. `--set analysis.joint_end_offset=X`, X well "
+         "above the slide's settling) and compare";
+  else
+    w << "Compare another analysis.joint_end_offset";
+  return w.str();
 }
 
 std::string timeStepWarning(const ddaslope::model::Scene& scene) {

@@ -21,6 +21,9 @@ std::string slightBendNote(const model::Scene& scene);
 /// A warning for the searches where a joint ends on a concave bend (a corner in a notch); empty if
 /// none.
 std::string notchWarning(const model::Scene& scene);
+/// For an answer: the joints the reader moved off concave bends (the answer is the moved
+/// outline's, and an automatic move grows with the scene's size); empty if none.
+std::string movedJointWarning(const model::Scene& scene);
 /// A warning when Δt exceeds the time in which a block falling freely from rest moves the step
 /// limit, where answers stop holding (docs/accuracy.md, "Δt beyond the step limit"); empty if not.
 std::string timeStepWarning(const model::Scene& scene);

@@ -39,6 +39,9 @@ struct ExpectationResult {
   model::Expectation expectation;
   double actual = 0;
   bool passed = false;
+  /// False when the expectation is at a time past the run's end: not checked (and not passed).
+  bool reached = true;
+  double runEnd = 0;  ///< the run's last time (s)
   std::string describe() const;
 };
 
