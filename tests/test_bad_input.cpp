@@ -1113,3 +1113,69 @@ TEST(RobustInput, RangesOfCurvesAndSweepsAreFiniteAndWhole) {
     EXPECT_NE(err.find("--sweep"), std::string::npos) << sweep << ": " << err;
   }
 }
+
+// Values a user typed in another unit are read as the schema's and give confident nonsense (a
+// density of 2.6 t/m³ as kg/m³: F = 275 on the README's slope). They are valid input, so they are
+// warned about, each with the value it would be in the schema's unit; a free block touching
+// nothing is a misplaced block, warned about by check.
+TEST(RobustInput, ValuesInAnotherUnitAndFloatingBlocksAreWarned) {
+  struct Slip {
+    const char* set;
+    const char* says;
+  };
+  const std::string path = writeTemp("units.json", kMinimal);
+  for (const Slip& s : {Slip{"materials.rock.density=2.6", "density = 2.6 kg/m³"},
+                        Slip{"materials.rock.young_modulus=5000", "young_modulus = 5000 Pa"},
+                        Slip{"joints.bedding.friction_angle=0.5236", "0.5236 rad would be 30°"},
+                        Slip{"joints.bedding.cohesion=20", "20 kPa would be 20000 Pa"}}) {
+    std::string err;
+    const std::string out = clitest::captureCli("check " + path + " --set " + s.set, &err);
+    EXPECT_NE(out.find(s.says), std::string::npos) << s.set << ": " << out;
+  }
+  std::string err;
+  EXPECT_EQ(clitest::captureCli("check " + path, &err).find("look like other units"), std::string::npos);
+  json d = minimal();
+  d["blocks"][1]["vertices"] = {{2, 5}, {4, 5}, {4, 6}, {2, 6}};  // 4 m above the base
+  d["monitors"][0]["point"] = {3, 5.5};
+  const std::string floating = writeTemp("floating.json", d.dump());
+  EXPECT_NE(clitest::captureCli("check " + floating, &err).find("block slider touches no other block"), std::string::npos);
+}
+
+// A horizontal coefficient along the slope's failure lowers F, against it raises F (Hoek & Bray's
+// planar slide, which fails towards −x): fos says when k_h holds the slope back, and which way
+// a pseudo-static check should load it.
+TEST(RobustInput, AHorizontalCoefficientAgainstTheFailureIsWarned) {
+  const std::string planar = std::string(DDASLOPE_SOURCE_DIR) + "/cases/planar_failure.json";
+  const auto fos = [&](const std::string& kh, std::string* err) {
+    return nlohmann::json::parse(clitest::captureCli("fos " + planar + " --json --quiet --width 0.02 --kh " + kh, err));
+  };
+  std::string against, along, none;
+  const double up = fos("0.1", &against)["factor_of_safety"], down = fos("-0.1", &along)["factor_of_safety"],
+               still = fos("0", &none)["factor_of_safety"];
+  EXPECT_GT(up, still);
+  EXPECT_LT(down, still);
+  EXPECT_NE(against.find("holds the slope back and raises F"), std::string::npos) << against;
+  EXPECT_NE(against.find("--kh -0.1"), std::string::npos) << against;
+  EXPECT_EQ(along.find("holds the slope back"), std::string::npos) << along;
+  EXPECT_EQ(none.find("holds the slope back"), std::string::npos) << none;
+}
+
+// A search on a joint no contact uses cannot follow its strength: the README's first slope with a
+// vertical joint named but never cut (no joint line in the section) answers "stable even with
+// φ = 0" for it, and says that the joint has no contact.
+TEST(RobustInput, ASearchOnAJointWithoutContactsSaysSo) {
+  const std::string wedge = writeTemp("wedge.json", R"({
+    "materials": {"rock": {"density": 2600, "young_modulus": 5e9, "poisson_ratio": 0.25}},
+    "joints": {"bedding": {"friction_angle": 30, "cohesion": 50000}, "vertical": {"friction_angle": 35, "cohesion": 0}},
+    "default_joint": "vertical",
+    "section": {"ground": [[-60, 40], [0, 40], [20, 0], [80, 0]], "sliding_surface": [[-30, 40], [16, 8]],
+                "base_depth": 20, "material": "rock", "sliding_joint": "bedding"},
+    "analysis": {"duration": 3}})");
+  std::string err;
+  clitest::captureCli("critical " + wedge + " --joint vertical --solve friction --quiet --out " +
+                          (fs::temp_directory_path() / "ddaslope_untouched").string(), &err);
+  EXPECT_NE(err.find("joint vertical has no contact at t = 0"), std::string::npos) << err;
+  clitest::captureCli("critical " + wedge + " --joint bedding --solve friction --quiet --out " +
+                          (fs::temp_directory_path() / "ddaslope_untouched").string(), &err);
+  EXPECT_EQ(err.find("has no contact"), std::string::npos) << err;
+}

@@ -44,6 +44,17 @@ int checkCommand(const std::string& casePath, const Overrides& o) {
                 "in the case's coordinates\n",
                 scene.origin.x(), scene.origin.y());
   if (const std::string w = timeStepWarning(scene); !w.empty()) std::printf("  warning: %s\n", w.c_str());
+  if (const std::string w = unitsWarning(scene); !w.empty()) std::printf("  warning: %s\n", w.c_str());
+  // A free block that touches nothing falls: a misplaced block, not a mechanism.
+  for (size_t b = 0; b < scene.blocks.size(); ++b) {
+    if (scene.blocks[b].fixed) continue;
+    bool touches = false;
+    for (const auto& c : sim.contacts().contacts())
+      touches |= static_cast<size_t>(c.key().vertexBlock) == b || static_cast<size_t>(c.key().edgeBlock) == b;
+    if (!touches)
+      std::printf("  warning: block %s touches no other block at t = 0 (no contact within the search distance): it "
+                  "falls freely, and every search reads that as failure\n", scene.blocks[b].id.c_str());
+  }
   printOutlineNotes(scene);
   printSeismicNote(scene);
   printKinkNotes(scene);

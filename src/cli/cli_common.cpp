@@ -241,7 +241,7 @@ std::string settingsLine(const ddaslope::model::Scene& scene) {
   // coefficient are not the static ones.
   const ddaslope::model::SeismicLoad& q = scene.seismic;
   if (q.kh != 0 || q.kv != 0) {
-    std::snprintf(buf, sizeof buf, ", pseudo-static k_h %g, k_v %g", q.kh, q.kv);
+    std::snprintf(buf, sizeof buf, ", pseudo-static k_h %g (along %s), k_v %g", q.kh, q.kh < 0 ? "-x" : "+x", q.kv);
     line += buf;
   }
   if (q.ground.active()) {
@@ -315,6 +315,21 @@ std::vector<std::string> MechanismPictures::write(const std::string& dir, const 
     written.push_back(dir + "/" + file);
   }
   return written;
+}
+
+double MechanismPictures::horizontalMotion(double value, const model::Scene& initial) const {
+  const auto found = kept_->states.find(value);
+  if (found == kept_->states.end()) return 0;
+  const model::Scene& moved = found->second.first.scene;
+  if (moved.blocks.size() != initial.blocks.size()) return 0;
+  double area = 0, dx = 0;
+  for (size_t b = 0; b < initial.blocks.size(); ++b) {
+    if (initial.blocks[b].fixed) continue;
+    const double a = std::abs(initial.blocks[b].moments.area);
+    area += a;
+    dx += a * (moved.blocks[b].moments.centroid.x() - initial.blocks[b].moments.centroid.x());
+  }
+  return area > 0 ? dx / area : 0;
 }
 
 std::string csvField(double v, bool known) {

@@ -86,6 +86,9 @@ class MechanismPictures {
   /// returns the files written (none for a value no trial ran).
   std::vector<std::string> write(const std::string& dir, const std::string& casePath, const std::string& quantity,
                                  double stable, double failing) const;
+  /// How far the trial at `value` moved its free blocks along x: their centroids' mean
+  /// displacement, weighted by area (m); 0 when no such trial was kept.
+  double horizontalMotion(double value, const model::Scene& initial) const;
 
  private:
   struct Kept;

@@ -345,7 +345,8 @@ int criticalCommand(const std::string& casePath, const Overrides& o, const Criti
                                                                      shellWord(casePath)),
                         ddaslope::calibration::unrestedEndWarning(r.trials, r.found, r.failingEnd, cohesion ? "c" : "φ",
                                                                   shellWord(casePath)),
-                        slightBendNote(scene), notchWarning(scene), movedJointWarning(scene), dtWarning})
+                        slightBendNote(scene), notchWarning(scene), movedJointWarning(scene), unitsWarning(scene),
+                        untouchedJointsWarning(scene, {joint}), dtWarning})
     if (!w.empty()) warnings.push_back(std::move(w));
   {
     ddaslope::io::JsonRecord j;

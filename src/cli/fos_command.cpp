@@ -242,7 +242,8 @@ int fosCheck(const std::string& casePath, const Overrides& o, const FosOptions& 
   for (std::string w : {ddaslope::calibration::smallMotionWarning(check.runs, "F", shellWord(casePath)),
                         ddaslope::calibration::unrestedEndWarning(check.runs, decided, opt.check, "F", shellWord(casePath),
                                                                   "the trial"),
-                        slightBendNote(scene), notchWarning(scene), movedJointWarning(scene), dtWarning})
+                        slightBendNote(scene), notchWarning(scene), movedJointWarning(scene), unitsWarning(scene),
+                        untouchedJointsWarning(scene, joints), dtWarning})
     if (!w.empty()) warnings.push_back(std::move(w));
   const int runs = static_cast<int>(check.runs.size());
   {
@@ -341,11 +342,27 @@ int fosCommand(const std::string& casePath, const Overrides& o, const FosOptions
   const std::vector<std::string> drawn =
       r.found ? pictures->write(opt.outDir, casePath, "F", r.stableEnd, r.failingEnd) : std::vector<std::string>{};
   // Said on stderr and kept in fos.json, so that a report carries them.
+  std::vector<int> joints;
+  for (const auto& n : opt.joints) joints.push_back(jointIndex(scene, n, casePath));
   std::vector<std::string> warnings;
+  // A horizontal coefficient that pushes against the failure holds the slope back: F rises with it.
+  if (const double kh = scene.seismic.kh; kh != 0 && r.found) {
+    const double dx = pictures->horizontalMotion(r.failingEnd, scene);
+    if (dx * kh < 0) {
+      char w[512];
+      std::snprintf(w, sizeof w,
+                    "k_h = %g is a force along %s, but the failing trial moved the slope along %s (%.3g m): this k_h "
+                    "holds the slope back and raises F. A pseudo-static check loads a slope towards its failure "
+                    "(--kh %g); `ddaslope critical %s --solve seismic-coefficient` searches both directions",
+                    kh, kh > 0 ? "+x" : "-x", kh > 0 ? "-x" : "+x", std::abs(dx), -kh, shellWord(casePath).c_str());
+      warnings.push_back(w);
+    }
+  }
   for (std::string w : {ddaslope::calibration::smallMotionWarning(r.trials, "F", shellWord(casePath)),
                         ddaslope::calibration::unconvergedEndWarning(r.trials, r.found, r.failingEnd, "F", shellWord(casePath)),
                         ddaslope::calibration::unrestedEndWarning(r.trials, r.found, r.failingEnd, "F", shellWord(casePath)),
-                        slightBendNote(scene), notchWarning(scene), movedJointWarning(scene), dtWarning})
+                        slightBendNote(scene), notchWarning(scene), movedJointWarning(scene), unitsWarning(scene),
+                        untouchedJointsWarning(scene, joints), dtWarning})
     if (!w.empty()) warnings.push_back(std::move(w));
   {
     ddaslope::io::JsonRecord j;

@@ -81,6 +81,7 @@ int runCommand(const std::string& casePath, const Overrides& o, const RunCommand
   model::Scene scene = loadCase(casePath, o);
   warnAboutTrials(casePath, timeStepWarning(scene));
   warnAboutTrials(casePath, movedJointWarning(scene));
+  warnAboutTrials(casePath, unitsWarning(scene));
   std::vector<std::string> reduced;
   // --at-fos starts where fos's trials start: from the rest at the case's own strengths, when
   // the case stands there.

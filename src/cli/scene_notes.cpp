@@ -167,6 +167,62 @@ std::string movedJointWarning(const ddaslope::model::Scene& scene) {
   return w.str();
 }
 
+std::string unitsWarning(const ddaslope::model::Scene& scene) {
+  std::ostringstream m;
+  m.precision(4);
+  int found = 0;
+  const auto add = [&](const std::string& what) { m << (found++ ? "; " : "") << what; };
+  for (const auto& mat : scene.materials) {
+    std::ostringstream w;
+    w.precision(4);
+    if (mat.density > 0 && (mat.density < 500 || mat.density > 10000)) {
+      w << "materials." << mat.name << ".density = " << mat.density << " kg/m³ (rock is about 1800-3000; t/m³ are 1000 kg/m³)";
+      add(w.str());
+    } else if (mat.youngModulus > 0 && mat.youngModulus < 1e6) {
+      w << "materials." << mat.name << ".young_modulus = " << mat.youngModulus
+        << " Pa (rock masses are about 1e8-1e11 Pa; MPa are 1e6 Pa, GPa 1e9)";
+      add(w.str());
+    }
+  }
+  for (const auto& j : scene.joints) {
+    std::ostringstream w;
+    w.precision(4);
+    const double phi = ddaslope::radToDeg(j.frictionAngle);
+    if (!j.bartonBandis && phi > 0 && phi < 1.6) {
+      w << "joints." << j.name << ".friction_angle = " << phi << "° (degrees are read; " << phi << " rad would be "
+        << ddaslope::radToDeg(phi) << "°)";
+      add(w.str());
+    }
+    if (j.cohesion > 0 && j.cohesion < 100) {
+      w.str("");
+      w << "joints." << j.name << ".cohesion = " << j.cohesion << " Pa (Pa are read; " << j.cohesion << " kPa would be "
+        << std::setprecision(10) << j.cohesion * 1e3 << " Pa)";
+      add(w.str());
+    }
+  }
+  if (found == 0) return "";
+  return "values that look like other units: " + m.str();
+}
+
+std::string untouchedJointsWarning(const ddaslope::model::Scene& scene, const std::vector<int>& joints) {
+  if (joints.empty()) return "";
+  const ddaslope::solver::Simulation sim(scene);  // the contacts at t = 0, found as a trial finds them
+  std::vector<std::string> untouched;
+  for (const int j : joints) {
+    bool found = false;
+    for (const auto& c : sim.contacts().contacts()) found |= c.joint == j;
+    if (!found) untouched.push_back(scene.joints[static_cast<size_t>(j)].name);
+  }
+  if (untouched.empty()) return "";
+  std::ostringstream m;
+  for (size_t k = 0; k < untouched.size(); ++k) m << (k ? ", " : "joint ") << untouched[k];
+  m << (untouched.size() > 1 ? " have" : " has")
+    << " no contact at t = 0 (no two blocks it joins touch or lie within the contact search distance): its strength "
+       "cannot change this answer unless blocks move into contact. Check the joint's name and joint_pairs (`ddaslope "
+       "check` lists the contacts)";
+  return m.str();
+}
+
 std::string timeStepWarning(const ddaslope::model::Scene& scene) {
   const double g = scene.gravity.norm();
   if (!(g > 0) || scene.blocks.empty()) return "";

@@ -24,6 +24,11 @@ std::string notchWarning(const model::Scene& scene);
 /// For an answer: the joints the reader moved off concave bends (the answer is the moved
 /// outline's, and an automatic move grows with the scene's size); empty if none.
 std::string movedJointWarning(const model::Scene& scene);
+/// Material and joint values that look like another unit's (t/m³, MPa, radians, kPa); empty if none.
+std::string unitsWarning(const model::Scene& scene);
+/// For a search on named joints: those with no contact at t = 0, whose strength the answer
+/// cannot follow; empty if every one has a contact (or none is named).
+std::string untouchedJointsWarning(const model::Scene& scene, const std::vector<int>& joints);
 /// A warning when Δt exceeds the time in which a block falling freely from rest moves the step
 /// limit, where answers stop holding (docs/accuracy.md, "Δt beyond the step limit"); empty if not.
 std::string timeStepWarning(const model::Scene& scene);
