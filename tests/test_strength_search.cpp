@@ -478,3 +478,23 @@ TEST(StrengthReduction, FosWritesTheMechanismAtItsBracketsEnds) {
   EXPECT_TRUE(isPng(dir / "mechanism_failed.png"));
   fs::remove_all(dir);
 }
+
+// Soft blocks settle elastically under their own weight (Hoek & Bray's wedge at E = 3 MPa: a
+// strain of ρgH/E ≈ 0.1 over its height, centimetres), whatever the joints' strength: every
+// factor down to 1.5^-40 "fails" while settling by the same motion. The search finds no F, and
+// says that this may be the blocks' settlement, with its size against the failure displacement,
+// rather than only a toppling or lifting block.
+TEST(StrengthReduction, ASettlementOfSoftBlocksIsNamedWhenEveryFactorFails) {
+  const std::string planar = std::string(DDASLOPE_SOURCE_DIR) + "/cases/planar_failure.json";
+  std::string out, err;
+  EXPECT_EQ(clitest::runCliCapturing("fos " + planar + " --set materials.rock.young_modulus=3e6 --json --quiet --out " +
+                                         (std::filesystem::temp_directory_path() / "ddaslope_soft").string(),
+                                     &out, &err),
+            3);  // no answer: exit 3
+  const auto soft = nlohmann::json::parse(out);
+  EXPECT_TRUE(soft["factor_of_safety"].is_null());
+  const std::string message = soft["message"];
+  EXPECT_NE(message.find("the blocks' own settlement"), std::string::npos) << message;
+  EXPECT_NE(message.find("against the failure displacement 0.025 m"), std::string::npos) << message;
+  EXPECT_NE(message.find("as much as at every other factor"), std::string::npos) << message;
+}

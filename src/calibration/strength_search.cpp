@@ -390,11 +390,26 @@ constexpr const char* kUndecidedBracket =
 
 /// Why strength reduction found no F: at 1.5^-40 every reduced joint has 1.1e7 times its cohesion,
 /// tensile strength and tan φ, so what still moves is not held by their strength.
-std::string failsAtEveryFactor(const std::string& caseLabel) {
-  return "fails at every reduction factor tried, down to 1.5^-40 (c, tensile strength and tan φ multiplied by "
-         "1.1e7): no strength of the reduced joints holds this scene. Something their strength does not resist moves "
-         "it: a block that topples or lifts off joints with no tensile strength to multiply, or one moving on joints "
-         "not reduced; see the mechanism with `ddaslope run " + caseLabel + " --at-fos 0.01`";
+/// `strongest`: the trial at the least factor tried. Where it failed while settling, by no more
+/// than the settling motion of every other trial, the motion may be the blocks' own elastic
+/// settlement (a soft rock's), which no strength changes: said with its size.
+std::string failsAtEveryFactor(const std::string& caseLabel, const TrialResult* strongest, double spread) {
+  std::string m = "fails at every reduction factor tried, down to 1.5^-40 (c, tensile strength and tan φ multiplied by "
+                  "1.1e7): no strength of the reduced joints holds this scene. Something their strength does not resist "
+                  "moves it: a block that topples or lifts off joints with no tensile strength to multiply, or one "
+                  "moving on joints not reduced";
+  if (strongest && strongest->rule == VerdictRule::MovedWhileSettling) {
+    char buf[512];
+    std::snprintf(buf, sizeof buf,
+                  "; or the blocks' own settlement: at the least factor the scene still moved %.3g m while it settled "
+                  "(%s), against the failure displacement %.3g m%s. Soft blocks (a low young_modulus) settle "
+                  "elastically by that much whatever the joints' strength: compare analysis.failure_displacement or "
+                  "the modulus",
+                  strongest->settlingDisplacement, strongest->movedMost.c_str(), strongest->failureDisplacement,
+                  spread < 0.01 ? ", as much as at every other factor (within 1 %)" : "");
+    m += buf;
+  }
+  return m + "; see the mechanism with `ddaslope run " + caseLabel + " --at-fos 0.01`";
 }
 
 /// The verdict in force at each value tried (a re-run's replaces the first run's), by value.
@@ -936,9 +951,23 @@ FactorOfSafetyResult factorOfSafetyOf(const std::function<TrialResult(double, do
       (b.take(f, {next(f), next(next(f))}) ? stable : failing) = f;
     }
   }
+  // The trial at the least factor, and how far the settling motions of the trials spread about it.
+  const auto strongest = [&]() -> const TrialResult* {
+    const TrialRecord* least = nullptr;
+    for (const TrialRecord& t : stableAt.trials)
+      if (!least || t.value < least->value) least = &t;
+    return least ? &least->result : nullptr;
+  };
+  const auto settlingSpread = [&] {
+    double lo = INFINITY, hi = 0;
+    for (const TrialRecord& t : stableAt.trials)
+      if (t.result.rule == VerdictRule::MovedWhileSettling)
+        lo = std::min(lo, t.result.settlingDisplacement), hi = std::max(hi, t.result.settlingDisplacement);
+    return hi > 0 ? (hi - lo) / hi : INFINITY;
+  };
   if (stable == 0 || failing == 0) {
     r.message = stableAt.undecidedInARow >= 2 ? kUndecidedBracket
-                : stable == 0                 ? failsAtEveryFactor(s.caseLabel)
+                : stable == 0                 ? failsAtEveryFactor(s.caseLabel, strongest(), settlingSpread())
                                               : "stable at every reduction factor tried (up to 1.5^40)";
   } else {
     const BisectionResult b = narrow(stableAt, stable, failing, width, s.threads);
