@@ -1133,7 +1133,7 @@ TEST(RobustInput, ValuesInAnotherUnitAndFloatingBlocksAreWarned) {
     EXPECT_NE(out.find(s.says), std::string::npos) << s.set << ": " << out;
   }
   std::string err;
-  EXPECT_EQ(clitest::captureCli("check " + path, &err).find("look like other units"), std::string::npos);
+  EXPECT_EQ(clitest::captureCli("check " + path, &err).find("values to check"), std::string::npos);
   json d = minimal();
   d["blocks"][1]["vertices"] = {{2, 5}, {4, 5}, {4, 6}, {2, 6}};  // 4 m above the base
   d["monitors"][0]["point"] = {3, 5.5};

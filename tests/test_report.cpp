@@ -147,3 +147,26 @@ TEST(Report, ACheckOfARequiredFactorIsReportedAsOne) {
   EXPECT_FALSE(fs::exists(dir / "mechanism_stable.png"));
   fs::remove_all(dir);
 }
+
+// Two analyses written into one folder: the report is of the newer one, whose pictures the folder
+// now holds, and it names the older result as older. Written fos then critical, and critical then
+// fos, on Hoek & Bray's planar slide.
+TEST(Report, TheNewestOfTwoAnalysesInAFolderIsReported) {
+  const fs::path dir = fs::temp_directory_path() / ("ddaslope_report_two_" + std::to_string(::getpid()));
+  const std::string c = std::string(DDASLOPE_SOURCE_DIR) + "/cases/planar_failure.json";
+  const std::string fos = "fos " + c + " --quiet --width 0.02 --out " + dir.string();
+  const std::string critical =
+      "critical " + c + " --joint sliding_plane --solve cohesion --quiet --out " + dir.string();
+  for (const bool fosFirst : {true, false}) {
+    fs::remove_all(dir);
+    std::string err;
+    clitest::captureCli(fosFirst ? fos : critical, &err);
+    clitest::captureCli(fosFirst ? critical : fos, &err);
+    const std::string printed = clitest::captureCli("report " + dir.string(), &err);
+    const std::string newer = fosFirst ? "Critical strength (critical)" : "Factor of safety (fos)";
+    const std::string older = fosFirst ? "fos.json" : "critical.json";
+    EXPECT_NE(printed.find(newer), std::string::npos) << printed;
+    EXPECT_NE(printed.find("the folder also holds " + older + " (older"), std::string::npos) << printed;
+  }
+  fs::remove_all(dir);
+}

@@ -28,11 +28,11 @@ int checkCommand(const std::string& casePath, const Overrides& o) {
   const ddaslope::solver::Simulation sim(scene);
   int closed = 0;
   for (const auto& c : sim.contacts().contacts()) closed += c.closed();
-  std::printf("%s: valid. %zu blocks, %zu materials, %zu joints, %zu monitors; %zu contacts found at t = 0 "
-              "(%d touching); w0 = %g m, penalty = %g N/m\n",
-              casePath.c_str(), scene.blocks.size(), scene.materials.size(), scene.joints.size(),
-              scene.monitors.size(), sim.contacts().contacts().size(), closed, sim.modelHalfSize(),
-              scene.normalPenalty());
+  const auto count = [](size_t n, const char* word) { return std::to_string(n) + " " + word + (n == 1 ? "" : "s"); };
+  std::printf("%s: valid. %s, %s, %s, %s; %s found at t = 0 (%d touching); w0 = %g m, penalty = %g N/m\n",
+              casePath.c_str(), count(scene.blocks.size(), "block").c_str(), count(scene.materials.size(), "material").c_str(),
+              count(scene.joints.size(), "joint").c_str(), count(scene.monitors.size(), "monitor").c_str(),
+              count(sim.contacts().contacts().size(), "contact").c_str(), closed, sim.modelHalfSize(), scene.normalPenalty());
   const double g2w0 = scene.settings.maxDisplacementRatio * sim.modelHalfSize();
   std::printf("  step limit %g m per step (g2·w0 = %g m%s), contact search distance %g m\n", sim.stepLimit(), g2w0,
               sim.stepLimit() < g2w0 ? ", held to a tenth of the thinnest block" : "", sim.searchDistance());

@@ -239,10 +239,22 @@ Analysis identify(const fs::path& dir) {
   return a;
 }
 
+/// The newest of the single results in the folder (several commands may have written into it:
+/// the pictures beside it are the last command's); empty if none.
+std::string newestSingle(const fs::path& dir) {
+  std::string newest;
+  fs::file_time_type when{};
+  for (const auto& single : kSingleResults)
+    if (fs::exists(dir / single) && (newest.empty() || fs::last_write_time(dir / single) > when))
+      newest = single, when = fs::last_write_time(dir / single);
+  return newest;
+}
+
 Analysis identifyOne(const fs::path& dir) {
   Analysis a;
   char text[512];
-  if (fs::exists(dir / "fos.json")) {
+  const std::string chosen = newestSingle(dir);
+  if (chosen == "fos.json") {
     a = {"Factor of safety (fos)", "fos.json", readJson(dir / "fos.json"), "", {}, ""};
     const json& r = a.result;
     if (r.contains("check") && r["check"].is_number()) {
@@ -266,7 +278,7 @@ Analysis identifyOne(const fs::path& dir) {
     else
       std::snprintf(text, sizeof text, "no factor of safety found: %s", r.value("message", "").c_str());
     a.answer = text + crackText(r);
-  } else if (fs::exists(dir / "critical.json")) {
+  } else if (chosen == "critical.json") {
     a = {"Critical strength (critical)", "critical.json", readJson(dir / "critical.json"), "", {}, ""};
     const json& r = a.result;
     const std::string solve = r.value("solve", "");
@@ -300,14 +312,14 @@ Analysis identifyOne(const fs::path& dir) {
     else
       std::snprintf(text, sizeof text, "no critical value found: %s", r.value("message", "").c_str());
     a.answer = text + crackText(r);
-  } else if (fs::exists(dir / "result.json")) {
+  } else if (chosen == "result.json") {
     a = {"Back-analysis (backanalyse)", "result.json", readJson(dir / "result.json"), "", {}, ""};
     std::string estimate;
     if (a.result.contains("estimate"))
       for (const auto& [k, v] : a.result["estimate"].items()) estimate += k + " = " + scalar(v) + ", ";
     a.answer = estimate + "misfit " + scalar(a.result.value("misfit", json())) + " after " +
                scalar(a.result.value("evaluations", json())) + " evaluations";
-  } else if (fs::exists(dir / "summary.json")) {
+  } else if (chosen == "summary.json") {
     json r = readJson(dir / "summary.json");
     if (r.contains("probability_of_failure")) {
       a = {"Probability of failure (probability)", "summary.json", r, "", {}, ""};

@@ -172,6 +172,7 @@ std::string unitsWarning(const ddaslope::model::Scene& scene) {
   m.precision(4);
   int found = 0;
   const auto add = [&](const std::string& what) { m << (found++ ? "; " : "") << what; };
+  if (scene.gravity.y() > 0) add("gravity points upward (gravity[1] > 0: [0, -9.81] is downward)");
   for (const auto& mat : scene.materials) {
     std::ostringstream w;
     w.precision(4);
@@ -201,7 +202,7 @@ std::string unitsWarning(const ddaslope::model::Scene& scene) {
     }
   }
   if (found == 0) return "";
-  return "values that look like other units: " + m.str();
+  return "values to check, another unit or a slip: " + m.str();
 }
 
 std::string untouchedJointsWarning(const ddaslope::model::Scene& scene, const std::vector<int>& joints) {

@@ -157,6 +157,35 @@ void readJoints(const Reader& r, const json& doc, model::Scene& s, std::map<std:
   }
 }
 
+/// Where an outline stops being a simple polygon (geometry::isSimple's tests, in its order), by
+/// the vertices' indices as the case numbers them.
+std::string whereNotSimple(const std::vector<Vec2>& v) {
+  const size_t n = v.size();
+  const geometry::Aabb box = geometry::boundingBox(v);
+  const double size = std::max((box.hi - box.lo).maxCoeff(), 1e-300);
+  std::ostringstream m;
+  for (size_t i = 0; i < n; ++i)
+    if ((v[(i + 1) % n] - v[i]).norm() <= 1e-12 * size) {
+      m << "vertices " << i << " and " << (i + 1) % n << " repeated at (" << v[i].x() << ", " << v[i].y() << ")";
+      return m.str();
+    }
+  for (size_t i = 0; i < n; ++i)
+    for (size_t j = i + 2; j < n; ++j)
+      if (!(i == 0 && j == n - 1) && geometry::segmentsIntersect(v[i], v[(i + 1) % n], v[j], v[(j + 1) % n])) {
+        m << "a self-intersecting outline: the edge from vertex " << i << " (" << v[i].x() << ", " << v[i].y()
+          << ") meets the edge from vertex " << j << " (" << v[j].x() << ", " << v[j].y() << ")";
+        return m.str();
+      }
+  for (size_t i = 0; i < n; ++i) {
+    m << "an outline folded back on itself at vertex " << i << " (" << v[i].x() << ", " << v[i].y() << ")";
+    const Vec2 a = v[(i + n - 1) % n], b = v[i], c = v[(i + 1) % n];
+    const Vec2 u = (a - b).normalized(), w = (c - b).normalized();
+    if (std::abs(cross(u, w)) < 1e-12 && u.dot(w) > 0) return m.str();
+    m.str("");
+  }
+  return "one that is self-intersecting, folded or has repeated vertices";
+}
+
 /// Blocks may touch but not overlap: at the first step the contacts would thrust an overlap
 /// apart with the penalty times its depth, and a search would read the explosion as failure at
 /// every strength. Overlaps thinner than 1e-4 of the scene (rounded coordinates) are the initial
@@ -245,7 +274,7 @@ void readBlocks(const Reader& r, const json& doc, model::Scene& s,
                                   " points, found " + typeName(verts));
     for (size_t k = 0; k < verts.size(); ++k) blk.vertices.push_back(r.point(verts[k], Reader::index(p + ".vertices", k)));
     if (!geometry::isSimple(blk.vertices))
-      r.fail(p + ".vertices", "expected a simple polygon, found one that is self-intersecting, folded or has repeated vertices");
+      r.fail(p + ".vertices", "expected a simple polygon, found " + whereNotSimple(blk.vertices));
     const geometry::Aabb box = geometry::boundingBox(blk.vertices);
     const double size = (box.hi - box.lo).maxCoeff();
     if (std::abs(geometry::signedArea(blk.vertices)) <= 1e-9 * size * size)

@@ -249,7 +249,7 @@ void writeSummary(const fs::path& dir, const model::Scene& scene, const RunOptio
                    {"settle_dynamically", s.settleDynamically},
                    {"early_rest", s.earlyRest},
                    {"edge_parallel_tolerance", s.edgeParallelToleranceDeg},
-                   {"initial_contact_tolerance", s.initialContactTolerance},
+                   {"initial_contact_tolerance", scene.touchingGap() / scene.modelHalfSize()},
                    {"contact_state_tolerance", s.contactStateTolerance},
                    {"failure_displacement", s.failureDisplacement},
                    {"resting_speed", s.restingSpeed},

@@ -74,14 +74,14 @@ void mergeFixedBlocks(model::Scene& s) {
 
 /// One face, one contact: vertices on a straight edge (T-junctions of a block-cutting program or
 /// a mesher, an edge split in CAD; within kCollinearTolerance of the chord, or within the gap that
-/// counts as touching, initial_contact_tolerance · w0) are removed, so that the face meets its
+/// counts as touching, Scene::touchingGap) are removed, so that the face meets its
 /// neighbour as one edge-to-edge contact whatever vertices it was drawn with
 /// (docs/contact-model.md).
 void normaliseOutlines(model::Scene& s) {
   // A vertex as near the straight line as a gap that counts as touching at t = 0 is on it too:
   // coordinates rounded in the file make such vertices, and the contact that closes across the
   // rounding closes across the straightened edge as well.
-  const double touching = s.settings.initialContactTolerance * s.modelHalfSize();
+  const double touching = s.touchingGap();
   for (model::Block& b : s.blocks) {
     const int removed = geometry::removeCollinearVertices(b.vertices, model::kCollinearTolerance, touching);
     b.removedCollinearVertices += removed;

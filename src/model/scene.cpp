@@ -29,6 +29,16 @@ double Scene::modelHalfSize() const {
   return 0.5 * (box.hi - box.lo).maxCoeff();
 }
 
+/// Coordinates typed or exported to the millimetre put a vertex split off an edge up to 0.7 mm
+/// from it, and leave faces that touch gaps of that size: such gaps are the file's, not the rock's.
+constexpr double kRoundedCoordinateGap = 1.5e-3;
+
+double Scene::touchingGap() const {
+  const double w0 = modelHalfSize();
+  if (settings.initialContactTolerance >= 0) return settings.initialContactTolerance * w0;
+  return std::clamp(kRoundedCoordinateGap, 1e-6 * w0, 1e-4 * w0);
+}
+
 double Scene::stepLimit() const {
   // Shi's step limit g2·w0 scales with the model. In a kilometre slope with a 15 m wedge it
   // exceeds the wedge, and the contact search (2.5 times the limit) then pairs corners farther

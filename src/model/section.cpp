@@ -137,11 +137,19 @@ Extent checkLines(const SectionSpec& s) {
   if (s.joints.size() > static_cast<size_t>(limits::kMaxBlocks))
     fail("joints", "expected at most " + std::to_string(limits::kMaxBlocks) + " joints");
   for (size_t i = 1; i < s.ground.size(); ++i)
-    if (s.ground[i].x() < s.ground[i - 1].x()) fail("ground[" + std::to_string(i) + "]", "expected x non-decreasing");
+    if (s.ground[i].x() < s.ground[i - 1].x()) {
+      std::ostringstream m;
+      m << "expected x non-decreasing along the ground, found x = " << s.ground[i].x() << " after " << s.ground[i - 1].x();
+      fail("ground[" + std::to_string(i) + "]", m.str());
+    }
   if (s.slidingSurface.size() < 2) fail("sliding_surface", "expected at least two points");
   for (size_t i = 1; i < s.slidingSurface.size(); ++i)
-    if (s.slidingSurface[i].x() <= s.slidingSurface[i - 1].x())
-      fail("sliding_surface[" + std::to_string(i) + "]", "expected x increasing from crown to toe");
+    if (s.slidingSurface[i].x() <= s.slidingSurface[i - 1].x()) {
+      std::ostringstream m;
+      m << "expected x increasing from crown to toe, found x = " << s.slidingSurface[i].x() << " after "
+        << s.slidingSurface[i - 1].x();
+      fail("sliding_surface[" + std::to_string(i) + "]", m.str());
+    }
   const Vec2 crown = s.slidingSurface.front(), toe = s.slidingSurface.back();
   if (crown.x() < s.ground.front().x() || toe.x() > s.ground.back().x())
     fail("sliding_surface", "expected the sliding surface within the ground's x range");

@@ -76,7 +76,7 @@ void Simulation::detectContacts(bool initial) {
   if (initial) {
     // Contacts touching at the start are closed and intact (bonded); the spring's zero is at
     // the initial gap, so that coordinates rounded in the case file do not preload it.
-    const double tol = scene_.settings.initialContactTolerance * w0_;
+    const double tol = scene_.touchingGap();
     for (Contact& c : contacts_.contacts()) {
       if (c.geometry.gap > tol) continue;
       c.state = ContactState::Locked;

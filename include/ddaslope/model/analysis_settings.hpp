@@ -108,8 +108,8 @@ struct AnalysisSettings {
   /// Two edges of different blocks within this angle (degrees) are an edge-to-edge contact.
   double edgeParallelToleranceDeg = 1.0;
   /// Initial gaps up to this fraction of w0 count as touching: the contact starts closed,
-  /// bonded, and its spring's zero is at the initial gap.
-  double initialContactTolerance = 1e-6;
+  /// bonded, and its spring's zero is at the initial gap. Negative: automatic (Scene::touchingGap).
+  double initialContactTolerance = -1;
   SystemPath systemPath = SystemPath::Auto;
   /// Whether the factor follows the contacts' state changes (docs/accuracy.md, "Small and large
   /// systems"): by low-rank update/downdate with nested-dissection ordering, products with K

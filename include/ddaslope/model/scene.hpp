@@ -118,6 +118,10 @@ struct Scene {
   int jointBetween(int a, int b) const;
   /// Half the larger side of the model's bounding box: Shi's w0.
   double modelHalfSize() const;
+  /// The gap (m) that counts as touching at t = 0, and the distance from a straight line within
+  /// which a vertex is on it: analysis.initial_contact_tolerance × w0, or by default the
+  /// millimetre's rounding (kRoundedCoordinateGap) held within [1e-6, 1e-4] × w0.
+  double touchingGap() const;
   /// Shi's step limit g2·w0, held to a tenth of the thinnest free block's thickness 2S/perimeter:
   /// the largest vertex displacement a step may make (m).
   double stepLimit() const;
