@@ -88,10 +88,17 @@ void judgeConstraint(const io::BackanalysisJob& job, BackanalysisResult& r) {
       << static_cast<int>(100 * std::max(span0, span1)) << " % of its search range (see misfit_map.png). "
       << "The estimate is one point of that line; add an observation that separates the two (a displacement or "
          "velocity history) or fix one of them.";
-  else
+  else {
+    // A span within one node of the map's grid is below what the grid resolves: said as such.
+    const auto spanText = [](double span, size_t nodes) {
+      const int step = nodes > 1 ? static_cast<int>(std::ceil(100.0 / static_cast<double>(nodes - 1))) : 100;
+      return span > 0 ? std::to_string(static_cast<int>(100 * span)) + " %"
+                      : "under " + std::to_string(step) + " % (one step of misfit_map.png's grid)";
+    };
     s << "The observations constrain both " << r.names[0] << " and " << r.names[1]
-      << ": within one standard deviation of the best fit they span " << static_cast<int>(100 * span0) << " % and "
-      << static_cast<int>(100 * span1) << " % of their search ranges.";
+      << ": within one standard deviation of the best fit they span " << spanText(span0, p0.size()) << " and "
+      << spanText(span1, p1.size()) << " of their search ranges.";
+  }
   r.statement = s.str();
 }
 

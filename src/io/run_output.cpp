@@ -274,7 +274,10 @@ void writeHistoryPlots(const fs::path& dir, const std::string& casePath, const T
   if (trace.steps.empty()) return;
   // At most ~2000 points per line: a long run has tens of thousands of steps.
   const size_t stride = std::max<size_t>(1, trace.steps.size() / 2000);
-  LinePlot motion{"Monitors: " + casePath, "time (s)", "displacement (m) / speed (m/s)", {}};
+  // A case without monitors has nothing to draw here: the title says so, and where the motion shows.
+  LinePlot motion{trace.monitorIds.empty() ? "No monitors in the case: nothing to plot (the motion: energy.png)"
+                                           : "Monitors: " + casePath,
+                  "time (s)", "displacement (m) / speed (m/s)", {}};
   for (size_t m = 0; m < trace.monitorIds.size(); ++m) {
     PlotSeries u{trace.monitorIds[m] + " displacement", {}, {}, false}, v{trace.monitorIds[m] + " speed", {}, {}, false};
     for (size_t k = 0; k < trace.steps.size(); k += stride) {
