@@ -163,7 +163,8 @@ class BlockModel:
         self.index = {n: i for i, n in enumerate(names)}
         joints = case["joints"]
         self.joints = joints
-        default = case.get("default_joint")
+        # As the case reader: a single joint is every pair's without default_joint.
+        default = case.get("default_joint", next(iter(joints)) if len(joints) == 1 else None)
         self.pair_joint = {}
         for jp in case.get("joint_pairs", []):
             a, b = (self.index[n] for n in jp["blocks"])

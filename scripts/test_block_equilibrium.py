@@ -32,6 +32,21 @@ class BlockEquilibrium(unittest.TestCase):
         self.assertAlmostEqual(want / 1e3, 36.397, places=3)  # B1's quoted value
         self.assertLess(abs(be.critical_cohesion(m, "interface", 20) - want), 1e-9 * want)
 
+    def test_a_single_joint_needs_no_default_joint(self):
+        # As the case reader reads it: one joint is every pair's. A 4.5 x 10 m column on a 20 deg
+        # plane with phi = 35 deg slides without toppling (b/h = 0.45 > tan 20 deg): F = tan 35 / tan 20.
+        c, s = math.cos(math.radians(20)), math.sin(math.radians(20))
+        col = [[0, 0], [4.5 * c, 4.5 * s], [4.5 * c - 10 * s, 4.5 * s + 10 * c], [-10 * s, 10 * c]]
+        case = {"materials": {"rock": {"density": 2500, "young_modulus": 1e10, "poisson_ratio": 0.25}},
+                "joints": {"plane": {"friction_angle": 35, "cohesion": 0}},
+                "blocks": [{"id": "ground", "material": "rock", "fixed": True,
+                            "vertices": [[-40 * c, -40 * s - 20], [40 * c, -40 * s - 20], [40 * c, 40 * s],
+                                         [-40 * c, -40 * s]]},
+                           {"id": "column", "material": "rock", "vertices": col}]}
+        m = be.BlockModel(case)
+        self.assertAlmostEqual(be.strength_reduction_factor(m), math.tan(math.radians(35)) / math.tan(math.radians(20)),
+                               delta=1e-3)
+
     def test_block_on_an_incline_friction(self):
         # Closed form (A5): a block on a 30 deg plane without cohesion holds from phi = 30 deg;
         # the bisection narrows to 1e-3 deg.
