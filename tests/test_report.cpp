@@ -168,5 +168,14 @@ TEST(Report, TheNewestOfTwoAnalysesInAFolderIsReported) {
     EXPECT_NE(printed.find(newer), std::string::npos) << printed;
     EXPECT_NE(printed.find("the folder also holds " + older + " (older"), std::string::npos) << printed;
   }
+  // A run after a search: its two plots, not the search's mechanism pictures still in the folder.
+  fs::remove_all(dir);
+  std::string err;
+  clitest::captureCli(fos, &err);
+  clitest::captureCli("run " + c + " --quiet --out " + dir.string(), &err);
+  ASSERT_TRUE(fs::exists(dir / "mechanism_failed.png"));
+  const std::string printed = clitest::captureCli("report " + dir.string(), &err);
+  EXPECT_NE(printed.find("Forward run (run)"), std::string::npos) << printed;
+  EXPECT_NE(printed.find("(2 pictures embedded)"), std::string::npos) << printed;
   fs::remove_all(dir);
 }

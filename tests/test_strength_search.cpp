@@ -483,7 +483,8 @@ TEST(StrengthReduction, FosWritesTheMechanismAtItsBracketsEnds) {
 // strain of ρgH/E ≈ 0.1 over its height, centimetres), whatever the joints' strength: every
 // factor down to 1.5^-40 "fails" while settling by the same motion. The search finds no F, and
 // says that this may be the blocks' settlement, with its size against the failure displacement,
-// rather than only a toppling or lifting block.
+// rather than only a toppling or lifting block; only where the motion is within the blocks' own
+// elastic settlement, ρgh²/E.
 TEST(StrengthReduction, ASettlementOfSoftBlocksIsNamedWhenEveryFactorFails) {
   const std::string planar = std::string(DDASLOPE_SOURCE_DIR) + "/cases/planar_failure.json";
   std::string out, err;
@@ -497,4 +498,13 @@ TEST(StrengthReduction, ASettlementOfSoftBlocksIsNamedWhenEveryFactorFails) {
   EXPECT_NE(message.find("the blocks' own settlement"), std::string::npos) << message;
   EXPECT_NE(message.find("against the failure displacement 0.025 m"), std::string::npos) << message;
   EXPECT_NE(message.find("as much as at every other factor"), std::string::npos) << message;
+  // A toppling column of 5 GPa rock (cases/toppling_block.json, 25 m: ρgh²/E ≈ 3 mm) fails at
+  // every factor too, by toppling 7 cm: not a settlement, and not called one.
+  EXPECT_EQ(clitest::runCliCapturing("fos " + std::string(DDASLOPE_SOURCE_DIR) + "/cases/toppling_block.json --json --quiet --out " +
+                                         (std::filesystem::temp_directory_path() / "ddaslope_soft").string(),
+                                     &out, &err),
+            3);
+  const std::string topples = nlohmann::json::parse(out)["message"];
+  EXPECT_NE(topples.find("a block that topples"), std::string::npos) << topples;
+  EXPECT_EQ(topples.find("own settlement"), std::string::npos) << topples;
 }

@@ -20,6 +20,7 @@
 #include "ddaslope/core/cancellation.hpp"
 #include "ddaslope/core/errors.hpp"
 #include "ddaslope/core/types.hpp"
+#include "ddaslope/geometry/polygon.hpp"
 
 namespace ddaslope::calibration {
 namespace {
@@ -390,15 +391,18 @@ constexpr const char* kUndecidedBracket =
 
 /// Why strength reduction found no F: at 1.5^-40 every reduced joint has 1.1e7 times its cohesion,
 /// tensile strength and tan φ, so what still moves is not held by their strength.
-/// `strongest`: the trial at the least factor tried. Where it failed while settling, by no more
-/// than the settling motion of every other trial, the motion may be the blocks' own elastic
-/// settlement (a soft rock's), which no strength changes: said with its size.
-std::string failsAtEveryFactor(const std::string& caseLabel, const TrialResult* strongest, double spread) {
+/// `strongest`: the trial at the least factor tried. Where it failed while settling by no more
+/// than the blocks' elastic settlement could be (`elasticSettlement`), the motion may be that
+/// settlement (a soft rock's), which no strength changes: said with its size, and `spread`, how
+/// far the settling motions of all the trials spread about it.
+std::string failsAtEveryFactor(const std::string& caseLabel, const TrialResult* strongest, double spread,
+                               double elasticSettlement) {
   std::string m = "fails at every reduction factor tried, down to 1.5^-40 (c, tensile strength and tan φ multiplied by "
                   "1.1e7): no strength of the reduced joints holds this scene. Something their strength does not resist "
                   "moves it: a block that topples or lifts off joints with no tensile strength to multiply, or one "
                   "moving on joints not reduced";
-  if (strongest && strongest->rule == VerdictRule::MovedWhileSettling) {
+  if (strongest && strongest->rule == VerdictRule::MovedWhileSettling &&
+      strongest->settlingDisplacement <= elasticSettlement) {
     char buf[512];
     std::snprintf(buf, sizeof buf,
                   "; or the blocks' own settlement: at the least factor the scene still moved %.3g m while it settled "
@@ -856,8 +860,27 @@ model::Scene reducedScene(const model::Scene& scene, const std::vector<int>& joi
 }
 }  // namespace
 
+namespace {
+/// The largest settlement of a free block under its own weight, ρ g h² / E (h its height): twice a
+/// column's top settlement ρ g h² / 2E, an upper bound. Rigid blocks do not settle.
+double elasticSettlementOf(const model::Scene& scene) {
+  if (scene.settings.rigidBlocks) return 0;
+  double most = 0;
+  for (const model::Block& b : scene.blocks) {
+    if (b.fixed) continue;
+    const model::Material& m = scene.materials[static_cast<size_t>(b.material)];
+    const geometry::Aabb box = geometry::boundingBox(b.vertices);
+    const double h = box.hi.y() - box.lo.y();
+    if (m.youngModulus > 0) most = std::max(most, m.density * scene.gravity.norm() * h * h / m.youngModulus);
+  }
+  return most;
+}
+}  // namespace
+
 FactorOfSafetyResult factorOfSafety(const model::Scene& scene, const std::vector<int>& joints, double width,
-                                    const SearchSettings& s) {
+                                    const SearchSettings& settings) {
+  SearchSettings s = settings;
+  s.elasticSettlement = elasticSettlementOf(scene);
   const auto held = sharedEquilibrium(scene);
   // The rest of the first trial, at F = 1 (factorOfSafetyOf runs it alone, before any other,
   // when the trials start from it), once that trial stands: where the later trials start with
@@ -958,16 +981,18 @@ FactorOfSafetyResult factorOfSafetyOf(const std::function<TrialResult(double, do
       if (!least || t.value < least->value) least = &t;
     return least ? &least->result : nullptr;
   };
-  const auto settlingSpread = [&] {
+  const auto settlingSpread = [&]() -> double {
     double lo = INFINITY, hi = 0;
-    for (const TrialRecord& t : stableAt.trials)
-      if (t.result.rule == VerdictRule::MovedWhileSettling)
-        lo = std::min(lo, t.result.settlingDisplacement), hi = std::max(hi, t.result.settlingDisplacement);
+    for (const TrialRecord& t : stableAt.trials) {
+      if (t.result.rule != VerdictRule::MovedWhileSettling) return INFINITY;  // not every factor settled so
+      lo = std::min(lo, t.result.settlingDisplacement), hi = std::max(hi, t.result.settlingDisplacement);
+    }
     return hi > 0 ? (hi - lo) / hi : INFINITY;
   };
   if (stable == 0 || failing == 0) {
     r.message = stableAt.undecidedInARow >= 2 ? kUndecidedBracket
-                : stable == 0                 ? failsAtEveryFactor(s.caseLabel, strongest(), settlingSpread())
+                : stable == 0                 ? failsAtEveryFactor(s.caseLabel, strongest(), settlingSpread(),
+                                                                   s.elasticSettlement)
                                               : "stable at every reduction factor tried (up to 1.5^40)";
   } else {
     const BisectionResult b = narrow(stableAt, stable, failing, width, s.threads);

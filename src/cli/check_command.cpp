@@ -45,6 +45,7 @@ int checkCommand(const std::string& casePath, const Overrides& o) {
                 scene.origin.x(), scene.origin.y());
   if (const std::string w = timeStepWarning(scene); !w.empty()) std::printf("  warning: %s\n", w.c_str());
   if (const std::string w = unitsWarning(scene); !w.empty()) std::printf("  warning: %s\n", w.c_str());
+  if (const std::string w = closedGapWarning(scene, sim.statistics()); !w.empty()) std::printf("  note: %s\n", w.c_str());
   // A free block that touches nothing falls: a misplaced block, not a mechanism.
   for (size_t b = 0; b < scene.blocks.size(); ++b) {
     if (scene.blocks[b].fixed) continue;

@@ -345,7 +345,7 @@ int criticalCommand(const std::string& casePath, const Overrides& o, const Criti
                                                                      shellWord(casePath)),
                         ddaslope::calibration::unrestedEndWarning(r.trials, r.found, r.failingEnd, cohesion ? "c" : "φ",
                                                                   shellWord(casePath)),
-                        slightBendNote(scene), notchWarning(scene), movedJointWarning(scene), unitsWarning(scene),
+                        slightBendNote(scene), notchWarning(scene), movedJointWarning(scene), unitsWarning(scene), closedGapWarning(scene),
                         untouchedJointsWarning(scene, {joint}), dtWarning})
     if (!w.empty()) warnings.push_back(std::move(w));
   {

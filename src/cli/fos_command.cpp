@@ -242,7 +242,7 @@ int fosCheck(const std::string& casePath, const Overrides& o, const FosOptions& 
   for (std::string w : {ddaslope::calibration::smallMotionWarning(check.runs, "F", shellWord(casePath)),
                         ddaslope::calibration::unrestedEndWarning(check.runs, decided, opt.check, "F", shellWord(casePath),
                                                                   "the trial"),
-                        slightBendNote(scene), notchWarning(scene), movedJointWarning(scene), unitsWarning(scene),
+                        slightBendNote(scene), notchWarning(scene), movedJointWarning(scene), unitsWarning(scene), closedGapWarning(scene),
                         untouchedJointsWarning(scene, joints), dtWarning})
     if (!w.empty()) warnings.push_back(std::move(w));
   const int runs = static_cast<int>(check.runs.size());
@@ -361,7 +361,7 @@ int fosCommand(const std::string& casePath, const Overrides& o, const FosOptions
   for (std::string w : {ddaslope::calibration::smallMotionWarning(r.trials, "F", shellWord(casePath)),
                         ddaslope::calibration::unconvergedEndWarning(r.trials, r.found, r.failingEnd, "F", shellWord(casePath)),
                         ddaslope::calibration::unrestedEndWarning(r.trials, r.found, r.failingEnd, "F", shellWord(casePath)),
-                        slightBendNote(scene), notchWarning(scene), movedJointWarning(scene), unitsWarning(scene),
+                        slightBendNote(scene), notchWarning(scene), movedJointWarning(scene), unitsWarning(scene), closedGapWarning(scene),
                         untouchedJointsWarning(scene, joints), dtWarning})
     if (!w.empty()) warnings.push_back(std::move(w));
   {

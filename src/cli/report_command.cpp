@@ -367,10 +367,19 @@ std::vector<fs::path> pictures(const fs::path& dir, const std::string& file) {
   };
   const std::string own = pictureOf(file);
   const bool curve = ofACurve(own);
+  // In a folder several commands wrote into, a picture not written since the last of the other
+  // results is an earlier analysis's (a run's history beside a search's mechanism).
+  std::optional<fs::file_time_type> earlier;
+  std::vector<std::string> results = kSingleResults;
+  for (const auto& c : kCurveResults) results.push_back(c.first);
+  for (const auto& r : results)
+    if (r != file && fs::exists(dir / r) && (!earlier || fs::last_write_time(dir / r) > *earlier))
+      earlier = fs::last_write_time(dir / r);
   std::vector<fs::path> png;
   for (const auto& e : fs::directory_iterator(dir)) {
     const std::string name = e.path().filename().string();
-    if (e.is_regular_file() && e.path().extension() == ".png" && (curve ? name == own : !ofACurve(name)))
+    if (e.is_regular_file() && e.path().extension() == ".png" && (curve ? name == own : !ofACurve(name)) &&
+        !(earlier && e.last_write_time() <= *earlier))
       png.push_back(e.path());
   }
   const auto rank = [](const fs::path& p) {

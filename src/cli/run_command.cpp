@@ -82,6 +82,7 @@ int runCommand(const std::string& casePath, const Overrides& o, const RunCommand
   warnAboutTrials(casePath, timeStepWarning(scene));
   warnAboutTrials(casePath, movedJointWarning(scene));
   warnAboutTrials(casePath, unitsWarning(scene));
+  warnAboutTrials(casePath, closedGapWarning(scene));
   std::vector<std::string> reduced;
   // --at-fos starts where fos's trials start: from the rest at the case's own strengths, when
   // the case stands there.

@@ -179,12 +179,16 @@ std::string unitsWarning(const ddaslope::model::Scene& scene) {
     if (mat.density > 0 && (mat.density < 500 || mat.density > 10000)) {
       w << "materials." << mat.name << ".density = " << mat.density << " kg/m³ (rock is about 1800-3000; t/m³ are 1000 kg/m³)";
       add(w.str());
-    } else if (mat.youngModulus > 0 && mat.youngModulus < 1e6) {
+      w.str("");
+    }
+    if (mat.youngModulus > 0 && mat.youngModulus < 1e6) {
       w << "materials." << mat.name << ".young_modulus = " << mat.youngModulus
         << " Pa (rock masses are about 1e8-1e11 Pa; MPa are 1e6 Pa, GPa 1e9)";
       add(w.str());
     }
   }
+  double densest = 0;
+  for (const auto& mat : scene.materials) densest = std::max(densest, mat.density);
   for (const auto& j : scene.joints) {
     std::ostringstream w;
     w.precision(4);
@@ -194,7 +198,9 @@ std::string unitsWarning(const ddaslope::model::Scene& scene) {
         << ddaslope::radToDeg(phi) << "°)";
       add(w.str());
     }
-    if (j.cohesion > 0 && j.cohesion < 100) {
+    // Against the weight stress of the model's size: 40 Pa is a laboratory joint's cohesion under
+    // a 5 cm brick, and a slip of units under a 100 m slope.
+    if (j.cohesion > 0 && j.cohesion < 1e-4 * densest * scene.gravity.norm() * scene.modelHalfSize()) {
       w.str("");
       w << "joints." << j.name << ".cohesion = " << j.cohesion << " Pa (Pa are read; " << j.cohesion << " kPa would be "
         << std::setprecision(10) << j.cohesion * 1e3 << " Pa)";
@@ -203,6 +209,24 @@ std::string unitsWarning(const ddaslope::model::Scene& scene) {
   }
   if (found == 0) return "";
   return "values to check, another unit or a slip: " + m.str();
+}
+
+std::string closedGapWarning(const ddaslope::model::Scene& scene, const ddaslope::solver::RunStatistics& st) {
+  if (scene.settings.initialContactTolerance >= 0 || st.closedAcrossGaps == 0) return "";
+  std::ostringstream m;
+  m.precision(3);
+  m << st.closedAcrossGaps << (st.closedAcrossGaps == 1 ? " contact starts" : " contacts start")
+    << " closed and bonded across gaps of up to " << st.widestClosedGap * 1e3
+    << " mm: the default touching gap (" << scene.touchingGap() * 1e3
+    << " mm) takes them for coordinates rounded to the millimetre. If they are real openings, "
+       "`--set analysis.initial_contact_tolerance=1e-6` keeps them open";
+  return m.str();
+}
+
+std::string closedGapWarning(const ddaslope::model::Scene& scene) {
+  if (scene.settings.initialContactTolerance >= 0) return "";
+  const ddaslope::solver::Simulation sim(scene);  // the contacts at t = 0, as a trial finds them
+  return closedGapWarning(scene, sim.statistics());
 }
 
 std::string untouchedJointsWarning(const ddaslope::model::Scene& scene, const std::vector<int>& joints) {

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "ddaslope/model/scene.hpp"
+#include "ddaslope/solver/simulation.hpp"
 
 namespace ddaslope::cli {
 
@@ -26,6 +27,10 @@ std::string notchWarning(const model::Scene& scene);
 std::string movedJointWarning(const model::Scene& scene);
 /// Material and joint values that look like another unit's (t/m³, MPa, radians, kPa); empty if none.
 std::string unitsWarning(const model::Scene& scene);
+/// Contacts the automatic touching gap closed and bonded across gaps wider than 1e-6 w0 (from a
+/// simulation's statistics, or from the scene's contacts at t = 0); empty if none.
+std::string closedGapWarning(const model::Scene& scene, const solver::RunStatistics& st);
+std::string closedGapWarning(const model::Scene& scene);
 /// For a search on named joints: those with no contact at t = 0, whose strength the answer
 /// cannot follow; empty if every one has a contact (or none is named).
 std::string untouchedJointsWarning(const model::Scene& scene, const std::vector<int>& joints);

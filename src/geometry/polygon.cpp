@@ -358,7 +358,9 @@ Overlap overlapOf(const std::vector<Vec2>& a, const std::vector<Vec2>& b, double
   addBoundaryInside(lb, la, tol, false, o, twiceArea);
   // Green's theorem over the pieces leaves neighbours along a common edge, within tol, sharing
   // exactly nothing; the triangles bound it where a piece was classified differently from each side.
-  o.area = std::min(std::max(0.0, 0.5 * twiceArea), sharedAreaByTriangles(la, lb));
+  // (Only where the sum finds an area: the triangles cost a triangulation of each outline.)
+  o.area = std::max(0.0, 0.5 * twiceArea);
+  if (o.area > 0) o.area = std::min(o.area, sharedAreaByTriangles(la, lb));
   o.point += origin;
   return o;
 }

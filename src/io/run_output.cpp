@@ -212,7 +212,8 @@ void writeSummary(const fs::path& dir, const model::Scene& scene, const RunOptio
   ordered_json ex = ordered_json::array();
   for (const auto& r : o.expectations)
     ex.push_back({{"monitor", r.expectation.monitor}, {"quantity", r.expectation.quantity},
-                  {"actual", r.reached ? ordered_json(r.actual) : ordered_json(nullptr)}, {"passed", r.passed},
+                  {"actual", r.reached ? ordered_json(r.actual) : ordered_json(nullptr)},
+                  {"passed", r.reached ? ordered_json(r.passed) : ordered_json(nullptr)},
                   {"checked", r.reached}, {"text", r.describe()}});
   j["expected"] = ex;
   j["joints"] = jointsEcho(scene);

@@ -83,7 +83,11 @@ void normaliseOutlines(model::Scene& s) {
   // rounding closes across the straightened edge as well.
   const double touching = s.touchingGap();
   for (model::Block& b : s.blocks) {
-    const int removed = geometry::removeCollinearVertices(b.vertices, model::kCollinearTolerance, touching);
+    // Never more than a hundredth of the block's own thickness (2·area/perimeter): a sliver
+    // thinner than the gap keeps its corners.
+    const double thickness = 2 * std::abs(geometry::signedArea(b.vertices)) / geometry::perimeter(b.vertices);
+    const double within = std::min(touching, 0.01 * thickness);
+    const int removed = geometry::removeCollinearVertices(b.vertices, model::kCollinearTolerance, within);
     b.removedCollinearVertices += removed;
     if (removed > 0) b.moments = geometry::computeMoments(b.vertices);
   }

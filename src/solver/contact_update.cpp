@@ -79,6 +79,10 @@ void Simulation::detectContacts(bool initial) {
     const double tol = scene_.touchingGap();
     for (Contact& c : contacts_.contacts()) {
       if (c.geometry.gap > tol) continue;
+      if (c.geometry.gap > 1e-6 * w0_) {
+        ++stats_.closedAcrossGaps;
+        stats_.widestClosedGap = std::max(stats_.widestClosedGap, c.geometry.gap);
+      }
       c.state = ContactState::Locked;
       c.bonded = scene_.joints[c.joint].bond != model::BondPolicy::None;
       c.lockRatio = c.geometry.ratio;

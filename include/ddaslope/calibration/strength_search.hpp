@@ -72,6 +72,10 @@ struct SearchSettings {
   TrialStart trialStart = TrialStart::Held;
   /// How messages' hints name the case (`ddaslope run CASE --at-fos ...`): the CLI gives its path.
   std::string caseLabel = "CASE";
+  /// The free blocks' own elastic settlement under their weight, at most (ρ g h² / E, m; 0:
+  /// unknown): a search that fails at every factor by a settling motion within it may be seeing
+  /// that settlement (factorOfSafety sets it from the scene).
+  double elasticSettlement = 0;
 };
 
 struct CriticalResult {

@@ -90,6 +90,10 @@ struct RunStatistics {
   long pairsUncertified = 0;
   int maxContacts = 0;
   double maxPenetration = 0;       ///< largest penetration of a closed contact (m)
+  /// Contacts that started closed across a gap wider than 1e-6 w0 (the automatic touching gap's
+  /// floor: coordinates rounded in the file), and the widest such gap (m).
+  int closedAcrossGaps = 0;
+  double widestClosedGap = 0;
   PhaseTimes times;
 };
 
