@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "ddaslope/core/errors.hpp"
+#include "ddaslope/geometry/polygon.hpp"
 #include "ddaslope/io/case_reader.hpp"
 #include "ddaslope/io/job_reader.hpp"
 #include "test_io.hpp"
@@ -1178,4 +1179,32 @@ TEST(RobustInput, ASearchOnAJointWithoutContactsSaysSo) {
   clitest::captureCli("critical " + wedge + " --joint bedding --solve friction --quiet --out " +
                           (fs::temp_directory_path() / "ddaslope_untouched").string(), &err);
   EXPECT_EQ(err.find("has no contact"), std::string::npos) << err;
+}
+
+// The touching gap (1.5 mm by default) takes rounding for contact, and says so where it closed a
+// face drawn open: a block drawn 1 mm beside another starts bonded to it, and `check` notes that
+// with the gap's size and the setting that keeps it open. And a sliver thinner than the gap (a
+// 1 mm film under a slab) keeps its corners: vertices go only within a hundredth of the block's
+// own thickness (it used to lose two and be read as two points).
+TEST(RobustInput, TheTouchingGapSaysWhatItClosedAndSparesSlivers) {
+  json d = minimal();
+  d["blocks"][0]["vertices"] = {{0, 0}, {40, 0}, {40, 1}, {0, 1}};           // w0 = 20 m: the gap is 1.5 mm
+  d["blocks"][1]["vertices"] = {{2, 1.001}, {4, 1.001}, {4, 2}, {2, 2}};     // 1 mm above the base
+  d["monitors"][0]["point"] = {3, 1.5};
+  std::string err;
+  std::string out = clitest::captureCli("check " + writeTemp("gap.json", d.dump()), &err);
+  EXPECT_NE(out.find("start closed and bonded across gaps of up to 1 mm"), std::string::npos) << out;
+  EXPECT_NE(out.find("initial_contact_tolerance=1e-6"), std::string::npos) << out;
+  d["analysis"]["initial_contact_tolerance"] = 1e-6;
+  out = clitest::captureCli("check " + writeTemp("gap_open.json", d.dump()), &err);
+  EXPECT_EQ(out.find("closed and bonded across"), std::string::npos) << out;
+  // A 10 m × 1 mm film on the base: each corner lies 1 mm off the diagonal of its neighbours,
+  // within the gap, and stays.
+  d = minimal();
+  d["blocks"][0]["vertices"] = {{0, 0}, {40, 0}, {40, 1}, {0, 1}};
+  d["blocks"][1]["vertices"] = {{2, 1}, {12, 1}, {12, 1.001}, {2, 1.001}};
+  d["monitors"][0]["point"] = {7, 1.0005};
+  const model::Scene s = io::parseCase(d.dump(), "film.json");
+  EXPECT_EQ(s.blocks[1].vertices.size(), 4u);
+  EXPECT_NEAR(std::abs(geometry::signedArea(s.blocks[1].vertices)), 10 * 0.001, 1e-9);
 }
