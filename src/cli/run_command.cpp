@@ -82,7 +82,6 @@ int runCommand(const std::string& casePath, const Overrides& o, const RunCommand
   warnAboutTrials(casePath, timeStepWarning(scene));
   warnAboutTrials(casePath, movedJointWarning(scene));
   warnAboutTrials(casePath, unitsWarning(scene));
-  warnAboutTrials(casePath, closedGapWarning(scene));
   std::vector<std::string> reduced;
   // --at-fos starts where fos's trials start: from the rest at the case's own strengths, when
   // the case stands there.
@@ -116,6 +115,7 @@ int runCommand(const std::string& casePath, const Overrides& o, const RunCommand
   opt.reducedJoints = reduced;
   opt.sharedEquilibrium = settled ? &*settled : nullptr;
   const io::RunOutcome r = io::runScene(scene, opt);
+  warnAboutTrials(casePath, closedGapWarning(scene, r.statistics));  // the run's own contacts at t = 0
   if (!r.completed) {
     std::cerr << "ddaslope: " << casePath << (r.budgetStop ? ": budget exceeded: " : ": non-convergence: ") << r.failure << "\n"
               << "  partial history: " << outDir << "/history.partial.csv\n";
