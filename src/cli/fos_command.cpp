@@ -135,9 +135,11 @@ int fosSweep(const std::string& casePath, const Overrides& o, const FosOptions& 
   if (!opt.json)
     for (int i = 0; i < n; ++i) {
       const auto& r = points[i].fos;
+      // F to the digits its bracket supports, with the bracket, as a single search prints it.
+      char f[96];
+      std::snprintf(f, sizeof f, "F = %.4f (stable at %.4f, failing at %.4f)", r.factor, r.stableEnd, r.failingEnd);
       std::printf("  %s = %-10g %s (%d forward runs, %.1f s)", path.c_str(), valueAt(i),
-                  r.found ? ("F = " + std::to_string(r.factor)).c_str() : ("no answer: " + r.message).c_str(), r.runs,
-                  r.wallTime);
+                  r.found ? f : ("no answer: " + r.message).c_str(), r.runs, r.wallTime);
       if (cracks) std::printf("%s", pointCrackText(points[i].crackFound, points[i].crackTied, points[i].crackFails,
                                                    points[i].crackX, caseCrackX, "F").c_str());
       std::printf("\n");
