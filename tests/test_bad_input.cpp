@@ -8,6 +8,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "ddaslope/calibration/backanalysis.hpp"
 #include "ddaslope/core/errors.hpp"
 #include "ddaslope/geometry/polygon.hpp"
 #include "ddaslope/io/case_reader.hpp"
@@ -377,6 +378,20 @@ TEST(JobReader, BadJobs) {
   j = good;
   j["blocks"] = "stiff";
   expectJobError(j, "blocks", "rigid or deformable, found \"stiff\"");
+  j = good;
+  j["parameters"][0]["max"] = -1;
+  expectJobError(j, "parameters[0].max", "found min 0, max -1");
+  j = good;
+  j["optimiser"] = {{"global", "GN_NOPE"}};
+  expectJobError(j, "optimiser.global", "an NLopt algorithm name");
+  // A series observed after the run's end (planar_failure runs 1 s) is refused when the job runs,
+  // not compared with the run's last state: the file, the observation and both times.
+  j = good;
+  const std::string csv = writeTemp("late.csv", "time,ux\n0.5,0.0\n5.0,0.1\n");
+  j["observations"][0] = {{"type", "series"}, {"monitor", "wedge"}, {"quantity", "ux"}, {"csv", csv}, {"time_column", "time"}, {"value_column", "ux"}, {"sigma", 0.01}};
+  const std::string file = writeTemp("late_job.json", j.dump());
+  clitest::expectInputError([&] { calibration::runBackanalysis(io::readJob(file)); }, file, "observations[0].csv",
+                            "t = 5 s, after the run's end");
 }
 
 // A case value varied by JSON path must exist and be a number.

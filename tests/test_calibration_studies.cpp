@@ -2,6 +2,8 @@
 // it expects (issue #4).
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -179,4 +181,25 @@ TEST(BackanalysisEvaluations, APrecisionStudyStartedEarlyIsTheSameStudy) {
       EXPECT_FALSE(two.precisionStartedEarly);
     }
   }
+}
+
+// A precision scan coarser than the range it measures: φ of the 30° sliding block from its
+// displacement at 2 s (the closed form d = a t²/2 with a = g(sin 30° − cos 30° tan φ): 3.6256 m at
+// φ = 20°, 0.34 m per degree) with σ = 5 cm allows about ±0.15°, and the scan's neighbours, 0.8°
+// away, both lie outside it. The statement says the range is narrower than the scan resolves,
+// between those neighbours, instead of "20 to 20".
+TEST(BackanalysisEvaluations, ARangeNarrowerThanThePrecisionScanIsSaidToBe) {
+  const fs::path job = fs::temp_directory_path() / ("ddaslope_narrow_" + std::to_string(::getpid()) + ".json");
+  std::ofstream(job) << nlohmann::json{
+      {"case", (fs::path(DDASLOPE_SOURCE_DIR) / "cases/sliding_block_30deg.json").string()},
+      {"parameters", {{{"name", "phi"}, {"joint", "interface"}, {"property", "friction_angle"}, {"min", 5}, {"max", 29}}}},
+      {"observations", {{{"type", "runout"}, {"monitor", "centre"}, {"target", 3.6256}, {"sigma", 0.05}}}},
+      {"optimiser", {{"global", "GN_DIRECT_L"}, {"local", "LN_BOBYQA"}, {"global_evaluations", 20},
+                     {"local_evaluations", 20}, {"xtol_rel", 1e-4}}}}.dump();
+  const calibration::BackanalysisResult r = calibration::runBackanalysis(io::readJob(job.string()));
+  fs::remove(job);
+  EXPECT_NEAR(r.estimate[0], 20, 0.05);
+  const std::string& s = r.precision.statement;
+  EXPECT_NE(s.find("over less than the scan resolves"), std::string::npos) << s;
+  EXPECT_EQ(s.find(" to 20 ("), std::string::npos) << s;
 }

@@ -27,10 +27,13 @@
 namespace ddaslope::calibration {
 namespace {
 
-int jointNamed(const model::Scene& s, const std::string& name, const std::string& file) {
-  for (size_t j = 0; j < s.joints.size(); ++j)
+int jointNamed(const model::Scene& s, const std::string& name, const std::string& file, const std::string& path) {
+  std::string known;
+  for (size_t j = 0; j < s.joints.size(); ++j) {
     if (s.joints[j].name == name) return static_cast<int>(j);
-  throw InputError(file, "parameters", "no joint named \"" + name + "\" in the case");
+    known += (known.empty() ? "" : ", ") + s.joints[j].name;
+  }
+  throw InputError(file, path, "no joint named \"" + name + "\" in the case (it has: " + known + ")");
 }
 
 std::vector<double> physical(const io::BackanalysisJob& job, const std::vector<double>& u) {
@@ -114,7 +117,7 @@ model::Scene sceneAt(const io::BackanalysisJob& job, const std::vector<double>& 
   for (size_t i = 0; i < x.size(); ++i) {
     const io::ParameterSpec& p = job.parameters[i];
     if (p.joint.empty()) continue;
-    model::JointProperties& j = s.joints[jointNamed(s, p.joint, job.jobPath)];
+    model::JointProperties& j = s.joints[jointNamed(s, p.joint, job.jobPath, "parameters[" + std::to_string(i) + "].joint")];
     // A residual above the peak is used as the peak (model::JointProperties), so the two can be
     // searched over overlapping ranges.
     if (p.property == "cohesion") j.cohesion = x[i];
@@ -138,6 +141,15 @@ double misfitOf(const io::BackanalysisJob& job, const model::Scene& scene, int* 
   double total = 0;
   bool needTrace = false;
   for (const auto& o : job.observations) needTrace |= o.kind != io::ObservationSpec::Kind::FactorOfSafety;
+  // A series observed after the run's end would be compared with the run's last state.
+  for (size_t k = 0; k < job.observations.size(); ++k)
+    for (const double t : job.observations[k].times)
+      if (t > scene.settings.duration * (1 + 1e-9)) {
+        std::ostringstream m;
+        m << "an observation at t = " << t << " s, after the run's end (the case's analysis.duration, "
+          << scene.settings.duration << " s): lengthen the run or drop the later rows";
+        throw InputError(job.jobPath, "observations[" + std::to_string(k) + "].csv", m.str());
+      }
   io::RunOutcome run;
   if (needTrace) {
     io::RunOptions options;
@@ -152,7 +164,7 @@ double misfitOf(const io::BackanalysisJob& job, const model::Scene& scene, int* 
     ObservationFit met{o.label, NAN, o.target, o.sigma, o.kind == io::ObservationSpec::Kind::Series, true, {}};
     if (o.kind == io::ObservationSpec::Kind::FactorOfSafety) {
       std::vector<int> joints;
-      for (const auto& n : o.joints) joints.push_back(jointNamed(scene, n, job.jobPath));
+      for (const auto& n : o.joints) joints.push_back(jointNamed(scene, n, job.jobPath, "observations: joints"));
       SearchSettings s;
       s.threads = std::max(1, searchThreads);
       const FactorOfSafetyResult f = factorOfSafety(scene, joints, 0.2 * o.sigma, s);
@@ -170,8 +182,12 @@ double misfitOf(const io::BackanalysisJob& job, const model::Scene& scene, int* 
       model::Expectation e;
       e.monitor = o.monitor;
       e.quantity = o.quantity;
-      if (run.trace.monitorIndex(o.monitor) < 0)
-        throw InputError(job.jobPath, "observations", "no monitor \"" + o.monitor + "\" in the case");
+      if (run.trace.monitorIndex(o.monitor) < 0) {
+        std::string known;
+        for (const auto& id : run.trace.monitorIds) known += (known.empty() ? "" : ", ") + id;
+        throw InputError(job.jobPath, "observations", "no monitor \"" + o.monitor + "\" in the case (it has: " +
+                                                          (known.empty() ? std::string("none") : known) + ")");
+      }
       if (o.kind == io::ObservationSpec::Kind::Runout) {
         met.simulated = io::measure(run.trace, e);
         const double d = (met.simulated - o.target) / o.sigma;

@@ -175,9 +175,23 @@ Precision PrecisionRuns::summary(double bestMisfit, const std::vector<double>& f
   for (auto& r : out.parameters) {
     rangeWithin(r, best + weights);
     r.noiseResolution = noiseResolution(r.scan, out.noise, scalar);
-    s << " " << r.name << " = " << formatted(r.estimate) << ", within one standard deviation of the best fit for "
-      << (r.openLow ? "≤ " : "") << formatted(r.low) << " to " << (r.openHigh ? "≥ " : "") << formatted(r.high)
-      << " (" << r.scan.size() << " values scanned; an end marked ≤/≥ is the scan's); numerical noise alone "
+    s << " " << r.name << " = " << formatted(r.estimate) << ", within one standard deviation of the best fit ";
+    if (r.low == r.high && !r.openLow && !r.openHigh) {
+      // Only the estimate itself lies within: the range ends somewhere before the nearest values
+      // scanned on either side, which is all the scan can say.
+      double below = -INFINITY, above = INFINITY;
+      for (const auto& p : r.scan) {
+        if (p.value < r.low) below = std::max(below, p.value);
+        if (p.value > r.high) above = std::min(above, p.value);
+      }
+      s << "over less than the scan resolves: inside " << formatted(below) << " to " << formatted(above)
+        << ", the nearest values scanned (" << r.scan.size()
+        << " values; raise precision.scan_points or lower precision.half_width to resolve it)";
+    } else {
+      s << "for " << (r.openLow ? "≤ " : "") << formatted(r.low) << " to " << (r.openHigh ? "≥ " : "")
+        << formatted(r.high) << " (" << r.scan.size() << " values scanned; an end marked ≤/≥ is the scan's)";
+    }
+    s << "; numerical noise alone "
       << (std::isfinite(r.noiseResolution) ? "±" + formatted(r.noiseResolution)
                                            : std::string("unresolved (the observables show no trend over the scan)"))
       << ".";

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include <nlohmann/json.hpp>
+#include <nlopt.h>
 
 #include "ddaslope/core/errors.hpp"
 #include "json_input.hpp"
@@ -123,7 +124,11 @@ void readParameters(const JobReader& r, const json& doc, BackanalysisJob& job) {
     }
     s.min = r.number(r.required(j, p, "min"), p + ".min");
     s.max = r.number(r.required(j, p, "max"), p + ".max");
-    if (!(s.max > s.min)) r.fail(p + ".max", "expected max > min");
+    if (!(s.max > s.min)) {
+      std::ostringstream m;
+      m << "expected max > min, found min " << s.min << ", max " << s.max;
+      r.fail(p + ".max", m.str());
+    }
     if ((s.property == "friction_angle" || s.property == "residual_friction_angle") && (s.min < 0 || s.max >= 90))
       r.fail(p, "friction angle bounds must lie in [0, 90) degrees");
     if (j.contains("start")) {
@@ -186,6 +191,12 @@ void readSearch(const JobReader& r, const json& doc, BackanalysisJob& job) {
     r.onlyKeys(o, "optimiser", {"global", "local", "global_evaluations", "local_evaluations", "xtol_rel"});
     if (o.contains("global")) job.optimiser.global = r.string(o.at("global"), "optimiser.global");
     if (o.contains("local")) job.optimiser.local = r.string(o.at("local"), "optimiser.local");
+    // An algorithm NLopt does not know is the job's mistake, said here with its path.
+    for (const auto& [key, name] : {std::pair{"optimiser.global", job.optimiser.global},
+                                    std::pair{"optimiser.local", job.optimiser.local}})
+      if (!name.empty() && name != kGridSearch && static_cast<int>(nlopt_algorithm_from_string(name.c_str())) < 0)
+        r.fail(key, "expected an NLopt algorithm name (e.g. GN_DIRECT_L, GN_CRS2_LM, LN_BOBYQA, LN_NELDERMEAD; "
+                    "\"grid\" for a grid scan as the global stage), found \"" + name + "\"");
     if (o.contains("global_evaluations"))
       job.optimiser.globalEvaluations = static_cast<int>(r.number(o.at("global_evaluations"), "optimiser.global_evaluations"));
     if (o.contains("local_evaluations"))
