@@ -1200,7 +1200,7 @@ TEST(RobustInput, ASearchOnAJointWithoutContactsSaysSo) {
 // face drawn open: a block drawn 1 mm beside another starts bonded to it, and `check` notes that
 // with the gap's size and the setting that keeps it open. And a sliver thinner than the gap (a
 // 1 mm film under a slab) keeps its corners: vertices go only within a hundredth of the block's
-// own thickness (it used to lose two and be read as two points).
+// own thickness, not at the gap (which would leave it two points).
 TEST(RobustInput, TheTouchingGapSaysWhatItClosedAndSparesSlivers) {
   json d = minimal();
   d["blocks"][0]["vertices"] = {{0, 0}, {40, 0}, {40, 1}, {0, 1}};           // w0 = 20 m: the gap is 1.5 mm

@@ -57,6 +57,17 @@ json split(json doc, int parts) {
   return doc;
 }
 
+/// Every block's edges split in two, then every coordinate rounded to `unit` (m): a surveyor's or
+/// a CAD export's file of the same slope.
+json splitAndRounded(const json& doc, double unit) {
+  const double perMetre = std::round(1 / unit);  // 1e3 or 1e4 exactly
+  json rounded = split(doc, 2);
+  for (json& b : rounded["blocks"])
+    for (json& p : b["vertices"])
+      for (json& x : p) x = std::round(x.get<double>() * perMetre) / perMetre;
+  return rounded;
+}
+
 /// A vertex on every edge wherever a corner of another block lies on it (a block cutter's output).
 json tJunctions(json doc) {
   std::vector<Vec2> corners;
@@ -331,10 +342,7 @@ TEST(Invariance, BaseSplitIntoFixedPiecesIsReadAsOneBase) {
 // shipped F (1 %).
 TEST(Invariance, RoundedCoordinatesAreStraightWithinTheTouchingTolerance) {
   const json doc = blocksOf(kCases + "cohesive_block_42kpa.json");
-  json rounded = split(doc, 2);
-  for (json& b : rounded["blocks"])
-    for (json& p : b["vertices"])
-      for (json& x : p) x = std::round(x.get<double>() * 1e4) / 1e4;
+  json rounded = splitAndRounded(doc, 1e-4);
   rounded["analysis"]["initial_contact_tolerance"] = 1e-5;  // 1.1e-4 m at w0 = 11.5 m
   const model::Scene s = load(rounded);
   int removed = 0;
@@ -351,16 +359,12 @@ TEST(Invariance, RoundedCoordinatesAreStraightWithinTheTouchingTolerance) {
 // file: each block's edges split in two, every coordinate rounded to 1 mm, the split vertices up
 // to 0.7 mm off their edges) at the default touching gap, the millimetre's rounding (1.5 mm,
 // within [1e-6, 1e-4] w0; w0 = 25 m): the faces meet as one contact each and F is the drawn
-// slope's, within 1 % (the bracket widths). At the former default, 1e-6 w0, the split vertices
-// stayed, cohesion failed piecewise and F fell by 13 %.
+// slope's, within 1 % (the bracket widths). With a gap of 1e-6 w0 (25 µm) the split vertices
+// stay, cohesion fails piecewise and F falls by 13 %.
 TEST(Invariance, CoordinatesRoundedToTheMillimetreGiveTheDrawnSlopesAnswer) {
   const json doc = blocksOf(kCases + "planar_failure.json");
-  json rounded = split(doc, 2);
-  for (json& b : rounded["blocks"])
-    for (json& p : b["vertices"])
-      for (json& x : p) x = std::round(x.get<double>() * 1e3) / 1e3;
   const double f0 = fos(load(doc));
-  EXPECT_NEAR(fos(load(rounded)), f0, 0.01 * f0);
+  EXPECT_NEAR(fos(load(splitAndRounded(doc, 1e-3))), f0, 0.01 * f0);
 }
 
 namespace {

@@ -149,7 +149,7 @@ TEST(Report, ACheckOfARequiredFactorIsReportedAsOne) {
 }
 
 // Two analyses written into one folder: the report is of the newer one, whose pictures the folder
-// now holds, and it names the older result as older. Written fos then critical, and critical then
+// holds, and it names the older result as older. Written fos then critical, and critical then
 // fos, on Hoek & Bray's planar slide.
 TEST(Report, TheNewestOfTwoAnalysesInAFolderIsReported) {
   const fs::path dir = fs::temp_directory_path() / ("ddaslope_report_two_" + std::to_string(::getpid()));

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <vector>
 
 #include "ddaslope/calibration/contact_comparison.hpp"
 #include "ddaslope/calibration/probability.hpp"
@@ -47,12 +48,12 @@ int checkCommand(const std::string& casePath, const Overrides& o) {
   if (const std::string w = unitsWarning(scene); !w.empty()) std::printf("  warning: %s\n", w.c_str());
   if (const std::string w = closedGapWarning(scene, sim.statistics()); !w.empty()) std::printf("  note: %s\n", w.c_str());
   // A free block that touches nothing falls: a misplaced block, not a mechanism.
+  std::vector<char> touches(scene.blocks.size(), 0);
+  for (const auto& c : sim.contacts().contacts())
+    touches[static_cast<size_t>(c.key().vertexBlock)] = touches[static_cast<size_t>(c.key().edgeBlock)] = 1;
   for (size_t b = 0; b < scene.blocks.size(); ++b) {
     if (scene.blocks[b].fixed) continue;
-    bool touches = false;
-    for (const auto& c : sim.contacts().contacts())
-      touches |= static_cast<size_t>(c.key().vertexBlock) == b || static_cast<size_t>(c.key().edgeBlock) == b;
-    if (!touches)
+    if (!touches[b])
       std::printf("  warning: block %s touches no other block at t = 0 (no contact within the search distance): it "
                   "falls freely, and every search reads that as failure\n", scene.blocks[b].id.c_str());
   }

@@ -345,9 +345,9 @@ int criticalCommand(const std::string& casePath, const Overrides& o, const Criti
                                                                      shellWord(casePath)),
                         ddaslope::calibration::unrestedEndWarning(r.trials, r.found, r.failingEnd, cohesion ? "c" : "φ",
                                                                   shellWord(casePath)),
-                        slightBendNote(scene), notchWarning(scene), movedJointWarning(scene), unitsWarning(scene), closedGapWarning(scene),
-                        untouchedJointsWarning(scene, {joint}), dtWarning})
+                        slightBendNote(scene), notchWarning(scene), movedJointWarning(scene), unitsWarning(scene), dtWarning})
     if (!w.empty()) warnings.push_back(std::move(w));
+  for (std::string w : contactsAtStartWarnings(scene, {joint})) warnings.push_back(std::move(w));
   {
     ddaslope::io::JsonRecord j;
     j.set("case", casePath).set("joint", opt.joint).set("solve", opt.solve).set("found", r.found);

@@ -244,9 +244,9 @@ int fosCheck(const std::string& casePath, const Overrides& o, const FosOptions& 
   for (std::string w : {ddaslope::calibration::smallMotionWarning(check.runs, "F", shellWord(casePath)),
                         ddaslope::calibration::unrestedEndWarning(check.runs, decided, opt.check, "F", shellWord(casePath),
                                                                   "the trial"),
-                        slightBendNote(scene), notchWarning(scene), movedJointWarning(scene), unitsWarning(scene), closedGapWarning(scene),
-                        untouchedJointsWarning(scene, joints), dtWarning})
+                        slightBendNote(scene), notchWarning(scene), movedJointWarning(scene), unitsWarning(scene), dtWarning})
     if (!w.empty()) warnings.push_back(std::move(w));
+  for (std::string w : contactsAtStartWarnings(scene, joints)) warnings.push_back(std::move(w));
   const int runs = static_cast<int>(check.runs.size());
   {
     ddaslope::io::JsonRecord j;
@@ -363,9 +363,9 @@ int fosCommand(const std::string& casePath, const Overrides& o, const FosOptions
   for (std::string w : {ddaslope::calibration::smallMotionWarning(r.trials, "F", shellWord(casePath)),
                         ddaslope::calibration::unconvergedEndWarning(r.trials, r.found, r.failingEnd, "F", shellWord(casePath)),
                         ddaslope::calibration::unrestedEndWarning(r.trials, r.found, r.failingEnd, "F", shellWord(casePath)),
-                        slightBendNote(scene), notchWarning(scene), movedJointWarning(scene), unitsWarning(scene), closedGapWarning(scene),
-                        untouchedJointsWarning(scene, joints), dtWarning})
+                        slightBendNote(scene), notchWarning(scene), movedJointWarning(scene), unitsWarning(scene), dtWarning})
     if (!w.empty()) warnings.push_back(std::move(w));
+  for (std::string w : contactsAtStartWarnings(scene, joints)) warnings.push_back(std::move(w));
   {
     ddaslope::io::JsonRecord j;
     // No answer, no number: the bracket and the message say what is known.

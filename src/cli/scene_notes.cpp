@@ -223,15 +223,10 @@ std::string closedGapWarning(const ddaslope::model::Scene& scene, const ddaslope
   return m.str();
 }
 
-std::string closedGapWarning(const ddaslope::model::Scene& scene) {
-  if (scene.settings.initialContactTolerance >= 0) return "";
-  const ddaslope::solver::Simulation sim(scene);  // the contacts at t = 0, as a trial finds them
-  return closedGapWarning(scene, sim.statistics());
-}
-
-std::string untouchedJointsWarning(const ddaslope::model::Scene& scene, const std::vector<int>& joints) {
-  if (joints.empty()) return "";
-  const ddaslope::solver::Simulation sim(scene);  // the contacts at t = 0, found as a trial finds them
+namespace {
+/// The named joints that no contact of `sim` (at t = 0) uses; empty if every one has one.
+std::string untouchedJointsWarning(const ddaslope::model::Scene& scene, const ddaslope::solver::Simulation& sim,
+                                   const std::vector<int>& joints) {
   std::vector<std::string> untouched;
   for (const int j : joints) {
     bool found = false;
@@ -246,6 +241,16 @@ std::string untouchedJointsWarning(const ddaslope::model::Scene& scene, const st
        "cannot change this answer unless blocks move into contact. Check the joint's name and joint_pairs (`ddaslope "
        "check` lists the contacts)";
   return m.str();
+}
+}  // namespace
+
+std::vector<std::string> contactsAtStartWarnings(const ddaslope::model::Scene& scene, const std::vector<int>& joints) {
+  if (scene.settings.initialContactTolerance >= 0 && joints.empty()) return {};
+  const ddaslope::solver::Simulation sim(scene);  // the contacts at t = 0, found as a trial finds them
+  std::vector<std::string> out;
+  for (std::string w : {closedGapWarning(scene, sim.statistics()), untouchedJointsWarning(scene, sim, joints)})
+    if (!w.empty()) out.push_back(std::move(w));
+  return out;
 }
 
 std::string timeStepWarning(const ddaslope::model::Scene& scene) {

@@ -2,6 +2,7 @@
 // What the reader made of a case and what the user should know before trusting an answer:
 // outline normalisation, concave kinks, joints ending on bends, the seismic loading in force.
 #include <string>
+#include <vector>
 
 #include "ddaslope/model/scene.hpp"
 #include "ddaslope/solver/simulation.hpp"
@@ -28,12 +29,12 @@ std::string movedJointWarning(const model::Scene& scene);
 /// Material and joint values that look like another unit's (t/m³, MPa, radians, kPa); empty if none.
 std::string unitsWarning(const model::Scene& scene);
 /// Contacts the automatic touching gap closed and bonded across gaps wider than 1e-6 w0 (from a
-/// simulation's statistics, or from the scene's contacts at t = 0); empty if none.
+/// simulation's statistics at t = 0); empty if none.
 std::string closedGapWarning(const model::Scene& scene, const solver::RunStatistics& st);
-std::string closedGapWarning(const model::Scene& scene);
-/// For a search on named joints: those with no contact at t = 0, whose strength the answer
-/// cannot follow; empty if every one has a contact (or none is named).
-std::string untouchedJointsWarning(const model::Scene& scene, const std::vector<int>& joints);
+/// For a search: the notes on the contacts at t = 0, from one simulation set up as a trial's: the
+/// contacts closed across gaps (closedGapWarning), and the named `joints` that no contact uses,
+/// whose strength the answer cannot follow.
+std::vector<std::string> contactsAtStartWarnings(const model::Scene& scene, const std::vector<int>& joints);
 /// A warning when Δt exceeds the time in which a block falling freely from rest moves the step
 /// limit, where answers stop holding (docs/accuracy.md, "Δt beyond the step limit"); empty if not.
 std::string timeStepWarning(const model::Scene& scene);

@@ -67,27 +67,30 @@ bool segmentsIntersect(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& 
   return false;
 }
 
-bool isSimple(const std::vector<Vec2>& pts) {
+bool isSimple(const std::vector<Vec2>& pts) { return pts.size() >= 3 && !simplicityDefect(pts); }
+
+std::optional<SimplicityDefect> simplicityDefect(const std::vector<Vec2>& pts) {
+  using Kind = SimplicityDefect::Kind;
   const size_t n = pts.size();
-  if (n < 3) return false;
+  if (n < 3) return SimplicityDefect{Kind::RepeatedVertex, 0, n > 1 ? size_t{1} : size_t{0}};
   const Aabb box = boundingBox(pts);
   const double size = std::max((box.hi - box.lo).maxCoeff(), 1e-300);
   for (size_t i = 0; i < n; ++i)
-    if ((pts[(i + 1) % n] - pts[i]).norm() <= 1e-12 * size) return false;
+    if ((pts[(i + 1) % n] - pts[i]).norm() <= 1e-12 * size) return SimplicityDefect{Kind::RepeatedVertex, i, (i + 1) % n};
   for (size_t i = 0; i < n; ++i) {
     for (size_t j = i + 1; j < n; ++j) {
       const bool adjacent = (j == i + 1) || (i == 0 && j == n - 1);
       if (adjacent) continue;
-      if (segmentsIntersect(pts[i], pts[(i + 1) % n], pts[j], pts[(j + 1) % n])) return false;
+      if (segmentsIntersect(pts[i], pts[(i + 1) % n], pts[j], pts[(j + 1) % n])) return SimplicityDefect{Kind::CrossingEdges, i, j};
     }
   }
   // Adjacent edges folding back on each other (a spike) also make a degenerate polygon.
   for (size_t i = 0; i < n; ++i) {
     const Vec2 a = pts[(i + n - 1) % n], b = pts[i], c = pts[(i + 1) % n];
     const Vec2 u = (a - b).normalized(), v = (c - b).normalized();
-    if (std::abs(cross(u, v)) < 1e-12 && u.dot(v) > 0) return false;
+    if (std::abs(cross(u, v)) < 1e-12 && u.dot(v) > 0) return SimplicityDefect{Kind::Fold, i, i};
   }
-  return true;
+  return std::nullopt;
 }
 
 int removeCollinearVertices(std::vector<Vec2>& pts, double relativeTolerance, double absoluteTolerance) {

@@ -157,31 +157,20 @@ void readJoints(const Reader& r, const json& doc, model::Scene& s, std::map<std:
   }
 }
 
-/// Where an outline stops being a simple polygon (geometry::isSimple's tests, in its order), by
-/// the vertices' indices as the case numbers them.
-std::string whereNotSimple(const std::vector<Vec2>& v) {
-  const size_t n = v.size();
-  const geometry::Aabb box = geometry::boundingBox(v);
-  const double size = std::max((box.hi - box.lo).maxCoeff(), 1e-300);
-  std::ostringstream m;
-  for (size_t i = 0; i < n; ++i)
-    if ((v[(i + 1) % n] - v[i]).norm() <= 1e-12 * size) {
-      m << "vertices " << i << " and " << (i + 1) % n << " repeated at (" << v[i].x() << ", " << v[i].y() << ")";
-      return m.str();
-    }
-  for (size_t i = 0; i < n; ++i)
-    for (size_t j = i + 2; j < n; ++j)
-      if (!(i == 0 && j == n - 1) && geometry::segmentsIntersect(v[i], v[(i + 1) % n], v[j], v[(j + 1) % n])) {
-        m << "a self-intersecting outline: the edge from vertex " << i << " (" << v[i].x() << ", " << v[i].y()
-          << ") meets the edge from vertex " << j << " (" << v[j].x() << ", " << v[j].y() << ")";
-        return m.str();
-      }
-  for (size_t i = 0; i < n; ++i) {
-    m << "an outline folded back on itself at vertex " << i << " (" << v[i].x() << ", " << v[i].y() << ")";
-    const Vec2 a = v[(i + n - 1) % n], b = v[i], c = v[(i + 1) % n];
-    const Vec2 u = (a - b).normalized(), w = (c - b).normalized();
-    if (std::abs(cross(u, w)) < 1e-12 && u.dot(w) > 0) return m.str();
-    m.str("");
+/// Where an outline stops being a simple polygon, by the vertices' indices as the case numbers them.
+std::string whereNotSimple(const std::vector<Vec2>& v, const geometry::SimplicityDefect& d) {
+  const auto at = [&](size_t k) {
+    std::ostringstream p;
+    p << "vertex " << k << " (" << v[k].x() << ", " << v[k].y() << ")";
+    return p.str();
+  };
+  switch (d.kind) {
+    case geometry::SimplicityDefect::Kind::RepeatedVertex:
+      return "vertices " + std::to_string(d.first) + " and " + std::to_string(d.second) + " repeated at " + at(d.first);
+    case geometry::SimplicityDefect::Kind::CrossingEdges:
+      return "a self-intersecting outline: the edge from " + at(d.first) + " meets the edge from " + at(d.second);
+    case geometry::SimplicityDefect::Kind::Fold:
+      return "an outline folded back on itself at " + at(d.first);
   }
   return "one that is self-intersecting, folded or has repeated vertices";
 }
@@ -273,8 +262,8 @@ void readBlocks(const Reader& r, const json& doc, model::Scene& s,
       r.fail(p + ".vertices", "expected an array of 3 to " + std::to_string(limits::kMaxBlockVertices) +
                                   " points, found " + typeName(verts));
     for (size_t k = 0; k < verts.size(); ++k) blk.vertices.push_back(r.point(verts[k], Reader::index(p + ".vertices", k)));
-    if (!geometry::isSimple(blk.vertices))
-      r.fail(p + ".vertices", "expected a simple polygon, found " + whereNotSimple(blk.vertices));
+    if (const auto defect = geometry::simplicityDefect(blk.vertices))
+      r.fail(p + ".vertices", "expected a simple polygon, found " + whereNotSimple(blk.vertices, *defect));
     const geometry::Aabb box = geometry::boundingBox(blk.vertices);
     const double size = (box.hi - box.lo).maxCoeff();
     if (std::abs(geometry::signedArea(blk.vertices)) <= 1e-9 * size * size)

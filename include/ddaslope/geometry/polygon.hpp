@@ -1,5 +1,6 @@
 #pragma once
 // Pure polygon geometry: moments by simplex integration, orientation, simplicity.
+#include <optional>
 #include <vector>
 
 #include "ddaslope/core/types.hpp"
@@ -27,6 +28,13 @@ double signedArea(const std::vector<Vec2>& pts);
 PolygonMoments computeMoments(const std::vector<Vec2>& pts);
 /// True when no two non-adjacent edges touch and no two consecutive vertices coincide.
 bool isSimple(const std::vector<Vec2>& pts);
+/// Why an outline is not simple, at the first place isSimple finds: vertices `first` and `second`
+/// repeated, the edges from them crossing, or the outline folded back at vertex `first`.
+struct SimplicityDefect {
+  enum class Kind { RepeatedVertex, CrossingEdges, Fold } kind;
+  size_t first = 0, second = 0;
+};
+std::optional<SimplicityDefect> simplicityDefect(const std::vector<Vec2>& pts);
 /// Removes every vertex that lies on the straight line between the vertices kept on either side
 /// of it, within `relativeTolerance` of that chord's length or within `absoluteTolerance` (m),
 /// whichever is larger (a run of such vertices is tested against the one chord that replaces it,
