@@ -7,6 +7,7 @@
 
 #include "ddaslope/calibration/backanalysis.hpp"
 #include "ddaslope/calibration/trial_report.hpp"
+#include "ddaslope/io/case_reader.hpp"
 #include "ddaslope/io/job_reader.hpp"
 #include "ddaslope/io/json_record.hpp"
 #include "ddaslope/io/line_plot.hpp"
@@ -131,7 +132,12 @@ int backanalyseCommand(const std::string& jobPath, const std::string& outDir, bo
       for (size_t b = 0; b < r.axis1.size(); ++b) out << r.axis0[a] << "," << r.axis1[b] << "," << r.map[a][b] << "\n";
     out.close();
     std::filesystem::rename(csv + ".tmp", csv);
-    ddaslope::io::HeatMap m{"Misfit: " + jobPath, r.names[0], r.names[1], "misfit (log scale)", r.axis0, r.axis1, r.map,
+    const auto label = [&](int k) {
+      const ddaslope::io::ParameterSpec& p = job.parameters.at(k);
+      const std::string unit = ddaslope::io::unitOfCaseValue(p.jsonPath.empty() ? p.property : p.jsonPath);
+      return unit.empty() ? r.names[k] : r.names[k] + " (" + unit + ")";
+    };
+    ddaslope::io::HeatMap m{"Misfit: " + jobPath, label(0), label(1), "misfit (log scale)", r.axis0, r.axis1, r.map,
                             r.estimate[0], r.estimate[1]};
     ddaslope::io::writePng(m, outDir + "/misfit_map.png");
   }

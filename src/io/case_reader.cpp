@@ -1,5 +1,6 @@
 #include "ddaslope/io/case_reader.hpp"
 
+#include <map>
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -813,5 +814,21 @@ std::string expandSection(const std::string& path) {
 }
 
 model::Scene readCase(const std::string& path) { return parseCase(readInputFile(path, kMaxJsonFileBytes), path); }
+
+std::string unitOfCaseValue(const std::string& path) {
+  // The last key, without an index ("rate[0]" is a rate).
+  std::string key = path.substr(path.find_last_of('.') + 1);
+  key = key.substr(0, key.find('['));
+  static const std::map<std::string, std::string> units{
+      {"cohesion", "Pa"}, {"residual_cohesion", "Pa"}, {"tensile_strength", "Pa"}, {"young_modulus", "Pa"},
+      {"jcs", "Pa"}, {"friction_angle", "°"}, {"residual_friction_angle", "°"}, {"angle", "°"},
+      {"density", "kg/m³"}, {"unit_weight", "kN/m³"}, {"level", "m"}, {"weakening_distance", "m"},
+      {"lab_length", "m"}, {"field_length", "m"}, {"base_depth", "m"}, {"spacing", "m"},
+      {"failure_displacement", "m"}, {"joint_end_offset", "m"}, {"pretension", "N"}, {"capacity", "N"},
+      {"force", "N"}, {"stiffness", "N/m"}, {"normal_stiffness", "N/m"}, {"shear_stiffness", "N/m"},
+      {"penalty", "N/m"}, {"bond_strength", "N/m"}, {"time_step", "s"}, {"duration", "s"}};
+  const auto it = units.find(key);
+  return it == units.end() ? "" : it->second;
+}
 
 }  // namespace ddaslope::io

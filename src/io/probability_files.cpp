@@ -15,11 +15,18 @@
 
 #include "ddaslope/calibration/verdict.hpp"
 #include "ddaslope/core/errors.hpp"
+#include "ddaslope/io/case_reader.hpp"
 #include "ddaslope/io/json_record.hpp"
 #include "ddaslope/io/line_plot.hpp"
 
 namespace ddaslope::io {
 namespace {
+/// An input's path as an axis label, with the unit its value is given in.
+std::string withUnit(const std::string& path) {
+  const std::string unit = unitOfCaseValue(path);
+  return unit.empty() ? path : path + " (" + unit + ")";
+}
+
 
 namespace fs = std::filesystem;
 using calibration::SampleOutcome;
@@ -512,7 +519,7 @@ std::vector<std::string> writePictures(const io::ProbabilityJob& job, const cali
     }
     // Importance samples are centred on the design point: half of them fail whatever Pf is.
     io::writePng({(design ? "Importance samples (around the design point, weighted): " : "Samples: ") + title,
-                  job.spec.inputs[ax].path, job.spec.inputs[ay].path, series},
+                  withUnit(job.spec.inputs[ax].path), withUnit(job.spec.inputs[ay].path), series},
                  dir + "/samples_plane.png");
     written.push_back("samples_plane.png");
   }

@@ -17,6 +17,11 @@ model::Scene readCase(const std::string& path);
 /// surface): a plain case file, as `ddaslope cut` writes it.
 std::string expandSection(const std::string& path);
 
+/// The unit a case value at a JSON path ("joints.base.cohesion", "water.level") is written in,
+/// from its key, for labels of pictures and tables: "Pa", "°", "m", ...; empty when the value is
+/// dimensionless or the key is not a physical quantity of the case format.
+std::string unitOfCaseValue(const std::string& path);
+
 /// Same, from text already loaded (`file` names it in errors).
 model::Scene parseCase(const std::string& text, const std::string& file);
 
