@@ -137,6 +137,58 @@ TEST(Section, KinkBlocksAreCutUpTheSlopeOfConcaveKinks) {
 // A joint within half the width of a kink cut (x = 17.5 m, 0.5 m from the cut at 18 m) already
 // makes the kink block: no second cut beside it, so no 0.5 m sliver. Areas: x ∈ [10, 17.5]:
 // ∫ 1.5 t dt over [0, 7.5] = 42.1875 m²; the toe side's cut at 78 m stays: 105 m²; the rest of 1050.
+// The same slope facing −x (its sliding surface, x increasing, rising from the toe to the crown)
+// is cut into the mirror images of the blocks the +x slope gets: the shipped sections with kink
+// blocks, internal joints, joint sets and the automatic kink block (chair, Vajont, bilinear slab,
+// toppling slope), each block matched by its mirrored centroid and area.
+TEST(Section, ASlopeFacingMinusXIsCutAsTheMirrorImage) {
+  const auto flip = [](const std::vector<Vec2>& line) {
+    std::vector<Vec2> out;
+    for (auto it = line.rbegin(); it != line.rend(); ++it) out.emplace_back(-it->x(), it->y());
+    return out;
+  };
+  for (const char* name : {"chair_slide", "vajont", "bilinear_slab", "toppling_slope"}) {
+    SCOPED_TRACE(name);
+    std::ifstream in(std::string(DDASLOPE_SOURCE_DIR) + "/cases/" + name + ".json");
+    const nlohmann::json doc = nlohmann::json::parse(in);
+    const nlohmann::json& j = doc.at("section");
+    const auto line = [](const nlohmann::json& a) {
+      std::vector<Vec2> v;
+      for (const auto& p : a) v.emplace_back(p[0].get<double>(), p[1].get<double>());
+      return v;
+    };
+    model::SectionSpec spec;
+    spec.ground = line(j.at("ground"));
+    spec.slidingSurface = line(j.at("sliding_surface"));
+    spec.baseDepth = j.at("base_depth").get<double>();
+    if (j.contains("kink_block_width")) spec.kinkBlockWidth = j.at("kink_block_width").get<double>(), spec.kinkBlockAuto = false;
+    for (const auto& jt : j.value("joints", nlohmann::json::array()))
+      spec.joints.emplace_back(line(jt)[0], line(jt)[1]);
+    for (const auto& js : j.value("joint_sets", nlohmann::json::array()))
+      spec.jointSets.push_back({js.at("angle").get<double>(), js.at("spacing").get<double>(), line(nlohmann::json::array({js.at("origin")}))[0]});
+    model::SectionSpec mirrored = spec;
+    mirrored.ground = flip(spec.ground);
+    mirrored.slidingSurface = flip(spec.slidingSurface);
+    for (auto& [a, b] : mirrored.joints) a.x() = -a.x(), b.x() = -b.x();
+    for (model::JointSet& js : mirrored.jointSets) js.angleDeg = 180 - js.angleDeg, js.origin.x() = -js.origin.x();
+    ASSERT_FALSE(model::facesMinusX(spec));
+    ASSERT_TRUE(model::facesMinusX(mirrored));
+    const model::SectionBlocks a = model::cutSection(spec), b = model::cutSection(mirrored);
+    ASSERT_EQ(a.slide.size(), b.slide.size());
+    const double size = spec.ground.back().x() - spec.ground.front().x();
+    EXPECT_NEAR(a.base.moments.area, b.base.moments.area, 1e-9 * size * size);
+    // Left to right in both: the k-th block from the crown is the k-th from the right.
+    for (size_t k = 0; k < a.slide.size(); ++k) {
+      const model::Block& p = a.slide[k];
+      const model::Block& q = b.slide[b.slide.size() - 1 - k];
+      EXPECT_NEAR(p.moments.area, q.moments.area, 1e-9 * size * size) << k;
+      EXPECT_NEAR(p.moments.centroid.x(), -q.moments.centroid.x(), 1e-9 * size) << k;
+      EXPECT_NEAR(p.moments.centroid.y(), q.moments.centroid.y(), 1e-9 * size) << k;
+      EXPECT_EQ(p.vertices.size(), q.vertices.size()) << k;
+    }
+  }
+}
+
 TEST(Section, KinkCutBesideAJointIsSkipped) {
   model::SectionSpec s = basin();
   s.kinkBlockWidth = 2;

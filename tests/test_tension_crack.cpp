@@ -98,7 +98,8 @@ TEST(TensionCrack, PlanarFailureDryHalfAndFullMatchHoekAndBray) {
 // The same slope written other ways gives the same F (within the search's width 1e-3): the crack
 // placed by its depth, the section moved 1e5 m away, extra vertices on the crest plateau and on
 // the sliding plane (behind the crack, and under the wedge); and the hand-drawn blocks with a phreatic line
-// (cases/planar_failure_water.json, the crack's wall 0.05 m behind instead of 0.035 m).
+// (cases/planar_failure_water.json, the crack's wall 0.05 m behind instead of 0.035 m); the
+// slope mirrored to face −x.
 TEST(TensionCrack, SameSlopeWrittenAnotherWayGivesTheSameF) {
   nlohmann::json doc = crackCase();
   doc["section"]["tension_crack"] = {{"x", -20}, {"water_fraction", 1}};
@@ -123,6 +124,21 @@ TEST(TensionCrack, SameSlopeWrittenAnotherWayGivesTheSameF) {
   extra["section"]["sliding_surface"] = {
       {-28.562960138, 20}, {-24, 24 * std::tan(kPsiP)}, {-10, 10 * std::tan(kPsiP)}, {0, 0}};
   EXPECT_NEAR(fosOf(extra, "extra.json"), reference, 1e-3);
+
+  // Facing −x: the section mirrored in x = 0, listed with x increasing (toe first), the crack
+  // given by its position and by its depth.
+  nlohmann::json mirrored = doc;
+  for (const char* line : {"ground", "sliding_surface"}) {
+    nlohmann::json flipped = nlohmann::json::array();
+    for (auto it = doc["section"][line].rbegin(); it != doc["section"][line].rend(); ++it)
+      flipped.push_back({-(*it)[0].get<double>(), (*it)[1].get<double>()});
+    mirrored["section"][line] = flipped;
+  }
+  mirrored["section"]["tension_crack"]["x"] = 20;
+  mirrored["monitors"][0]["point"] = {5, 5};
+  EXPECT_NEAR(fosOf(mirrored, "mirrored.json"), reference, 1e-3);
+  mirrored["section"]["tension_crack"] = byDepth["section"]["tension_crack"];
+  EXPECT_NEAR(fosOf(mirrored, "mirrored_depth.json"), reference, 1e-3);
 
   std::ifstream in(std::string(DDASLOPE_SOURCE_DIR) + "/cases/planar_failure_water.json");
   std::stringstream text;

@@ -93,11 +93,12 @@ std::optional<std::pair<double, double>> readTensionCrack(const Reader& r, const
   if (!(lo < hi)) r.fail(p + ".search", std::string("expected x_min < x_max") + found);
   // The crack is cut between the sliding surface's crown and its toe (model/section.cpp).
   if (spec.slidingSurface.size() >= 2) {
-    const double crown = spec.slidingSurface.front().x(), toe = spec.slidingSurface.back().x();
-    if (!(lo > crown && hi < toe)) {
-      char m[160];
-      std::snprintf(m, sizeof m, "expected a range between the sliding surface's crown (x = %g m) and its toe (x = %g m)",
-                    crown, toe);
+    const bool minusX = model::facesMinusX(spec);
+    const double left = spec.slidingSurface.front().x(), right = spec.slidingSurface.back().x();
+    if (!(lo > left && hi < right)) {
+      char m[200];
+      std::snprintf(m, sizeof m, "expected a range between the sliding surface's %s (x = %g m) and its %s (x = %g m)",
+                    minusX ? "toe" : "crown", left, minusX ? "crown" : "toe", right);
       r.fail(p + ".search", m + std::string(found));
     }
   }

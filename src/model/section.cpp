@@ -126,6 +126,26 @@ bool crownPieceAbove(const std::vector<std::vector<Vec2>>& pieces, const Vec2& a
   return false;
 }
 
+/// A section's lines from left to right as the slope facing +x would have them: x negated.
+Vec2 flipped(const Vec2& p) { return {-p.x(), p.y()}; }
+std::vector<Vec2> flippedLine(const std::vector<Vec2>& line) {
+  std::vector<Vec2> out;
+  for (auto it = line.rbegin(); it != line.rend(); ++it) out.push_back(flipped(*it));
+  return out;
+}
+
+/// The section mirrored in x = 0: a slope facing −x becomes one facing +x, which is the way the
+/// cut below reads a section (the crown first, "up the slope" towards −x).
+SectionSpec mirroredSpec(const SectionSpec& s) {
+  SectionSpec m = s;
+  m.ground = flippedLine(s.ground);
+  m.slidingSurface = flippedLine(s.slidingSurface);
+  for (auto& [a, b] : m.joints) a = flipped(a), b = flipped(b);
+  for (JointSet& js : m.jointSets) js.angleDeg = 180 - js.angleDeg, js.origin = flipped(js.origin);
+  if (m.tensionCrack) m.tensionCrack->x = -m.tensionCrack->x;
+  return m;
+}
+
 /// How large the section is, and the tolerance its points are compared with.
 struct Extent {
   double size = 0, tol = 0, lowest = 0, highest = 0;
@@ -146,7 +166,7 @@ Extent checkLines(const SectionSpec& s) {
   for (size_t i = 1; i < s.slidingSurface.size(); ++i)
     if (s.slidingSurface[i].x() <= s.slidingSurface[i - 1].x()) {
       std::ostringstream m;
-      m << "expected x increasing from crown to toe, found x = " << s.slidingSurface[i].x() << " after "
+      m << "expected x increasing along the sliding surface, found x = " << s.slidingSurface[i].x() << " after "
         << s.slidingSurface[i - 1].x();
       fail("sliding_surface[" + std::to_string(i) + "]", m.str());
     }
@@ -168,7 +188,8 @@ Extent checkLines(const SectionSpec& s) {
       nearest = std::min(nearest, geometry::distanceToSegment(p, s.ground[k], s.ground[k + 1], nullptr));
     if (nearest > offGround) {
       std::ostringstream m;
-      m << "expected the " << (i == 0 ? "crown" : "toe") << " on the ground (within " << offGround
+      const bool crownEnd = (i == 0) != facesMinusX(s);
+      m << "expected the " << (crownEnd ? "crown" : "toe") << " on the ground (within " << offGround
         << " m, 1e-3 of the section's size); (" << p.x() << ", " << p.y() << ") is " << nearest
         << " m from it, the ground at x = " << p.x() << " being at y = " << groundAt(s.ground, p.x())
         << " m. Draw the sliding surface's ends on the ground line";
@@ -311,7 +332,12 @@ void cutKinkBlocks(std::vector<std::vector<Vec2>>& pieces, const SectionSpec& s,
 
 }  // namespace
 
+bool facesMinusX(const SectionSpec& s) {
+  return s.slidingSurface.size() >= 2 && s.slidingSurface.front().y() < s.slidingSurface.back().y();
+}
+
 double crackPositionAtDepth(const SectionSpec& s, double depth) {
+  if (facesMinusX(s)) return -crackPositionAtDepth(mirroredSpec(s), depth);
   const Vec2 crown = s.slidingSurface.front(), toe = s.slidingSurface.back();
   const auto excess = [&](double x) { return groundAt(s.ground, x) - groundAt(s.slidingSurface, x) - depth; };
   // The first sign change on a fine scan from the crown, then bisection.
@@ -333,6 +359,12 @@ double crackPositionAtDepth(const SectionSpec& s, double depth) {
 }
 
 std::vector<Vec2> crackWaterLine(const CrackGeometry& c, const std::vector<Vec2>& ground) {
+  if (c.toe.x() < c.x) {  // a slope facing −x: its line is the mirrored slope's, mirrored back
+    CrackGeometry m = c;
+    m.x = -c.x;
+    m.toe = flipped(c.toe);
+    return flippedLine(crackWaterLine(m, flippedLine(ground)));
+  }
   const Vec2 from(c.x, c.bottom + c.waterDepth()), to = c.toe;
   std::vector<double> xs{from.x(), to.x()};
   for (const Vec2& p : ground)
@@ -348,6 +380,12 @@ std::vector<Vec2> crackWaterLine(const CrackGeometry& c, const std::vector<Vec2>
 
 namespace {
 
+/// Open by a thousandth of the model's half size: far beyond the contacts' initial tolerance
+/// (1e-6 of it), so the crack carries its water and nothing else.
+double crackGap(const SectionSpec& s, const Extent& e) {
+  return 1e-3 * 0.5 * std::max(s.ground.back().x() - s.ground.front().x(), e.highest - e.lowest + s.baseDepth);
+}
+
 /// The crack's walls: the slide's at x (the slide surface starts at its top and goes down it to
 /// the sliding surface), the base's a gap behind. Checked against the section (paths relative to
 /// the section object).
@@ -356,10 +394,7 @@ CrackGeometry cutCrack(const SectionSpec& s, const Extent& e, std::vector<Vec2>&
   const TensionCrack& t = *s.tensionCrack;
   const Vec2 crown = s.slidingSurface.front(), toe = s.slidingSurface.back();
   CrackGeometry c;
-  // Open by a thousandth of the model's half size: far beyond the contacts' initial tolerance
-  // (1e-6 of it), so the crack carries its water and nothing else.
-  const double w0 = 0.5 * std::max(s.ground.back().x() - s.ground.front().x(), e.highest - e.lowest + s.baseDepth);
-  c.gap = 1e-3 * w0;
+  c.gap = crackGap(s, e);
   c.x = t.x;
   c.toe = toe;
   c.waterFraction = t.waterFraction;
@@ -391,6 +426,37 @@ CrackGeometry cutCrack(const SectionSpec& s, const Extent& e, std::vector<Vec2>&
 
 SectionBlocks cutSection(const SectionSpec& given) {
   const Extent e = checkLines(given);
+  if (facesMinusX(given)) {
+    // The crack's position is checked here, in the case's own coordinates.
+    if (given.tensionCrack) {
+      const double crown = given.slidingSurface.back().x(), toe = given.slidingSurface.front().x();
+      const double gap = crackGap(given, e), x = given.tensionCrack->x;
+      if (!(x < crown - gap && x > toe)) {
+        std::ostringstream m;
+        m << "expected x between the toe (" << toe << " m) and the crown (" << crown << " m, less the crack's width " << gap
+          << " m), found " << x;
+        fail("tension_crack.x", m.str());
+      }
+    }
+    SectionBlocks m = cutSection(mirroredSpec(given));
+    const auto back = [](const Block& b) {
+      std::vector<Vec2> v;
+      for (auto it = b.vertices.rbegin(); it != b.vertices.rend(); ++it) v.push_back(flipped(*it));
+      return makeBlock(b.id, b.fixed, v);
+    };
+    SectionBlocks out;
+    out.base = back(m.base);
+    for (const Block& b : m.slide) out.slide.push_back(back(b));
+    std::sort(out.slide.begin(), out.slide.end(),
+              [](const Block& a, const Block& b) { return a.moments.centroid.x() < b.moments.centroid.x(); });
+    for (size_t k = 0; k < out.slide.size(); ++k) out.slide[k].id = "slide_" + std::to_string(k + 1);
+    if (m.crack) {
+      out.crack = m.crack;
+      out.crack->x = -m.crack->x;
+      out.crack->toe = flipped(m.crack->toe);
+    }
+    return out;
+  }
   SectionSpec s = given;
   std::vector<Vec2> slideSurface = s.slidingSurface, baseSurface = s.slidingSurface;
   std::optional<CrackGeometry> crack;

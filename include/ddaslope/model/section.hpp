@@ -39,7 +39,7 @@ struct CrackGeometry {
 
 struct SectionSpec {
   std::vector<Vec2> ground;          ///< ground surface, x non-decreasing, across the model
-  std::vector<Vec2> slidingSurface;  ///< from crown to toe, x increasing, ends on the ground
+  std::vector<Vec2> slidingSurface;  ///< x increasing, ends on the ground; its higher end is the crown
   double baseDepth = 0;              ///< base bottom this far below the lowest point (m)
   std::vector<std::pair<Vec2, Vec2>> joints;  ///< each extended to a line through the mass
   std::vector<JointSet> jointSets;
@@ -60,6 +60,10 @@ struct SectionBlocks {
   std::vector<Block> slide;   ///< left to right (by centroid x)
   std::optional<CrackGeometry> crack;
 };
+
+/// A slope facing −x: its sliding surface, x increasing, rises from the toe to the crown. The cut
+/// and the crack treat it as the same slope mirrored.
+bool facesMinusX(const SectionSpec& spec);
 
 /// The x at which the depth from the ground down to the sliding surface first equals `depth`,
 /// going from the crown towards the toe; NaN when it never does.
