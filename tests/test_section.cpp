@@ -98,7 +98,9 @@ TEST(Section, BadSectionsAreReported) {
       ADD_FAILURE() << "accepted an end off the ground at " << at.transpose();
     } catch (const InputError& e) {
       EXPECT_EQ(e.jsonPath(), "sliding_surface[" + std::to_string(end) + "]");
-      EXPECT_NE(std::string(e.what()).find(end == 0 ? "crown on the ground" : "toe on the ground"), std::string::npos)
+      EXPECT_NE(std::string(e.what()).find(end == 0 ? "first point, an end of the slide, on the ground"
+                                                    : "last point, an end of the slide, on the ground"),
+                std::string::npos)
           << e.what();
     }
   }

@@ -188,8 +188,7 @@ Extent checkLines(const SectionSpec& s) {
       nearest = std::min(nearest, geometry::distanceToSegment(p, s.ground[k], s.ground[k + 1], nullptr));
     if (nearest > offGround) {
       std::ostringstream m;
-      const bool crownEnd = (i == 0) != facesMinusX(s);
-      m << "expected the " << (crownEnd ? "crown" : "toe") << " on the ground (within " << offGround
+      m << "expected the sliding surface's " << (i == 0 ? "first" : "last") << " point, an end of the slide, on the ground (within " << offGround
         << " m, 1e-3 of the section's size); (" << p.x() << ", " << p.y() << ") is " << nearest
         << " m from it, the ground at x = " << p.x() << " being at y = " << groundAt(s.ground, p.x())
         << " m. Draw the sliding surface's ends on the ground line";
