@@ -47,7 +47,7 @@ bool ContactSet::refreshGeometry(const std::vector<ContactCandidate>& candidates
 }
 
 void ContactSet::update(std::vector<ContactCandidate> candidates, const std::vector<int>& jointOfCandidate,
-                        const std::vector<char>& bondedIfNew) {
+                        const std::vector<char>& bondedIfNew, const std::function<int(int)>& vertexCount) {
   // A scene at rest finds the same contacts step after step: the merge below would give each its
   // candidate's geometry and nothing else (the keys of this set are last update's, unchanged).
   if (refreshGeometry(candidates)) return;
@@ -85,6 +85,18 @@ void ContactSet::update(std::vector<ContactCandidate> candidates, const std::vec
     c.geometry = cand;
     c.joint = jointOfCandidate[idx];
     c.bonded = bondedIfNew[idx];
+    const auto inherit = [&](const Contact& from) {
+      c.state = from.state;
+      c.bonded = from.bonded;
+      c.slipDistance = from.slipDistance;
+      c.opening = from.opening;
+      c.openingAtStart = from.openingAtStart;
+      c.intact = from.intact;
+      c.slideDirection = from.slideDirection;
+      c.normalForce = from.normalForce;
+      c.lockRatio = cand.ratio;
+    };
+    bool inherited = false;
     {
       // The vertex may have slid onto another edge of the same block: carry its state over.
       const ContactKey prefix{cand.key.vertexBlock, cand.key.vertex, cand.key.edgeBlock, -1};
@@ -93,15 +105,28 @@ void ContactSet::update(std::vector<ContactCandidate> candidates, const std::vec
            it->key().vertex == prefix.vertex && it->key().edgeBlock == prefix.edgeBlock;
            ++it) {
         if (!it->closed()) continue;
-        c.state = it->state;
-        c.bonded = it->bonded;
-        c.slipDistance = it->slipDistance;
-        c.opening = it->opening;
-        c.openingAtStart = it->openingAtStart;
-        c.intact = it->intact;
-        c.slideDirection = it->slideDirection;
-        c.normalForce = it->normalForce;
-        c.lockRatio = cand.ratio;
+        inherit(*it);
+        inherited = true;
+        break;
+      }
+    }
+    if (!inherited && vertexCount && cand.pairedEdge >= 0) {
+      // Two edges lying against each other, and the corner that measured their contact has
+      // changed sides: last step the edge block's corner at an end of this edge sat on the edge
+      // this vertex starts or ends (the paired edge); now this vertex sits on the edge. It is the
+      // same contact seen from the other block (a slide leaving the corner it started on, once
+      // the corners are a search distance apart): it goes on in its state, or it would close
+      // afresh, locked, and stop a sliding block in one step.
+      const int n = vertexCount(cand.key.edgeBlock);
+      for (const int corner : {cand.key.edge, (cand.key.edge + 1) % n}) {
+        const ContactKey swapped{cand.key.edgeBlock, corner, cand.key.vertexBlock, cand.pairedEdge};
+        const auto it = std::lower_bound(contacts_.begin(), contacts_.end(), swapped, keyLess);
+        if (it == contacts_.end() || !(it->key() == swapped) || !it->closed()) continue;
+        // Not if that contact goes on too: it keeps its own state.
+        const auto still = std::lower_bound(order.begin(), order.end(), swapped,
+                                            [](const Entry& e, const ContactKey& k) { return e.key < k; });
+        if (still != order.end() && still->key == swapped) continue;
+        inherit(*it);
         break;
       }
     }

@@ -70,7 +70,8 @@ void Simulation::detectContacts(bool initial) {
     joints.push_back(scene_.jointBetween(c.key.vertexBlock, c.key.edgeBlock));
     bondedIfNew.push_back(scene_.joints[joints.back()].bond == model::BondPolicy::Always);
   }
-  contacts_.update(std::move(candidates), joints, bondedIfNew);
+  contacts_.update(std::move(candidates), joints, bondedIfNew,
+                   [&](int b) { return static_cast<int>(scene_.blocks[static_cast<size_t>(b)].vertices.size()); });
   if (pairCacheOn_) pairCache_.finish(contacts_.keyVersion());
 
   if (initial) {

@@ -1,5 +1,6 @@
 #pragma once
 // The persistent contact set: contacts matched by key across steps keep state and history.
+#include <functional>
 #include <vector>
 
 #include "ddaslope/contact/contact.hpp"
@@ -12,8 +13,11 @@ class ContactSet {
   /// was in contact last step inherits its state, bond and shear anchor; one whose vertex moved
   /// to another edge of the same block inherits state and bond with a fresh anchor.
   /// `bondedIfNew`: whether a candidate with no history starts intact (its joint's bond policy).
+  /// With `vertexCount` (a block's number of vertices), an edge-to-edge contact whose measuring
+  /// corner changed blocks (the other block's corner at an end of this edge sat on the paired
+  /// edge, and is gone) inherits that contact's state and bond with a fresh anchor.
   void update(std::vector<ContactCandidate> candidates, const std::vector<int>& jointOfCandidate,
-              const std::vector<char>& bondedIfNew);
+              const std::vector<char>& bondedIfNew, const std::function<int(int)>& vertexCount = {});
   bool contains(const ContactKey& key) const;
   /// Identify the set's keys, and its keys with each contact's paired edge (the edge-to-edge
   /// pairing): an update() that changes them gives a number no set has had before. A copy keeps
