@@ -71,9 +71,17 @@ def transform_points(case, f):
     for s in case.get("supports", []):  # a bolt or anchor: its head and end are points of the scene
         s["head"] = f(s["head"])
         s["end"] = f(s["end"])
+    for load in case.get("edge_loads", []):  # a loaded stretch of a face: its two ends
+        load["from"] = f(load["from"])
+        load["to"] = f(load["to"])
     water = case.get("water", {})
     if "phreatic_line" in water:
         water["phreatic_line"] = [f(p) for p in water["phreatic_line"]]
+    grid = water.get("pressure_grid", {})
+    if "points" in grid:  # [x, y, p]: the point moves, its pressure stays
+        grid["points"] = [f(p[:2]) + [p[2]] for p in grid["points"]]
+    elif "csv" in grid:
+        sys.exit("a pressure grid read from a CSV file: write its points into the case first")
 
 
 def rotate_vector(v, deg):
@@ -118,12 +126,24 @@ def main():
                 b["velocity"][0] = -b["velocity"][0]
         for load in case.get("point_loads", []):
             load["force"][0] = -load["force"][0]
+            if "rate" in load:
+                load["rate"][0] = -load["rate"][0]
+        for load in case.get("edge_loads", []):
+            if "load" in load:  # a traction [qx, qy], or one at each end
+                q = load["load"]
+                load["load"] = [[-t[0], t[1]] for t in q] if isinstance(q[0], list) else [-q[0], q[1]]
     elif v == "rotate":
         (deg,) = a.values
         transform_points(case, lambda p: rotate_vector(p, deg))
         case["gravity"] = rotate_vector(case.get("gravity", [0, -9.81]), deg)
         for load in case.get("point_loads", []):
             load["force"] = rotate_vector(load["force"], deg)
+            if "rate" in load:
+                load["rate"] = rotate_vector(load["rate"], deg)
+        for load in case.get("edge_loads", []):
+            if "load" in load:
+                q = load["load"]
+                load["load"] = [rotate_vector(t, deg) for t in q] if isinstance(q[0], list) else rotate_vector(q, deg)
         if "water" in case:
             sys.exit("rotate: a water table is horizontal by definition; rotate a case without water")
     elif v == "reverse-blocks":

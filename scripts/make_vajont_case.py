@@ -154,7 +154,8 @@ def main():
                                  "--target-fos 1.3` finds for F = 1.3 (docs/supports.md). Hundreds of 1 MN anchors "
                                  "per metre: no support could have held Vajont.")
         case["joints"]["sliding_surface"]["friction_angle"] = phi
-        case["supports"] = [{"id": "anchor", "head": head, "end": end, "pretension": force}]
+        # The head lies on the vertical joint between two slices: the one up the slope carries it.
+        case["supports"] = [{"id": "anchor", "head": head, "head_block": "slide_25", "end": end, "pretension": force}]
         case["expected"] = [{"monitor": "toe", "quantity": "displacement", "at_most": 0.1,
                              "source": "F = 1.3 with the anchor: the slope holds"}]
     with open(a.out, "w") as f:

@@ -491,7 +491,21 @@ TEST(CaseReader, GroundMotionRecordErrors) {
               "line 4: expected times increasing");
   expectError(csv("nan.csv", "time,a_h\n0,0.1\n0.01,nan\n"), "seismic.record.file",
               "line 3: expected a finite horizontal acceleration");
-  expectError(csv("column.csv", "t,a_h\n0,0.1\n"), "seismic.record.file", "line 1: expected a column \"time\"");
+  expectError(csv("column.csv", "t,a_h\n0,0.1\n"), "seismic.record.file",
+              "line 1: expected a column \"time\" in the header, found \"t\", \"a_h\"");
+  // A record's time 0 is the analysis's start: samples before it would never act, and the run
+  // would start with a step to the first sample after it.
+  expectError(csv("negative.csv", "time,a_h\n-1,0\n0.1,0.4\n0.2,0\n"), "seismic.record.file",
+              "line 2: expected times >= 0 s");
+  // A decimal comma splits a value into two cells.
+  expectError(csv("comma.csv", "time,a_h\n0,0\n0.1,0,4\n"), "seismic.record.file",
+              "line 3: expected 2 cells as in the header, found 3");
+  // The header as spreadsheets write it: Excel's byte-order mark, quotes, spaces after commas.
+  for (const std::string& head : {std::string("\xEF\xBB\xBFtime,a_h"), std::string("\"time\",\"a_h\""),
+                                   std::string("time, a_h")}) {
+    const json ok = csv("spreadsheet.csv", head + "\n0,0.1\n0.01,0.2\n");
+    EXPECT_NO_THROW(io::parseCase(ok.dump(), "case.json")) << head;
+  }
   d = csv("nounits.csv", "time,a_h\n0,0.1\n0.01,0.1\n");
   d["seismic"]["record"].erase("units");
   expectError(d, "seismic.record.units", "required for a CSV record");
@@ -784,6 +798,10 @@ TEST(RobustInput, CsvErrorsNameTheCaseAndTheCsv) {
   d["water"] = {{"level_series", {{"csv", csv}}}};
   expectError(d, "water.level_series.csv", "row 3");
   fs::remove(csv);
+  // A decimal comma ("0,2,5" for a level of 2.5 at t = 0) is one cell too many, not a level of 2.
+  const std::string comma = writeTemp("levels_comma.csv", "time,level\n0,2,5\n1,3\n");
+  d["water"] = {{"level_series", {{"csv", comma}}}};
+  expectError(d, "water.level_series.csv", "row 2: expected 2 cells as in the header, found 3");
   d["water"] = {{"level_series", {{"csv", "/dev/zero"}}}};
   expectError(d, "water.level_series.csv", "regular file");
 }
@@ -922,6 +940,10 @@ TEST(CaseReader, GroutedBoltCapacityIsItsWeakestAnchorage) {
   EXPECT_NEAR(s.supports[0].stiffness, 1e7 / 2, 1e-6);
   d["supports"][0]["bond_strength"] = 1e7;  // the tendon gives way first
   EXPECT_NEAR(io::parseCase(d.dump(), "case.json").supports[0].capacity, 2e5 / 2, 1e-6);
+  // Its head on the slider's base, pointing down into the base: no length in the slider, bonded
+  // over nothing, a capacity of 0 (as "capacity": 0 is refused, so is this).
+  d["supports"][0]["head"] = {3, 1};
+  expectError(d, "supports[0].bond_strength", "0 m inside its head's block \"slider\"");
 }
 
 TEST(CaseReader, BadEdgeLoads) {
@@ -1155,6 +1177,15 @@ TEST(RobustInput, ValuesInAnotherUnitAndFloatingBlocksAreWarned) {
   d["monitors"][0]["point"] = {3, 5.5};
   const std::string floating = writeTemp("floating.json", d.dump());
   EXPECT_NE(clitest::captureCli("check " + floating, &err).find("block slider touches no other block"), std::string::npos);
+  // A reservoir level in another datum (a level below every block) wets nothing; one at the
+  // slider's mid-height is silent.
+  json wet = minimal();
+  wet["water"] = {{"level", -1000}};
+  const std::string dry = writeTemp("dry_water.json", wet.dump());
+  EXPECT_NE(clitest::captureCli("check " + dry, &err).find("the water wets no free block"), std::string::npos);
+  wet["water"] = {{"level", 1.5}};
+  const std::string half = writeTemp("half_water.json", wet.dump());
+  EXPECT_EQ(clitest::captureCli("check " + half, &err).find("wets no free block"), std::string::npos);
 }
 
 // A horizontal coefficient along the slope's failure lowers F, against it raises F (Hoek & Bray's

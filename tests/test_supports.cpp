@@ -7,7 +7,10 @@
 
 #include "ddaslope/calibration/strength_search.hpp"
 #include "ddaslope/calibration/verdict.hpp"
+#include "ddaslope/core/errors.hpp"
 #include "ddaslope/io/case_reader.hpp"
+
+#include <nlohmann/json.hpp>
 #include "ddaslope/solver/simulation.hpp"
 #include <filesystem>
 
@@ -351,4 +354,67 @@ TEST(Supports, RunDrawsTheSupportForcesBesideTheHistory) {
   clitest::captureCli("run " + src + "/cases/planar_failure.json --duration 0.1 --quiet --out " + dir.string(), &err);
   EXPECT_FALSE(fs::exists(dir / "supports.png")) << "a case without supports keeps no stale picture";
   fs::remove_all(dir);
+}
+
+// A planar wedge (plane 32°, c 15 kPa, φ 35°) cut in two by a vertical joint at x = −8, an
+// anchor of 600 kN/m whose head is drawn on that joint (an independent tester's case). Which
+// block carries the head decides the answer, the whole wedge held or the toe block sliding alone
+// (F 2.17 against 1.47), so the file's block order must not: such a head must name its block.
+// Named, the wedge gets Hoek & Bray's F with an anchor, within 1 %, in either order:
+// F = (cA + (W cos ψ − T u·n) tan φ)/(W sin ψ + T u·d), d down the plane, n out of it, u the
+// anchor's pull on the wedge. A monitor on the same joint follows the block lying furthest
+// towards −x, in either order.
+TEST(Supports, AHeadOnTheJointBetweenTwoFreeBlocksMustNameItsBlock) {
+  const nlohmann::json rock = {{-46.25, -15}, {12, -15}, {12, -7.4984}, {0, 0}, {-16.2976, 10.1839}, {-16.2976, 18}, {-46.25, 18}};
+  const nlohmann::json lower = {{0, 0}, {-8, 12.8030}, {-8, 4.9990}};
+  const nlohmann::json upper = {{-8, 4.9990}, {-8, 12.8030}, {-11.2476, 18}, {-16.2476, 18}, {-16.2476, 10.1527}};
+  const Vec2 head(-8, 9), end(-21.5230, 5.3765);
+  const double tension = 600e3;
+  const auto caseWith = [&](bool lowerFirst, const char* headBlock) {
+    nlohmann::json blocks = {{{"id", "rock_mass"}, {"material", "rock"}, {"fixed", true}, {"vertices", rock}}};
+    const nlohmann::json l = {{"id", "lower"}, {"material", "rock"}, {"vertices", lower}};
+    const nlohmann::json u = {{"id", "upper"}, {"material", "rock"}, {"vertices", upper}};
+    blocks.push_back(lowerFirst ? l : u);
+    blocks.push_back(lowerFirst ? u : l);
+    nlohmann::json anchor = {{"id", "anchor"}, {"head", {head.x(), head.y()}}, {"end", {end.x(), end.y()}}, {"pretension", tension}};
+    if (headBlock) anchor["head_block"] = headBlock;
+    return nlohmann::json{{"gravity", {0, -9.81}},
+                          {"materials", {{"rock", {{"density", 2500}, {"young_modulus", 1e10}, {"poisson_ratio", 0.25}}}}},
+                          {"joints", {{"plane", {{"friction_angle", 35}, {"cohesion", 15e3}}}}},
+                          {"default_joint", "plane"},
+                          {"blocks", blocks},
+                          {"supports", {anchor}},
+                          {"monitors", {{{"id", "on_joint"}, {"point", {-8, 9}}}}},
+                          {"analysis", {{"duration", 1.0}, {"time_step", 0.001}}}}
+        .dump();
+  };
+  for (const bool lowerFirst : {true, false}) {
+    SCOPED_TRACE(lowerFirst ? "lower block first" : "upper block first");
+    try {
+      io::parseCase(caseWith(lowerFirst, nullptr), "wedge.json");
+      ADD_FAILURE() << "a head on the joint between two free blocks was given a block";
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.jsonPath(), "supports[0].head");
+      EXPECT_NE(e.message().find("head_block"), std::string::npos) << e.message();
+    }
+    const model::Scene s = io::parseCase(caseWith(lowerFirst, "lower"), "wedge.json");
+    EXPECT_EQ(s.blocks[s.monitors.at(0).point.block].id, "upper");
+    const calibration::FactorOfSafetyResult r = calibration::factorOfSafety(s, {}, 1e-3);
+    ASSERT_TRUE(r.found) << r.message;
+    const auto area = [](const nlohmann::json& poly) {
+      double a = 0;
+      for (size_t k = 0; k < poly.size(); ++k) {
+        const auto& p = poly[k];
+        const auto& q = poly[(k + 1) % poly.size()];
+        a += p[0].get<double>() * q[1].get<double>() - q[0].get<double>() * p[1].get<double>();
+      }
+      return 0.5 * std::abs(a);
+    };
+    const double psi = std::atan2(10.1527, 16.2476), w = 2500 * 9.81 * (area(lower) + area(upper));
+    const double length = std::hypot(16.2476, 10.1527);
+    const Vec2 d(std::cos(psi), -std::sin(psi)), n(std::sin(psi), std::cos(psi)), u = (end - head).normalized();
+    const double expected = (15e3 * length + (w * std::cos(psi) - tension * u.dot(n)) * std::tan(degToRad(35))) /
+                            (w * std::sin(psi) + tension * u.dot(d));
+    EXPECT_NEAR(r.factor, expected, 0.01 * expected);
+  }
 }

@@ -207,6 +207,18 @@ std::string unitsWarning(const ddaslope::model::Scene& scene) {
       add(w.str());
     }
   }
+  // Water that wets no free block's face at the start (and never, when it does not vary): a level
+  // or line given in another datum (metres above sea level in a model drawn from 0), or a grid
+  // left where the blocks are not.
+  if (scene.water.active() && scene.water.seriesLevels.empty()) {
+    const ddaslope::model::WaterTable water = scene.water.at(0);
+    bool wets = false;
+    for (const auto& b : scene.blocks)
+      for (size_t k = 0; k < b.vertices.size() && !b.fixed && !wets; ++k)
+        wets = ddaslope::assembly::edgeWaterResultant(b.vertices[k], b.vertices[(k + 1) % b.vertices.size()], water).norm() > 0;
+    if (!wets) add("the water wets no free block: every block lies above it, or outside the pressure grid (are its "
+                   "elevations or points in the model's coordinates?)");
+  }
   if (found == 0) return "";
   return "values to check, another unit or a slip: " + m.str();
 }

@@ -429,7 +429,11 @@ void readWater(const Reader& r, const json& doc, model::Scene& s) {
   for (size_t i = 0; i < line.size(); ++i) {
     const Vec2 p = r.point(line[i], Reader::index("water.phreatic_line", i));
     if (i > 0 && p.x() <= s.water.line.back().x())
-      r.fail(Reader::index("water.phreatic_line", i), "expected x increasing along the line");
+    {
+      std::ostringstream m;
+      m << "expected x increasing along the line, found x = " << p.x() << " after " << s.water.line.back().x();
+      r.fail(Reader::index("water.phreatic_line", i), m.str());
+    }
     s.water.line.push_back(p);
   }
 }

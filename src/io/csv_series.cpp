@@ -9,16 +9,27 @@
 #include "ddaslope/io/input_file.hpp"
 
 namespace ddaslope::io {
-namespace {
 
-std::vector<std::string> splitCells(const std::string& line) {
+std::vector<std::string> csvCells(const std::string& line, bool header) {
   std::vector<std::string> cells;
   std::stringstream ss(line);
   for (std::string cell; std::getline(ss, cell, ',');) cells.push_back(cell);
+  if (!line.empty() && line.back() == ',') cells.emplace_back();  // a trailing empty cell counts
+  if (!header) return cells;
+  if (!cells.empty() && cells[0].rfind("\xEF\xBB\xBF", 0) == 0) cells[0].erase(0, 3);
+  for (std::string& c : cells) {
+    const size_t a = c.find_first_not_of(" \t\r"), b = c.find_last_not_of(" \t\r");
+    c = a == std::string::npos ? std::string() : c.substr(a, b - a + 1);
+    if (c.size() >= 2 && c.front() == '"' && c.back() == '"') c = c.substr(1, c.size() - 2);
+  }
   return cells;
 }
 
-}  // namespace
+std::string headerFound(const std::vector<std::string>& header) {
+  std::string out;
+  for (size_t k = 0; k < header.size(); ++k) out += (k ? ", \"" : "\"") + header[k] + "\"";
+  return header.empty() ? "an empty header" : out;
+}
 
 bool finiteNumber(const std::string& cell, double& value) {
   const char* begin = cell.c_str();
@@ -41,17 +52,23 @@ Series readCsvColumns(const std::string& csvPath, const std::string& xColumn, co
   std::string line;
   std::getline(in, line);
   if (!line.empty() && line.back() == '\r') line.pop_back();
-  const std::vector<std::string> header = splitCells(line);
+  const std::vector<std::string> header = csvCells(line, true);
   int xi = -1, yi = -1;
   for (size_t i = 0; i < header.size(); ++i) {
     if (header[i] == xColumn) xi = static_cast<int>(i);
     if (header[i] == yColumn) yi = static_cast<int>(i);
   }
-  if (xi < 0 || yi < 0) fail("columns '" + xColumn + "' and '" + yColumn + "' expected in the header");
+  if (xi < 0 || yi < 0)
+    fail("columns '" + xColumn + "' and '" + yColumn + "' expected in the header, found " + headerFound(header));
   Series s;
   for (int row = 2; std::getline(in, line); ++row) {
-    if (line.empty() || line == "\r") continue;
-    const std::vector<std::string> cells = splitCells(line);
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (line.empty()) continue;
+    const std::vector<std::string> cells = csvCells(line);
+    // More cells than names: a decimal comma ("0,2,5" for a level of 2.5) reads as another cell.
+    if (cells.size() > header.size())
+      fail("row " + std::to_string(row) + ": expected " + std::to_string(header.size()) + " cells as in the header, found " +
+           std::to_string(cells.size()) + " (\"" + line + "\"); write decimals with a point");
     double x = 0, y = 0;
     const bool ok = static_cast<int>(cells.size()) > std::max(xi, yi) && finiteNumber(cells[xi], x) &&
                     finiteNumber(cells[yi], y);

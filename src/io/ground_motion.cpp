@@ -105,25 +105,22 @@ model::GroundMotion readCsv(const std::string& text, const RecordSpec& spec, con
   const double unit = spec.units == "g" ? kStandardGravity : 1.0;
   const std::vector<std::string> ls = lines(text);
   if (ls.empty()) err.fail(1, "expected a header row");
-  const auto split = [](const std::string& line) {
-    std::vector<std::string> cells;
-    std::stringstream ss(line);
-    for (std::string cell; std::getline(ss, cell, ',');) cells.push_back(cell);
-    return cells;
-  };
-  const std::vector<std::string> header = split(ls[0]);
+  const std::vector<std::string> header = csvCells(ls[0], true);
   const auto column = [&](const std::string& name) {
     if (name.empty()) return -1;
     const auto it = std::find(header.begin(), header.end(), name);
-    if (it == header.end()) err.fail(1, "expected a column \"" + name + "\" in the header");
+    if (it == header.end()) err.fail(1, "expected a column \"" + name + "\" in the header, found " + headerFound(header));
     return static_cast<int>(it - header.begin());
   };
   const int ti = column(spec.timeColumn), hi = column(spec.horizontalColumn), vi = column(spec.verticalColumn);
   model::GroundMotion g;
   for (size_t i = 1; i < ls.size(); ++i) {
     if (ls[i].empty()) continue;
-    const std::vector<std::string> cells = split(ls[i]);
+    const std::vector<std::string> cells = csvCells(ls[i]);
     const int line = static_cast<int>(i + 1);
+    if (cells.size() > header.size())
+      err.fail(line, "expected " + std::to_string(header.size()) + " cells as in the header, found " +
+                         std::to_string(cells.size()) + " (\"" + ls[i] + "\"); write decimals with a point");
     const auto cell = [&](int c, const std::string& what) {
       double v = 0;
       if (c >= static_cast<int>(cells.size()) || !finiteNumber(cells[c], v))
@@ -142,6 +139,11 @@ model::GroundMotion readCsv(const std::string& text, const RecordSpec& spec, con
       return v;
     };
     const double t = time(ti);
+    // The record's time 0 is the analysis's start (or seismic.record.start): a sample before it
+    // would never be applied, and the record would start with the step to the first one after.
+    if (t < 0)
+      err.fail(line, "expected times >= 0 s (a record's time 0 is the analysis's start; seismic.record.start "
+                     "delays it), found " + cells[ti]);
     if (!g.times.empty() && !(spec.start + t > g.times.back()))
       err.fail(line, "expected times increasing, found " + cells[ti] + " after " + std::to_string(g.times.back() - spec.start));
     g.times.push_back(spec.start + t);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <set>
+#include <vector>
 #include <sstream>
 
 #include "ddaslope/geometry/polygon.hpp"
@@ -15,18 +16,39 @@ using case_json::Reader;
 using case_json::typeName;
 
 /// The block holding point `at`: the one named by `blockKey` of j if given (the point checked to
-/// lie inside it), else the block that contains it, a free one before a fixed one.
+/// lie inside it), else the block that contains it, a free one before a fixed one. A point on the
+/// joint between two free blocks is the user's to assign when it carries a force (an anchor's
+/// head on one block or the other changes F by a third): refused unless `leftmost`, for a
+/// monitor, which follows the block whose centroid lies furthest towards −x (a section's blocks
+/// are numbered so: the lower slide_k). Either way the blocks' order in the file does not decide.
 int blockHolding(const Reader& r, const json& j, const std::string& p, const std::string& blockKey, const Vec2& at,
-                 const std::string& pointPath, const model::Scene& s) {
+                 const std::string& pointPath, const model::Scene& s, bool leftmost = false) {
   const auto inside = [&](size_t b) {
     const geometry::Aabb box = geometry::boundingBox(s.blocks[b].vertices);
     return geometry::containsPoint(s.blocks[b].vertices, at, 1e-9 * (box.hi - box.lo).maxCoeff());
   };
   if (!j.contains(blockKey)) {
     int found = -1;
-    for (size_t b = 0; b < s.blocks.size(); ++b)
-      if (inside(b) && (found < 0 || (s.blocks[found].fixed && !s.blocks[b].fixed))) found = static_cast<int>(b);
-    if (found < 0) r.fail(pointPath, "point lies in no block");
+    std::vector<int> free;
+    for (size_t b = 0; b < s.blocks.size(); ++b) {
+      if (!inside(b)) continue;
+      if (!s.blocks[b].fixed) free.push_back(static_cast<int>(b));
+      if (found < 0 || (s.blocks[found].fixed && !s.blocks[b].fixed)) found = static_cast<int>(b);
+    }
+    std::ostringstream m;
+    m << "(" << at.x() << ", " << at.y() << ")";
+    if (found < 0) r.fail(pointPath, "point lies in no block: expected a point inside (or on) a block, found " + m.str());
+    if (free.size() > 1 && leftmost) {
+      const auto key = [&](int b) { return std::make_pair(s.blocks[b].moments.centroid.x(), s.blocks[b].moments.centroid.y()); };
+      return *std::min_element(free.begin(), free.end(), [&](int a, int b) { return key(a) < key(b); });
+    }
+    if (free.size() > 1) {
+      std::string names;
+      for (size_t k = 0; k < free.size(); ++k)
+        names += (k == 0 ? "" : k + 1 == free.size() ? " and " : ", ") + ("\"" + s.blocks[free[k]].id + "\"");
+      r.fail(pointPath, "the point " + m.str() + " lies on the boundary of the free blocks " + names +
+                            ": say which carries it with \"" + blockKey + "\" (" + Reader::join(p, blockKey) + ")");
+    }
     return found;
   }
   const std::string id = r.string(j.at(blockKey), Reader::join(p, blockKey));
@@ -38,10 +60,11 @@ int blockHolding(const Reader& r, const json& j, const std::string& p, const std
 
 /// A point ("point", on "block" if named) carried by a block.
 model::BlockPoint blockPoint(const Reader& r, const json& j, const std::string& p, const model::Scene& s,
-                             const std::string& pointKey = "point", const std::string& blockKey = "block") {
+                             const std::string& pointKey = "point", const std::string& blockKey = "block",
+                             bool leftmost = false) {
   model::BlockPoint bp;
   bp.initial = bp.current = r.point(r.required(j, p, pointKey), Reader::join(p, pointKey));
-  bp.block = blockHolding(r, j, p, blockKey, bp.initial, Reader::join(p, pointKey), s);
+  bp.block = blockHolding(r, j, p, blockKey, bp.initial, Reader::join(p, pointKey), s, leftmost);
   return bp;
 }
 
@@ -164,6 +187,15 @@ void readSupports(const Reader& r, const json& list, model::Scene& s, std::set<s
       b.endEmbedment = lengthInside(s.blocks[b.end.block].vertices, b.head.initial, b.end.initial);
       b.bondCapacity = b.bondStrength * std::min(b.headEmbedment, b.endEmbedment);
       b.capacity = std::min(b.capacity, b.bondCapacity);
+      // A bolt with no length inside one of its blocks (its head on the block's face, pointing
+      // out of it across an open crack) is bonded over nothing and carries nothing.
+      if (!(b.bondCapacity > 0)) {
+        std::ostringstream m;
+        m << "expected the support to run inside both its blocks, to be bonded there: it runs " << b.headEmbedment
+          << " m inside its head's block \"" << s.blocks[b.head.block].id << "\" and " << b.endEmbedment
+          << " m inside its end's block \"" << s.blocks[b.end.block].id << "\", so its bond holds nothing";
+        r.fail(p + ".bond_strength", m.str());
+      }
     }
     if (b.pretension > b.capacity) {
       std::ostringstream m;
@@ -198,7 +230,7 @@ void readPointsAndLoads(const Reader& r, const json& doc, model::Scene& s) {
       model::Monitor m;
       m.id = r.identifier(r.string(r.required((*mons)[i], p, "id"), p + ".id"), p + ".id");
       if (!seen.insert(m.id).second) r.fail(p + ".id", "duplicate monitor id \"" + m.id + "\"");
-      m.point = blockPoint(r, (*mons)[i], p, s);
+      m.point = blockPoint(r, (*mons)[i], p, s, "point", "block", true);
       s.monitors.push_back(m);
     }
   }

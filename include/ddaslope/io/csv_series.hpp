@@ -13,6 +13,14 @@ struct Series {
 /// number (no "nan", "inf", overflow or trailing text).
 bool finiteNumber(const std::string& cell, double& value);
 
+/// The cells of a CSV line, split at commas. `header`: names as spreadsheets write them, a
+/// UTF-8 byte-order mark (Excel's "CSV UTF-8"), spaces around a name and double quotes around it
+/// removed.
+std::vector<std::string> csvCells(const std::string& line, bool header = false);
+
+/// The header's names, quoted and comma-separated, for a message ("found "time", "a_h"").
+std::string headerFound(const std::vector<std::string>& header);
+
 /// Reads columns `xColumn` and `yColumn`. Throws InputError naming `referrer` (the file and JSON
 /// path that named the CSV) for a missing file or column, and the CSV file and row for a bad cell.
 Series readCsvColumns(const std::string& csvPath, const std::string& xColumn, const std::string& yColumn,
