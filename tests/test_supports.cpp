@@ -418,3 +418,17 @@ TEST(Supports, AHeadOnTheJointBetweenTwoFreeBlocksMustNameItsBlock) {
     EXPECT_NEAR(r.factor, expected, 0.01 * expected);
   }
 }
+
+// A load sized for a target F the slope misses without it, and which only burdens it: a crest
+// surcharge Q gives F = (cA + (W + Q) cos ψ tan φ)/((W + Q) sin ψ), falling from 1.114 towards
+// tan φ / tan ψ = 0.82 as Q grows, never 1.5. The search says so of the load, not of a support
+// that 1e12 N/m could not make hold.
+TEST(Supports, ALoadThatOnlyBurdensASlopeMissingItsTargetIsSaidToBeOne) {
+  model::Scene s = planarCase("planar_failure.json");
+  addCrestSurcharge(s, 10e3);
+  ASSERT_LT(planarFactor(0, 0), 1.5);
+  const calibration::CriticalResult r = calibration::criticalSupport(s, "surcharge", 1.5, 0);
+  EXPECT_FALSE(r.found);
+  EXPECT_NE(r.message.find("fails without the load"), std::string::npos) << r.message;
+  EXPECT_GE(r.runs, 20) << r.message;
+}

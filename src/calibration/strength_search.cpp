@@ -786,7 +786,9 @@ CriticalResult criticalSupport(const model::Scene& scene, const std::string& id,
     if (stableAt.undecidedInARow >= 2) {
       r.message = kUndecidedBracket;
     } else if (hi >= kLargest) {
-      r.message = "fails even with 1e12 N/m: no support of this kind holds the slope at this factor of safety";
+      r.message = load ? "fails without the load and under every load tried, up to 1e12 N/m: this load does not hold "
+                         "the slope at this factor of safety"
+                       : "fails even with 1e12 N/m: no support of this kind holds the slope at this factor of safety";
     } else {
       const double w = width > 0 ? width : 1e-3 * hi;
       narrowInto(r, stableAt, hi, failing, w, s.threads);
