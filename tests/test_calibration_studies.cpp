@@ -15,6 +15,7 @@
 #include "ddaslope/core/errors.hpp"
 #include "ddaslope/io/case_reader.hpp"
 #include "ddaslope/io/job_reader.hpp"
+#include "test_io.hpp"
 
 namespace fs = std::filesystem;
 using namespace ddaslope;
@@ -221,4 +222,24 @@ TEST(BackanalysisEvaluations, ARangeNarrowerThanThePrecisionScanIsSaidToBe) {
   const std::string& s = r.precision.statement;
   EXPECT_NE(s.find("over less than the scan resolves"), std::string::npos) << s;
   EXPECT_EQ(s.find(" to 20 ("), std::string::npos) << s;
+}
+
+// An estimate whose range was not measured says so, and how to measure it; with the job's
+// "precision" it gives the range instead (the two-block slide's φ from the toe's history).
+TEST(BackanalysisEvaluations, AnEstimateWithoutItsRangeSaysSo) {
+  const std::string job = (fs::path(DDASLOPE_SOURCE_DIR) / "calibration/two_block_slide/job.json").string();
+  std::string err;
+  const json plain = json::parse(clitest::captureCli("backanalyse " + job + " --quiet --json --out " +
+                                                         (fs::temp_directory_path() / "ddaslope_point").string(), &err));
+  ASSERT_TRUE(plain.contains("notes")) << plain.dump();
+  EXPECT_NE(plain["notes"].dump().find("the estimate is a point"), std::string::npos) << plain["notes"].dump();
+  json withPrecision = json::parse(std::ifstream(job));
+  withPrecision["precision"] = true;
+  withPrecision["case"] = (fs::path(DDASLOPE_SOURCE_DIR) / "calibration/two_block_slide/case.json").string();
+  withPrecision["observations"][0]["csv"] = (fs::path(DDASLOPE_SOURCE_DIR) / "calibration/two_block_slide/observations.csv").string();
+  const std::string path = clitest::writeTemp("job_precision.json", withPrecision.dump());
+  const json ranged = json::parse(clitest::captureCli("backanalyse " + path + " --quiet --json --out " +
+                                                          (fs::temp_directory_path() / "ddaslope_ranged").string(), &err));
+  ASSERT_TRUE(ranged.contains("precision")) << err;
+  EXPECT_EQ(ranged.value("notes", json::array()).dump().find("the estimate is a point"), std::string::npos);
 }

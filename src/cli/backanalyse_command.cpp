@@ -106,7 +106,16 @@ int backanalyseCommand(const std::string& jobPath, const std::string& outDir, bo
                      : "one joint strength fitted to F = 1 is the strength at which the slope is at its limit: `" + direct +
                            "` finds it by bisection on the stability verdict in a few tens of forward runs (this fit: " +
                            std::to_string(r.forwardRuns) + "), with the job's settings given as options (--preset, --blocks, --set)";
-  if (!note.empty()) j.set("notes", std::vector<std::string>{note});
+  std::vector<std::string> notes;
+  if (!note.empty()) notes.push_back(note);
+  // A point estimate alone looks sharper than the data may make it (docs/calibration.md,
+  // "Precision"): say that its range was not measured, and how to measure it.
+  if (r.precision.parameters.empty())
+    notes.push_back(std::string("the estimate is a point: how far the observations fix it was not measured") +
+                    (r.map.empty() ? "" : " beyond misfit_map.png's grid") +
+                    "; \"precision\": true in the job scans each parameter around it and reruns it at other time steps "
+                    "(docs/calibration.md, \"Precision\")");
+  if (!notes.empty()) j.set("notes", notes);
   for (const auto& f : r.fit) {
     ddaslope::io::JsonRecord item;
     item.set("observation", f.label);
@@ -158,7 +167,7 @@ int backanalyseCommand(const std::string& jobPath, const std::string& outDir, bo
     }
     if (!r.statement.empty()) std::printf("  %s\n", r.statement.c_str());
     if (!r.precision.statement.empty()) std::printf("  %s\n", r.precision.statement.c_str());
-    if (!note.empty()) std::printf("  note: %s\n", note.c_str());
+    for (const std::string& n : notes) std::printf("  note: %s\n", n.c_str());
     std::printf("  wrote %s%s\n", result.c_str(), r.map.empty() ? "" : (" and " + outDir + "/misfit_map.csv, .png").c_str());
   }
   return kExitOk;
