@@ -121,6 +121,11 @@ def main():
         case["gravity"] = [-case.get("gravity", [0, -9.81])[0], case.get("gravity", [0, -9.81])[1]]
         if "seismic" in case and "k_h" in case["seismic"]:
             case["seismic"]["k_h"] = -case["seismic"]["k_h"]
+        if "record" in case.get("seismic", {}):  # the ground shakes the mirrored way
+            record = case["seismic"]["record"]
+            if record.get("vertical_column"):
+                sys.exit("mirror: a record with a vertical column; its scale would flip both components")
+            record["scale"] = -record.get("scale", 1.0)
         for b in case["blocks"]:
             if "velocity" in b:
                 b["velocity"][0] = -b["velocity"][0]

@@ -802,6 +802,15 @@ TEST(RobustInput, CsvErrorsNameTheCaseAndTheCsv) {
   const std::string comma = writeTemp("levels_comma.csv", "time,level\n0,2,5\n1,3\n");
   d["water"] = {{"level_series", {{"csv", comma}}}};
   expectError(d, "water.level_series.csv", "row 2: expected 2 cells as in the header, found 3");
+  // A spreadsheet's export reads: byte-order mark, quoted names and values, spaces, CRLF and a
+  // trailing comma; a column named twice does not.
+  const std::string excel = writeTemp("levels_excel.csv", "\xEF\xBB\xBF\"time\", \" level\",\r\n\"0\",\"1\",\r\n1, 2,\r\n");
+  d["water"] = {{"level_series", {{"csv", excel}}}};
+  const model::Scene read = io::parseCase(d.dump(), "case.json");
+  EXPECT_EQ(read.water.seriesLevels, (std::vector<double>{1, 2}));
+  const std::string twice = writeTemp("levels_twice.csv", "time,level,level\n0,1,2\n1,2,3\n");
+  d["water"] = {{"level_series", {{"csv", twice}}}};
+  expectError(d, "water.level_series.csv", "row 1: expected each column named once, found \"level\" twice");
   d["water"] = {{"level_series", {{"csv", "/dev/zero"}}}};
   expectError(d, "water.level_series.csv", "regular file");
 }
@@ -943,7 +952,7 @@ TEST(CaseReader, GroutedBoltCapacityIsItsWeakestAnchorage) {
   // Its head on the slider's base, pointing down into the base: no length in the slider, bonded
   // over nothing, a capacity of 0 (as "capacity": 0 is refused, so is this).
   d["supports"][0]["head"] = {3, 1};
-  expectError(d, "supports[0].bond_strength", "0 m inside its head's block \"slider\"");
+  expectError(d, "supports[0].head", "0 m inside its head's block \"slider\"");
 }
 
 TEST(CaseReader, BadEdgeLoads) {
@@ -1186,6 +1195,13 @@ TEST(RobustInput, ValuesInAnotherUnitAndFloatingBlocksAreWarned) {
   wet["water"] = {{"level", 1.5}};
   const std::string half = writeTemp("half_water.json", wet.dump());
   EXPECT_EQ(clitest::captureCli("check " + half, &err).find("wets no free block"), std::string::npos);
+  // A pressure grid drawn 10 km away: its pressures at the blocks are its plane's extrapolation.
+  wet["water"] = {{"pressure_grid", {{"points", {{1e4, 0, 1e4}, {1e4 + 5, 0, 1e4}, {1e4, 5, 0}}}}}};
+  const std::string far = writeTemp("far_grid.json", wet.dump());
+  EXPECT_NE(clitest::captureCli("check " + far, &err).find("pressure_grid has no point within"), std::string::npos);
+  wet["water"] = {{"pressure_grid", {{"points", {{0, 0, 1e4}, {5, 0, 1e4}, {0, 5, 0}}}}}};
+  const std::string near = writeTemp("near_grid.json", wet.dump());
+  EXPECT_EQ(clitest::captureCli("check " + near, &err).find("pressure_grid has no point"), std::string::npos);
 }
 
 // A horizontal coefficient along the slope's failure lowers F, against it raises F (Hoek & Bray's
@@ -1253,4 +1269,17 @@ TEST(RobustInput, TheTouchingGapSaysWhatItClosedAndSparesSlivers) {
   const model::Scene s = io::parseCase(d.dump(), "film.json");
   EXPECT_EQ(s.blocks[1].vertices.size(), 4u);
   EXPECT_NEAR(std::abs(geometry::signedArea(s.blocks[1].vertices)), 10 * 0.001, 1e-9);
+}
+
+// Axis labels carry the unit each case value is written in (docs/case-format.md), by the path's
+// end: a key that means different things in different objects by its parent too.
+TEST(CaseReader, UnitsOfCaseValuesFollowTheFormat) {
+  const std::vector<std::pair<std::string, std::string>> expected{
+      {"joints.sliding_plane.cohesion", "Pa"},          {"joints.j.friction_angle", "°"},
+      {"materials.rock.unit_weight", "kN/m³"},          {"water.unit_weight", "N/m³"},
+      {"water.level", "m"},                             {"joints.j.normal_stiffness", "Pa/m"},
+      {"point_loads[0].force[1]", "N/m"},               {"supports[1].pretension", "N"},
+      {"supports[0].stiffness", "N/m"},                 {"section.tension_crack.x", "m"},
+      {"seismic.k_h", ""},                              {"analysis.time_step", "s"}};
+  for (const auto& [path, unit] : expected) EXPECT_EQ(io::unitOfCaseValue(path), unit) << path;
 }

@@ -81,11 +81,11 @@ TEST(BenchmarkA2, ALaunchedBlockStopsWhereTheClosedFormSays) {
   }
 }
 
-// A2 as every section's slide starts: the block's upper corner on the base's corner (an
-// independent tester's case, written as a user would). Once the corners are a search distance
-// apart, the contact the corner pair measured from the base's corner goes on as the block's
-// corner on the base's edge, sliding. Closed afresh, locked, its cycling at Δt ≥ 2 ms would be
-// frozen into a lock taking 60 % of the speed in one step (d(1.5 s) 22–30 % short at 5–10 ms). a = g (sin 35° − cos 35° tan 30°) = 0.98726 m/s², d(1.5 s) = 1.1107 m, within
+// A2 as every section's slide starts, written as a user would: the block's upper corner on the
+// base's corner. Once the corners are a search distance apart, the contact the corner pair
+// measured from the base's corner goes on as the block's corner on the base's edge, sliding.
+// Closed afresh, locked, its cycling at Δt ≥ 2 ms would be frozen into a lock taking most of
+// the block's speed in one step. a = g (sin 35° − cos 35° tan 30°) = 0.98726 m/s², d(1.5 s) = 1.1107 m, within
 // 0.5 % at every Δt, rigid and deformable.
 TEST(BenchmarkA2, ABlockLeavingTheCornerItStartedOnSlidesAsTheClosedFormSays) {
   const double psi = 35 * M_PI / 180, h = 60 * std::tan(psi);

@@ -276,3 +276,47 @@ TEST(ContactSet, SameContactsRefreshTheirGeometryOnly) {
   EXPECT_EQ(set.pairingVersion(), pairing);
   EXPECT_EQ(set.contacts().size(), 2u);
 }
+
+// The hand-over of an edge-to-edge contact whose measuring corner changes blocks. Block 0 (the
+// base, 4 vertices) has edge 2 from its vertex 2 to 3; block 1 (the slider, 4 vertices) lies with
+// its edge 0 (vertex 0 to 1) against it, antiparallel, so the slider's vertex 0 (the paired edge's
+// start) sits at the base edge's end, vertex 3. Last step the base's vertex 3 sat on the slider's
+// edge 0, sliding; now the slider's vertex 0 sits on the base's edge 2. It inherits the sliding
+// state (and its gap's zero) only from that corner, only if that contact is gone, and only once.
+TEST(ContactSet, AContactWhoseMeasuringCornerChangesBlocksKeepsItsState) {
+  const auto candidate = [](contact::ContactKey k, int paired) {
+    contact::ContactCandidate c;
+    c.key = k, c.pairedEdge = paired;
+    return c;
+  };
+  const auto fourVertices = [](int) { return 4; };
+  const contact::ContactKey oldKey{0, 3, 1, 0}, farCorner{0, 2, 1, 0}, newKey{1, 0, 0, 2};
+  const auto start = [&](contact::ContactKey k) {
+    contact::ContactSet set;
+    set.update({candidate(k, 1)}, {0}, {0}, fourVertices);
+    set.contacts()[0].state = contact::ContactState::Sliding;
+    set.contacts()[0].slideDirection = -1;
+    set.contacts()[0].normalOffset = 1e-4;
+    return set;
+  };
+  contact::ContactSet set = start(oldKey);
+  set.update({candidate(newKey, 0)}, {0}, {0}, fourVertices);
+  ASSERT_EQ(set.contacts().size(), 1u);
+  EXPECT_EQ(set.contacts()[0].state, contact::ContactState::Sliding);
+  EXPECT_EQ(set.contacts()[0].slideDirection, -1);
+  EXPECT_EQ(set.contacts()[0].normalOffset, 1e-4);
+  // The base's other corner of the edge did not measure this end: nothing inherited.
+  set = start(farCorner);
+  set.update({candidate(newKey, 0)}, {0}, {0}, fourVertices);
+  EXPECT_EQ(set.contacts()[0].state, contact::ContactState::Open);
+  // The old contact goes on beside the new one: each keeps its own state.
+  set = start(oldKey);
+  set.update({candidate(oldKey, 1), candidate(newKey, 0)}, {0, 0}, {0, 0}, fourVertices);
+  ASSERT_EQ(set.contacts().size(), 2u);
+  EXPECT_EQ(set.contacts()[0].state, contact::ContactState::Sliding);  // oldKey sorts first
+  EXPECT_EQ(set.contacts()[1].state, contact::ContactState::Open);
+  // Without the blocks' vertex counts, no hand-over.
+  set = start(oldKey);
+  set.update({candidate(newKey, 0)}, {0}, {0});
+  EXPECT_EQ(set.contacts()[0].state, contact::ContactState::Open);
+}

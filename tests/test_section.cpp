@@ -136,9 +136,6 @@ TEST(Section, KinkBlocksAreCutUpTheSlopeOfConcaveKinks) {
   EXPECT_THROW(model::cutSection(s), InputError);
 }
 
-// A joint within half the width of a kink cut (x = 17.5 m, 0.5 m from the cut at 18 m) already
-// makes the kink block: no second cut beside it, so no 0.5 m sliver. Areas: x ∈ [10, 17.5]:
-// ∫ 1.5 t dt over [0, 7.5] = 42.1875 m²; the toe side's cut at 78 m stays: 105 m²; the rest of 1050.
 // The same slope facing −x (its sliding surface, x increasing, rising from the toe to the crown)
 // is cut into the mirror images of the blocks the +x slope gets: the shipped sections with kink
 // blocks, internal joints, joint sets and the automatic kink block (chair, Vajont, bilinear slab,
@@ -191,6 +188,9 @@ TEST(Section, ASlopeFacingMinusXIsCutAsTheMirrorImage) {
   }
 }
 
+// A joint within half the width of a kink cut (x = 17.5 m, 0.5 m from the cut at 18 m) already
+// makes the kink block: no second cut beside it, so no 0.5 m sliver. Areas: x ∈ [10, 17.5]:
+// ∫ 1.5 t dt over [0, 7.5] = 42.1875 m²; the toe side's cut at 78 m stays: 105 m²; the rest of 1050.
 TEST(Section, KinkCutBesideAJointIsSkipped) {
   model::SectionSpec s = basin();
   s.kinkBlockWidth = 2;

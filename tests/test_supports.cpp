@@ -4,15 +4,15 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
+
+#include <nlohmann/json.hpp>
 
 #include "ddaslope/calibration/strength_search.hpp"
 #include "ddaslope/calibration/verdict.hpp"
 #include "ddaslope/core/errors.hpp"
 #include "ddaslope/io/case_reader.hpp"
-
-#include <nlohmann/json.hpp>
 #include "ddaslope/solver/simulation.hpp"
-#include <filesystem>
 
 #include "scene_builders.hpp"
 #include "test_io.hpp"
@@ -357,13 +357,13 @@ TEST(Supports, RunDrawsTheSupportForcesBesideTheHistory) {
 }
 
 // A planar wedge (plane 32°, c 15 kPa, φ 35°) cut in two by a vertical joint at x = −8, an
-// anchor of 600 kN/m whose head is drawn on that joint (an independent tester's case). Which
+// anchor of 600 kN/m whose head is drawn on that joint, as a user might draw it. Which
 // block carries the head decides the answer, the whole wedge held or the toe block sliding alone
 // (F 2.17 against 1.47), so the file's block order must not: such a head must name its block.
 // Named, the wedge gets Hoek & Bray's F with an anchor, within 1 %, in either order:
 // F = (cA + (W cos ψ − T u·n) tan φ)/(W sin ψ + T u·d), d down the plane, n out of it, u the
-// anchor's pull on the wedge. A monitor on the same joint follows the block lying furthest
-// towards −x, in either order.
+// anchor's pull on the wedge. A monitor on the same joint follows the block whose centroid lies
+// highest, in either order.
 TEST(Supports, AHeadOnTheJointBetweenTwoFreeBlocksMustNameItsBlock) {
   const nlohmann::json rock = {{-46.25, -15}, {12, -15}, {12, -7.4984}, {0, 0}, {-16.2976, 10.1839}, {-16.2976, 18}, {-46.25, 18}};
   const nlohmann::json lower = {{0, 0}, {-8, 12.8030}, {-8, 4.9990}};
@@ -397,6 +397,17 @@ TEST(Supports, AHeadOnTheJointBetweenTwoFreeBlocksMustNameItsBlock) {
       EXPECT_EQ(e.jsonPath(), "supports[0].head");
       EXPECT_NE(e.message().find("head_block"), std::string::npos) << e.message();
     }
+    // A point load there is refused alike; named, it is taken.
+    nlohmann::json loaded = nlohmann::json::parse(caseWith(lowerFirst, "lower"));
+    loaded["point_loads"] = {{{"point", {-8, 9}}, {"force", {1e4, 0}}}};
+    try {
+      io::parseCase(loaded.dump(), "wedge.json");
+      ADD_FAILURE() << "a load on the joint between two free blocks was given a block";
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.jsonPath(), "point_loads[0].point");
+    }
+    loaded["point_loads"][0]["block"] = "upper";
+    EXPECT_NO_THROW(io::parseCase(loaded.dump(), "wedge.json"));
     const model::Scene s = io::parseCase(caseWith(lowerFirst, "lower"), "wedge.json");
     EXPECT_EQ(s.blocks[s.monitors.at(0).point.block].id, "upper");
     const calibration::FactorOfSafetyResult r = calibration::factorOfSafety(s, {}, 1e-3);

@@ -207,17 +207,33 @@ std::string unitsWarning(const ddaslope::model::Scene& scene) {
       add(w.str());
     }
   }
-  // Water that wets no free block's face at the start (and never, when it does not vary): a level
-  // or line given in another datum (metres above sea level in a model drawn from 0), or a grid
-  // left where the blocks are not.
+  // Water given in other coordinates than the blocks': a level or line below every free block
+  // (a datum shifted down, the wrong sign), which wets none of them at the start (and never, when
+  // it does not vary); or a pressure grid with none of its points near them, whose pressures
+  // there are its fitted plane's extrapolation.
   if (scene.water.active() && scene.water.seriesLevels.empty()) {
-    const ddaslope::model::WaterTable water = scene.water.at(0);
+    ddaslope::geometry::Aabb free{{INFINITY, INFINITY}, {-INFINITY, -INFINITY}};
     bool wets = false;
-    for (const auto& b : scene.blocks)
-      for (size_t k = 0; k < b.vertices.size() && !b.fixed && !wets; ++k)
+    const ddaslope::model::WaterTable water = scene.water.at(0);
+    for (const auto& b : scene.blocks) {
+      if (b.fixed) continue;
+      const ddaslope::geometry::Aabb bb = ddaslope::geometry::boundingBox(b.vertices);
+      free.lo = free.lo.cwiseMin(bb.lo), free.hi = free.hi.cwiseMax(bb.hi);
+      for (size_t k = 0; k < b.vertices.size() && !wets; ++k)
         wets = ddaslope::assembly::edgeWaterResultant(b.vertices[k], b.vertices[(k + 1) % b.vertices.size()], water).norm() > 0;
-    if (!wets) add("the water wets no free block: every block lies above it, or outside the pressure grid (are its "
-                   "elevations or points in the model's coordinates?)");
+    }
+    if (scene.water.grid) {
+      const double reach = (free.hi - free.lo).maxCoeff();
+      bool near = false;
+      for (const Vec2& p : scene.water.grid->points())
+        near = near || (p.x() >= free.lo.x() - reach && p.x() <= free.hi.x() + reach && p.y() >= free.lo.y() - reach &&
+                        p.y() <= free.hi.y() + reach);
+      if (!near && std::isfinite(reach))
+        add("water.pressure_grid has no point within the free blocks' size of them: its pressures there are its fitted "
+            "plane's, extrapolated (are its points in the model's coordinates?)");
+    } else if (!wets && std::isfinite(free.lo.x())) {
+      add("the water wets no free block: every free block lies above it (are its elevations in the model's coordinates?)");
+    }
   }
   if (found == 0) return "";
   return "values to check, another unit or a slip: " + m.str();

@@ -71,6 +71,7 @@ void ContactSet::update(std::vector<ContactCandidate> candidates, const std::vec
   for (size_t i = 0; i < candidates.size(); ++i) lastKeys_[i] = candidates[i].key;
   // Both lists are sorted by key: last step's contacts are matched by one forward walk.
   auto previous = contacts_.begin();
+  std::vector<ContactKey> handedOver;  // last step's contacts a new one took its state from
   for (const auto& [key, idx] : order) {
     const ContactCandidate& cand = candidates[idx];
     if (!next.empty() && next.back().key() == cand.key) continue;  // found from both sides
@@ -117,17 +118,22 @@ void ContactSet::update(std::vector<ContactCandidate> candidates, const std::vec
       // same contact seen from the other block (a slide leaving the corner it started on, once
       // the corners are a search distance apart): it goes on in its state, or it would close
       // afresh, locked, and stop a sliding block in one step.
-      const int n = vertexCount(cand.key.edgeBlock);
-      for (const int corner : {cand.key.edge, (cand.key.edge + 1) % n}) {
-        const ContactKey swapped{cand.key.edgeBlock, corner, cand.key.vertexBlock, cand.pairedEdge};
-        const auto it = std::lower_bound(contacts_.begin(), contacts_.end(), swapped, keyLess);
-        if (it == contacts_.end() || !(it->key() == swapped) || !it->closed()) continue;
-        // Not if that contact goes on too: it keeps its own state.
-        const auto still = std::lower_bound(order.begin(), order.end(), swapped,
-                                            [](const Entry& e, const ContactKey& k) { return e.key < k; });
-        if (still != order.end() && still->key == swapped) continue;
+      // The two edges run in opposite directions (both counter-clockwise): the vertex starting
+      // the paired edge lies at the end of this edge, the one ending it at its start. Only the
+      // edge block's corner there can have measured this end of the overlap.
+      const int corner = cand.key.vertex == cand.pairedEdge ? (cand.key.edge + 1) % vertexCount(cand.key.edgeBlock)
+                                                             : cand.key.edge;
+      const ContactKey swapped{cand.key.edgeBlock, corner, cand.key.vertexBlock, cand.pairedEdge};
+      const auto it = std::lower_bound(contacts_.begin(), contacts_.end(), swapped, keyLess);
+      // Not if that contact goes on too (it keeps its own state), nor twice.
+      const auto still = std::lower_bound(order.begin(), order.end(), swapped,
+                                          [](const Entry& e, const ContactKey& k) { return e.key < k; });
+      const bool goesOn = still != order.end() && still->key == swapped;
+      if (it != contacts_.end() && it->key() == swapped && it->closed() && !goesOn &&
+          std::find(handedOver.begin(), handedOver.end(), swapped) == handedOver.end()) {
         inherit(*it);
-        break;
+        c.normalOffset = it->normalOffset;  // the same gap across the same joint
+        handedOver.push_back(swapped);
       }
     }
     next.push_back(c);

@@ -1,11 +1,11 @@
 #include "ddaslope/io/case_reader.hpp"
 
-#include <map>
 #include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <memory>
 #include <set>
 #include <sstream>
@@ -820,17 +820,35 @@ std::string expandSection(const std::string& path) {
 model::Scene readCase(const std::string& path) { return parseCase(readInputFile(path, kMaxJsonFileBytes), path); }
 
 std::string unitOfCaseValue(const std::string& path) {
-  // The last key, without an index ("rate[0]" is a rate).
-  std::string key = path.substr(path.find_last_of('.') + 1);
-  key = key.substr(0, key.find('['));
+  // By the path's end: the last key, or the last two where a key means different things in
+  // different objects (a water unit weight in N/m³, a material's in kN/m³). Indices ("rate[0]",
+  // "points[2][1]") are dropped.
+  std::string clean;
+  for (size_t k = 0; k < path.size(); ++k) {
+    if (path[k] == '[') k = path.find(']', k);
+    else clean += path[k];
+    if (k == std::string::npos) break;
+  }
+  const size_t last = clean.find_last_of('.');
+  const std::string key = last == std::string::npos ? clean : clean.substr(last + 1);
+  std::string parent;
+  if (last != std::string::npos && last > 0) {
+    const size_t before = clean.find_last_of('.', last - 1);
+    parent = before == std::string::npos ? clean.substr(0, last) : clean.substr(before + 1, last - before - 1);
+  }
+  static const std::map<std::string, std::string> inParent{
+      {"water.unit_weight", "N/m³"}, {"water.level", "m"},        {"tension_crack.x", "m"},
+      {"tension_crack.depth", "m"},  {"point_loads.force", "N/m"}, {"point_loads.rate", "N/m per s"},
+      {"supports.stiffness", "N/m"}};
+  if (const auto it = inParent.find(parent + "." + key); it != inParent.end()) return it->second;
   static const std::map<std::string, std::string> units{
       {"cohesion", "Pa"}, {"residual_cohesion", "Pa"}, {"tensile_strength", "Pa"}, {"young_modulus", "Pa"},
       {"jcs", "Pa"}, {"friction_angle", "°"}, {"residual_friction_angle", "°"}, {"angle", "°"},
-      {"density", "kg/m³"}, {"unit_weight", "kN/m³"}, {"level", "m"}, {"weakening_distance", "m"},
+      {"density", "kg/m³"}, {"unit_weight", "kN/m³"}, {"ground_unit_weight", "kN/m³"}, {"weakening_distance", "m"},
       {"lab_length", "m"}, {"field_length", "m"}, {"base_depth", "m"}, {"spacing", "m"},
       {"failure_displacement", "m"}, {"joint_end_offset", "m"}, {"pretension", "N"}, {"capacity", "N"},
-      {"force", "N"}, {"stiffness", "N/m"}, {"normal_stiffness", "N/m"}, {"shear_stiffness", "N/m"},
-      {"penalty", "N/m"}, {"bond_strength", "N/m"}, {"time_step", "s"}, {"duration", "s"}};
+      {"normal_stiffness", "Pa/m"}, {"shear_stiffness", "Pa/m"}, {"penalty", "N/m"}, {"bond_strength", "N/m"},
+      {"time_step", "s"}, {"duration", "s"}};
   const auto it = units.find(key);
   return it == units.end() ? "" : it->second;
 }

@@ -106,6 +106,7 @@ model::GroundMotion readCsv(const std::string& text, const RecordSpec& spec, con
   const std::vector<std::string> ls = lines(text);
   if (ls.empty()) err.fail(1, "expected a header row");
   const std::vector<std::string> header = csvCells(ls[0], true);
+  if (const std::string problem = headerProblem(header); !problem.empty()) err.fail(1, problem);
   const auto column = [&](const std::string& name) {
     if (name.empty()) return -1;
     const auto it = std::find(header.begin(), header.end(), name);
@@ -118,9 +119,7 @@ model::GroundMotion readCsv(const std::string& text, const RecordSpec& spec, con
     if (ls[i].empty()) continue;
     const std::vector<std::string> cells = csvCells(ls[i]);
     const int line = static_cast<int>(i + 1);
-    if (cells.size() > header.size())
-      err.fail(line, "expected " + std::to_string(header.size()) + " cells as in the header, found " +
-                         std::to_string(cells.size()) + " (\"" + ls[i] + "\"); write decimals with a point");
+    if (const std::string problem = rowWidthProblem(cells, header.size(), ls[i]); !problem.empty()) err.fail(line, problem);
     const auto cell = [&](int c, const std::string& what) {
       double v = 0;
       if (c >= static_cast<int>(cells.size()) || !finiteNumber(cells[c], v))

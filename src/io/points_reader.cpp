@@ -18,11 +18,11 @@ using case_json::typeName;
 /// The block holding point `at`: the one named by `blockKey` of j if given (the point checked to
 /// lie inside it), else the block that contains it, a free one before a fixed one. A point on the
 /// joint between two free blocks is the user's to assign when it carries a force (an anchor's
-/// head on one block or the other changes F by a third): refused unless `leftmost`, for a
-/// monitor, which follows the block whose centroid lies furthest towards −x (a section's blocks
-/// are numbered so: the lower slide_k). Either way the blocks' order in the file does not decide.
+/// head on one block or the other changes F by a third): refused unless `highest`, for a monitor,
+/// which follows the block whose centroid lies highest (up the slope, whichever way it faces; a
+/// monitor reports and does not decide). Either way the blocks' order in the file does not decide.
 int blockHolding(const Reader& r, const json& j, const std::string& p, const std::string& blockKey, const Vec2& at,
-                 const std::string& pointPath, const model::Scene& s, bool leftmost = false) {
+                 const std::string& pointPath, const model::Scene& s, bool highest = false) {
   const auto inside = [&](size_t b) {
     const geometry::Aabb box = geometry::boundingBox(s.blocks[b].vertices);
     return geometry::containsPoint(s.blocks[b].vertices, at, 1e-9 * (box.hi - box.lo).maxCoeff());
@@ -38,9 +38,9 @@ int blockHolding(const Reader& r, const json& j, const std::string& p, const std
     std::ostringstream m;
     m << "(" << at.x() << ", " << at.y() << ")";
     if (found < 0) r.fail(pointPath, "point lies in no block: expected a point inside (or on) a block, found " + m.str());
-    if (free.size() > 1 && leftmost) {
-      const auto key = [&](int b) { return std::make_pair(s.blocks[b].moments.centroid.x(), s.blocks[b].moments.centroid.y()); };
-      return *std::min_element(free.begin(), free.end(), [&](int a, int b) { return key(a) < key(b); });
+    if (free.size() > 1 && highest) {
+      const auto key = [&](int b) { return std::make_pair(s.blocks[b].moments.centroid.y(), s.blocks[b].moments.centroid.x()); };
+      return *std::max_element(free.begin(), free.end(), [&](int a, int b) { return key(a) < key(b); });
     }
     if (free.size() > 1) {
       std::string names;
@@ -61,10 +61,10 @@ int blockHolding(const Reader& r, const json& j, const std::string& p, const std
 /// A point ("point", on "block" if named) carried by a block.
 model::BlockPoint blockPoint(const Reader& r, const json& j, const std::string& p, const model::Scene& s,
                              const std::string& pointKey = "point", const std::string& blockKey = "block",
-                             bool leftmost = false) {
+                             bool highest = false) {
   model::BlockPoint bp;
   bp.initial = bp.current = r.point(r.required(j, p, pointKey), Reader::join(p, pointKey));
-  bp.block = blockHolding(r, j, p, blockKey, bp.initial, Reader::join(p, pointKey), s, leftmost);
+  bp.block = blockHolding(r, j, p, blockKey, bp.initial, Reader::join(p, pointKey), s, highest);
   return bp;
 }
 
@@ -191,10 +191,10 @@ void readSupports(const Reader& r, const json& list, model::Scene& s, std::set<s
       // out of it across an open crack) is bonded over nothing and carries nothing.
       if (!(b.bondCapacity > 0)) {
         std::ostringstream m;
-        m << "expected the support to run inside both its blocks, to be bonded there: it runs " << b.headEmbedment
-          << " m inside its head's block \"" << s.blocks[b.head.block].id << "\" and " << b.endEmbedment
+        m << "expected the support to run inside both its blocks, to be bonded there (bond_strength): it runs "
+          << b.headEmbedment << " m inside its head's block \"" << s.blocks[b.head.block].id << "\" and " << b.endEmbedment
           << " m inside its end's block \"" << s.blocks[b.end.block].id << "\", so its bond holds nothing";
-        r.fail(p + ".bond_strength", m.str());
+        r.fail(p + (b.headEmbedment > 0 ? ".end" : ".head"), m.str());
       }
     }
     if (b.pretension > b.capacity) {

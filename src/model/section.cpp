@@ -438,11 +438,7 @@ SectionBlocks cutSection(const SectionSpec& given) {
       }
     }
     SectionBlocks m = cutSection(mirroredSpec(given));
-    const auto back = [](const Block& b) {
-      std::vector<Vec2> v;
-      for (auto it = b.vertices.rbegin(); it != b.vertices.rend(); ++it) v.push_back(flipped(*it));
-      return makeBlock(b.id, b.fixed, v);
-    };
+    const auto back = [](const Block& b) { return makeBlock(b.id, b.fixed, flippedLine(b.vertices)); };
     SectionBlocks out;
     out.base = back(m.base);
     for (const Block& b : m.slide) out.slide.push_back(back(b));
