@@ -116,6 +116,58 @@ TEST(BenchmarkA2, ABlockLeavingTheCornerItStartedOnSlidesAsTheClosedFormSays) {
     }
 }
 
+// A2 on a base of two fixed blocks with different joints, their seam flush with the slope (a
+// vertical one, and one normal to the slope, below the block or ahead of it): the seam is no
+// corner and its face no face for the block, which slides over it onto the next block's face in
+// the same sliding contact. ψ = 40°, φ = 20° on both joints: a = 3.5703 m/s², d(2 s) = 7.1411 m,
+// within 0.5 % at every Δt, rigid and deformable. (Taken as a corner, the far block's corner
+// caught the block's front face and stopped it at the seam, at every Δt.)
+TEST(BenchmarkA2, ABlockSlidesOverASeamOfTheBase) {
+  const double psi = 40 * M_PI / 180, h = 30.64177772475912 * std::tan(psi);
+  const Vec2 d(std::cos(psi), -std::sin(psi)), n(std::sin(psi), std::cos(psi));
+  const auto onSlope = [&](double along, double out) -> Vec2 { return Vec2(0, h) + along * d + out * n; };
+  const auto point = [](const Vec2& p) { return nlohmann::json::array({p.x(), p.y()}); };
+  const double a = 9.81 * (std::sin(psi) - std::cos(psi) * std::tan(20 * M_PI / 180));
+  ASSERT_NEAR(a * 2 * 2 / 2, 7.1411, 1e-4);
+  // The seam meets the slope `at` metres down it; the block's front corner starts at 10 m.
+  for (const double seam : {11.0, 6.0})
+    for (const bool normal : {false, true}) {
+      // The seam leaves the slope straight down, or along the slope's normal for 3 m first.
+      const Vec2 top = onSlope(seam, 0);
+      Vec2 knee = top;
+      if (normal) knee -= 3 * n;
+      const Vec2 foot(knee.x(), -5);
+      nlohmann::json upper = {point(Vec2(0, -5)), point(foot)}, lower = {point(foot)};
+      if (normal) upper.push_back(point(knee));
+      upper.push_back(point(top));
+      upper.push_back(point(Vec2(0, h)));
+      for (const Vec2& p : {Vec2(30.64177772475912, -5), Vec2(30.64177772475912, 0), top}) lower.push_back(point(p));
+      if (normal) lower.push_back(point(knee));
+      const nlohmann::json doc = {
+          {"materials", {{"rock", {{"density", 2500}, {"young_modulus", 5e9}, {"poisson_ratio", 0.25}}}}},
+          {"joints", {{"j0", {{"friction_angle", 20}, {"cohesion", 0}}}, {"j1", {{"friction_angle", 20}, {"cohesion", 0}}}}},
+          {"default_joint", "j0"},
+          {"blocks",
+           {{{"id", "upper"}, {"material", "rock"}, {"fixed", true}, {"vertices", upper}},
+            {{"id", "lower"}, {"material", "rock"}, {"fixed", true}, {"vertices", lower}},
+            {{"id", "slider"},
+             {"material", "rock"},
+             {"vertices", {point(onSlope(2, 0)), point(onSlope(10, 0)), point(onSlope(10, 4)), point(onSlope(2, 4))}}}}},
+          {"joint_pairs", {{{"blocks", {"upper", "slider"}}, {"joint", "j0"}}, {{"blocks", {"lower", "slider"}}, {"joint", "j1"}}}},
+          {"monitors", {{{"id", "m"}, {"block", "slider"}, {"point", point(onSlope(6, 2))}}}},
+          {"analysis", {{"duration", 2.0}}}};
+      for (const bool rigid : {false, true})
+        for (const double dt : {1e-3, 5e-3, 1e-2}) {
+          model::Scene scene = io::parseCase(doc.dump(), "seam.json");
+          scene.settings.timeStep = dt;
+          scene.settings.rigidBlocks = rigid;
+          const io::Trace t = run(scene);
+          EXPECT_NEAR(at(t, "m", "displacement", 2.0), a * 2, 0.005 * a * 2)
+              << "seam at " << seam << " m, " << (normal ? "normal" : "vertical") << (rigid ? ", rigid" : "") << ", dt " << dt;
+        }
+    }
+}
+
 // A4: b = 2, h = 1, α = 30°, φ = 20°, g = 9.81: d(1 s) = 0.90641 m, v(1 s) = 1.81281 m/s.
 TEST(BenchmarkA4, SlidingBlockPublishedNumbers) {
   const io::Trace t = run(scenes::makeIncline(InclineSpec{}));

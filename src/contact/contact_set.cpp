@@ -47,7 +47,8 @@ bool ContactSet::refreshGeometry(const std::vector<ContactCandidate>& candidates
 }
 
 void ContactSet::update(std::vector<ContactCandidate> candidates, const std::vector<int>& jointOfCandidate,
-                        const std::vector<char>& bondedIfNew, const std::function<int(int)>& vertexCount) {
+                        const std::vector<char>& bondedIfNew, const std::function<int(int)>& vertexCount,
+                        const std::function<bool(int)>& fixedBlock) {
   // A scene at rest finds the same contacts step after step: the merge below would give each its
   // candidate's geometry and nothing else (the keys of this set are last update's, unchanged).
   if (refreshGeometry(candidates)) return;
@@ -107,6 +108,24 @@ void ContactSet::update(std::vector<ContactCandidate> candidates, const std::vec
            ++it) {
         if (!it->closed()) continue;
         inherit(*it);
+        inherited = true;
+        break;
+      }
+    }
+    if (!inherited && fixedBlock && fixedBlock(cand.key.edgeBlock)) {
+      // The vertex is crossing a seam of the base, from one fixed block's face onto the next one's:
+      // near the seam it touches both, and the contact on the next face is the same sliding
+      // contact going on (in the new joint's bond), not a fresh one closing locked.
+      const ContactKey prefix{cand.key.vertexBlock, cand.key.vertex, -1, -1};
+      for (auto it = std::lower_bound(contacts_.begin(), contacts_.end(), prefix, keyLess);
+           it != contacts_.end() && it->key().vertexBlock == prefix.vertexBlock && it->key().vertex == prefix.vertex;
+           ++it) {
+        if (!it->closed() || it->key().edgeBlock == cand.key.edgeBlock || !fixedBlock(it->key().edgeBlock)) continue;
+        if (std::find(handedOver.begin(), handedOver.end(), it->key()) != handedOver.end()) continue;
+        const bool bond = c.bonded;
+        inherit(*it);
+        if (c.joint != it->joint) c.bonded = bond && it->bonded;
+        handedOver.push_back(it->key());
         inherited = true;
         break;
       }

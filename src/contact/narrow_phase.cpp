@@ -116,6 +116,7 @@ void vertexOnEdges(const Poly& V, const Poly& E, const Region& region, const Nar
     if (vertex.skipIf(!V.convex(v), [&] { return convexSlack(V, v, cert); })) continue;
     if (!outsideHeld) cert.hold(outsideSlack), outsideHeld = true;
     for (const int e : crossing) {
+      if (E.internalEdge(e)) continue;  // inside the base: no face (a flag of the scene's)
       const Vec2 a = E.at(e), b = E.at(e + 1);
       SkipChain edge(cert);
       double t;
@@ -209,9 +210,11 @@ void vertexToVertex(const Poly& A, const Poly& B, const Region& region, const Na
       options.add(o, minClearance);
     };
     if (pConvex)
-      for (int e : {q - 1, q}) add({&A, p, &B, B.wrap(e), clearance(A, p, B, B.wrap(e))});
+      for (int e : {q - 1, q})
+        if (!B.internalEdge(e)) add({&A, p, &B, B.wrap(e), clearance(A, p, B, B.wrap(e))});
     if (qConvex)
-      for (int e : {p - 1, p}) add({&B, q, &A, A.wrap(e), clearance(B, q, A, A.wrap(e))});
+      for (int e : {p - 1, p})
+        if (!A.internalEdge(e)) add({&B, q, &A, A.wrap(e), clearance(B, q, A, A.wrap(e))});
     if (options.count == 0) continue;
     if (!qConvex || !pConvex) {
       // A convex corner in a reflex corner touches both of its edges.
@@ -277,7 +280,12 @@ void findContacts(int a, const std::vector<Vec2>& pa, int b, const std::vector<V
                   const NarrowPhaseSettings& s, const std::function<bool(const ContactKey&)>& known,
                   std::vector<ContactCandidate>& out, SearchMargin* margin,
                   const std::array<geometry::Aabb, 2>* boxes) {
-  const Poly A{a, pa}, B{b, pb};
+  const auto flatOf = [&](int block, const std::vector<Vec2>& p) -> const std::vector<char>* {
+    if (!s.flatCorners || block >= static_cast<int>(s.flatCorners->size())) return nullptr;
+    const std::vector<char>& f = (*s.flatCorners)[static_cast<size_t>(block)];
+    return f.size() == p.size() ? &f : nullptr;
+  };
+  const Poly A{a, pa, flatOf(a, pa)}, B{b, pb, flatOf(b, pb)};
   Certifier cert(margin, A, B);
   const Region region = boxes ? contactRegion((*boxes)[0], (*boxes)[1], s.searchDistance)
                               : contactRegion(geometry::boundingBox(pa), geometry::boundingBox(pb), s.searchDistance);

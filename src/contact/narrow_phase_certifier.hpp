@@ -16,12 +16,17 @@ namespace ddaslope::contact::detail {
 struct Poly {
   int block;
   const std::vector<Vec2>& p;
+  /// Per vertex, NarrowPhaseSettings::flatCorners' flags: kFlatCorner, kInternalEdge (the edge
+  /// from the vertex).
+  const std::vector<char>* flat = nullptr;
   int n() const { return static_cast<int>(p.size()); }
+  bool flatAt(int k) const { return flat && ((*flat)[static_cast<size_t>(wrap(k))] & kFlatCorner); }
+  bool internalEdge(int e) const { return flat && ((*flat)[static_cast<size_t>(wrap(e))] & kInternalEdge); }
   /// Vertex k, for k from −1 to n (every caller steps at most one past either end): a wrap
   /// without the two divisions of a general modulo, which the hot loops below paid per access.
   int wrap(int k) const { return k < 0 ? k + n() : k >= n() ? k - n() : k; }
   const Vec2& at(int k) const { return p[static_cast<size_t>(wrap(k))]; }
-  bool convex(int k) const { return cross(at(k) - at(k - 1), at(k + 1) - at(k)) > 0; }
+  bool convex(int k) const { return !flatAt(k) && cross(at(k) - at(k - 1), at(k + 1) - at(k)) > 0; }
 };
 
 /// Records how far each decision of one search is from changing (SearchMargin); inert without
@@ -112,6 +117,7 @@ inline double allNonNegativeSlack(std::initializer_list<double> d, double rate) 
 
 /// The slack of V.convex(k): its cross product over the rate 2(|e1| + |e2|) + 4δ².
 inline double convexSlack(const Poly& V, int k, const Certifier& cert) {
+  if (V.flatAt(k)) return INFINITY;  // set by the scene, not by the vertex's position
   const Vec2 e1 = V.at(k) - V.at(k - 1), e2 = V.at(k + 1) - V.at(k);
   return std::abs(cross(e1, e2)) / (2 * (e1.norm() + e2.norm()) + cert.cornerRate);
 }

@@ -29,8 +29,8 @@ void Simulation::detectContacts(bool initial) {
   const auto pairs = contact::findCandidatePairs(boxes, fixed, searchDistance_, sweepOrder_);
   stats_.times.broadPhase += sw.lap();
 
-  const contact::NarrowPhaseSettings nps{searchDistance_,
-                                         degToRad(scene_.settings.edgeParallelToleranceDeg)};
+  contact::NarrowPhaseSettings nps{searchDistance_, degToRad(scene_.settings.edgeParallelToleranceDeg)};
+  if (!flatCorners_.empty()) nps.flatCorners = &flatCorners_;
   const auto known = [this](const contact::ContactKey& k) { return contacts_.contains(k); };
   // The pair cache reuses the decisions of pairs whose blocks have barely moved; the candidates
   // are those a search of every pair gives, bit for bit.
@@ -70,8 +70,10 @@ void Simulation::detectContacts(bool initial) {
     joints.push_back(scene_.jointBetween(c.key.vertexBlock, c.key.edgeBlock));
     bondedIfNew.push_back(scene_.joints[joints.back()].bond == model::BondPolicy::Always);
   }
-  contacts_.update(std::move(candidates), joints, bondedIfNew,
-                   [&](int b) { return static_cast<int>(scene_.blocks[static_cast<size_t>(b)].vertices.size()); });
+  contacts_.update(
+      std::move(candidates), joints, bondedIfNew,
+      [&](int b) { return static_cast<int>(scene_.blocks[static_cast<size_t>(b)].vertices.size()); },
+      [&](int b) { return scene_.blocks[static_cast<size_t>(b)].fixed; });
   if (pairCacheOn_) pairCache_.finish(contacts_.keyVersion());
 
   if (initial) {

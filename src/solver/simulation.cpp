@@ -13,11 +13,80 @@
 #include "ddaslope/contact/contact_law.hpp"
 #include "ddaslope/core/cancellation.hpp"
 #include "ddaslope/core/errors.hpp"
+#include "ddaslope/geometry/polygon.hpp"
 #include "stopwatch.hpp"
 
 namespace ddaslope::solver {
 
 using contact::Contact;
+
+namespace {
+
+/// The interior angle of a counter-clockwise outline at its vertex k (π where it runs straight).
+double interiorAngle(const std::vector<Vec2>& v, size_t k) {
+  const size_t n = v.size();
+  const Vec2 in = v[k] - v[(k + n - 1) % n], out = v[(k + 1) % n] - v[k];
+  return M_PI - std::atan2(cross(in, out), in.dot(out));
+}
+
+/// Per block, per vertex, the seams of a base of several fixed blocks (contact::kFlatCorner,
+/// contact::kInternalEdge): a vertex where other fixed blocks fill the rest of a straight angle or
+/// more around it (a seam flush with the face, or a T-junction on another's face), and an edge
+/// lying against another fixed block's. Their union has no corner and no face there, and a free
+/// block sliding along the face must pass over the seam: taken as a corner, the far block's corner
+/// catches the slider's front face and stops it dead, and the seam's face pushes a corner over it
+/// out of the base. Empty unless two fixed blocks meet.
+std::vector<std::vector<char>> seamVertices(const model::Scene& scene) {
+  std::vector<size_t> fixed;
+  for (size_t b = 0; b < scene.blocks.size(); ++b)
+    if (scene.blocks[b].fixed) fixed.push_back(b);
+  std::vector<std::vector<char>> flat;
+  if (fixed.size() < 2) return flat;
+  const double tol = scene.touchingGap();
+  flat.resize(scene.blocks.size());
+  for (const size_t i : fixed) {
+    const std::vector<Vec2>& vi = scene.blocks[i].vertices;
+    flat[i].assign(vi.size(), 0);
+    for (size_t k = 0; k < vi.size(); ++k) {
+      double around = interiorAngle(vi, k);
+      for (const size_t j : fixed) {
+        if (j == i) continue;
+        const std::vector<Vec2>& vj = scene.blocks[j].vertices;
+        for (size_t m = 0; m < vj.size(); ++m) {
+          if ((vj[m] - vi[k]).norm() <= tol) {
+            around += interiorAngle(vj, m);
+            break;
+          }
+          double t = 0;
+          const Vec2 a = vj[m], e = vj[(m + 1) % vj.size()];
+          if (geometry::distanceToSegment(vi[k], a, e, &t) <= tol && (vi[k] - a).norm() > tol && (vi[k] - e).norm() > tol) {
+            around += M_PI;  // on the middle of the other's edge
+            break;
+          }
+        }
+      }
+      if (around >= M_PI * (1 - 1e-9)) flat[i][k] |= contact::kFlatCorner;
+      // The edge from k lies against another fixed block's boundary: its ends and middle on it.
+      const Vec2 a = vi[k], e = vi[(k + 1) % vi.size()];
+      for (const size_t j : fixed) {
+        if (j == i) continue;
+        const std::vector<Vec2>& vj = scene.blocks[j].vertices;
+        const auto onBoundary = [&](const Vec2& x) {
+          for (size_t m = 0; m < vj.size(); ++m)
+            if (geometry::distanceToSegment(x, vj[m], vj[(m + 1) % vj.size()], nullptr) <= tol) return true;
+          return false;
+        };
+        if (onBoundary(a) && onBoundary(e) && onBoundary(0.5 * (a + e))) {
+          flat[i][k] |= contact::kInternalEdge;
+          break;
+        }
+      }
+    }
+  }
+  return flat;
+}
+
+}  // namespace
 
 Simulation::Simulation(model::Scene scene)
     : scene_(std::move(scene)),
@@ -35,6 +104,7 @@ Simulation::Simulation(model::Scene scene)
   for (const model::Block& b : scene_.blocks) mass_.push_back(scene_.materials[b.material].density * b.moments.area);
   stepLimit_ = scene_.stepLimit();
   searchDistance_ = 2.5 * stepLimit_;
+  flatCorners_ = seamVertices(scene_);
   penalty_ = scene_.normalPenalty();
   shearPenalty_ = penalty_ * scene_.settings.shearPenaltyRatio;
   for (const model::JointProperties& j : scene_.joints) {

@@ -15,9 +15,12 @@ class ContactSet {
   /// `bondedIfNew`: whether a candidate with no history starts intact (its joint's bond policy).
   /// With `vertexCount` (a block's number of vertices), an edge-to-edge contact whose measuring
   /// corner changed blocks (the other block's corner at an end of this edge sat on the paired
-  /// edge, and is gone) inherits that contact's state and bond with a fresh anchor.
+  /// edge, and is gone) inherits that contact's state and bond with a fresh anchor. With
+  /// `fixedBlock`, a vertex that slid from one fixed block's face onto another's (a seam of the
+  /// base) inherits its gone contact's state likewise.
   void update(std::vector<ContactCandidate> candidates, const std::vector<int>& jointOfCandidate,
-              const std::vector<char>& bondedIfNew, const std::function<int(int)>& vertexCount = {});
+              const std::vector<char>& bondedIfNew, const std::function<int(int)>& vertexCount = {},
+              const std::function<bool(int)>& fixedBlock = {});
   bool contains(const ContactKey& key) const;
   /// Identify the set's keys, and its keys with each contact's paired edge (the edge-to-edge
   /// pairing): an update() that changes them gives a number no set has had before. A copy keeps

@@ -19,7 +19,15 @@ struct NarrowPhaseSettings {
   /// sin of the angle (radians) within which edges count as antiparallel and form an
   /// edge-to-edge contact; taken once here, not per vertex and edge tested.
   double sinParallelTolerance = 0;
+  /// Per block, per vertex, flags of the fixed blocks' seams (a base of several fixed blocks):
+  /// kFlatCorner, a vertex where another fixed block continues the face flush, which is no corner
+  /// for a third block (its corner passes over it onto the next face instead of meeting it); and
+  /// kInternalEdge, the edge from the vertex lies against another fixed block's, inside the base,
+  /// and is no face for a third block. Null, or empty for a block: none.
+  const std::vector<std::vector<char>>* flatCorners = nullptr;
 };
+
+constexpr char kFlatCorner = 1, kInternalEdge = 2;
 
 /// What a search certifies about its own decisions (the reuse of contact/pair_cache.hpp): while
 /// no vertex of either block has moved by `slack` (m) or more from where it was, a new search

@@ -385,6 +385,9 @@ class Simulation {
   std::vector<contact::JointStrength> jointStrength_;  ///< per joint, resolved at the start
   double stepLimit_ = 0;       ///< largest vertex displacement in one step (m)
   double searchDistance_ = 0;  ///< 2.5 × stepLimit_
+  /// Fixed blocks' vertices where another fixed block continues the face flush (a seam in the
+  /// base): no corner for the free blocks (contact::NarrowPhaseSettings::flatCorners).
+  std::vector<std::vector<char>> flatCorners_;
   double penalty_ = 0;
   double shearPenalty_ = 0;  ///< penalty_ × the shear ratio
   /// Each joint's kn and ks (Pa/m), 0 where it has none.
