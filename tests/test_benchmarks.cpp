@@ -17,6 +17,17 @@ namespace {
 using scenes::measureAt;
 const auto run = scenes::runTrace;
 const auto at = scenes::measureAt;
+
+/// A case written as a user would (JSON), run with rigid or deformable blocks at Δt.
+io::Trace runWritten(const nlohmann::json& doc, bool rigid, double dt) {
+  model::Scene scene = io::parseCase(doc.dump(), "case.json");
+  scene.settings.timeStep = dt;
+  scene.settings.rigidBlocks = rigid;
+  return run(scene);
+}
+
+/// The rock of the written cases: 2500 kg/m³, 5 GPa.
+const nlohmann::json kRock = {{"rock", {{"density", 2500}, {"young_modulus", 5e9}, {"poisson_ratio", 0.25}}}};
 }  // namespace
 
 // A1: free fall, y(t) = g t²/2; Newmark β = 1/2, γ = 1 integrates a constant acceleration
@@ -95,7 +106,7 @@ TEST(BenchmarkA2, ABlockLeavingTheCornerItStartedOnSlidesAsTheClosedFormSays) {
     return nlohmann::json::array({p.x(), p.y()});
   };
   const nlohmann::json doc = {
-      {"materials", {{"rock", {{"density", 2500}, {"young_modulus", 5e9}, {"poisson_ratio", 0.25}}}}},
+      {"materials", kRock},
       {"joints", {{"j", {{"friction_angle", 30}, {"cohesion", 0}}}}},
       {"blocks",
        {{{"id", "base"}, {"material", "rock"}, {"fixed", true}, {"vertices", {{0, -5}, {60, -5}, {60, 0}, {0, h}}}},
@@ -106,10 +117,7 @@ TEST(BenchmarkA2, ABlockLeavingTheCornerItStartedOnSlidesAsTheClosedFormSays) {
   ASSERT_NEAR(a * 1.5 * 1.5 / 2, 1.1107, 1e-4);
   for (const bool rigid : {false, true})
     for (const double dt : {1e-3, 3e-3, 1e-2}) {
-      model::Scene scene = io::parseCase(doc.dump(), "corner.json");
-      scene.settings.timeStep = dt;
-      scene.settings.rigidBlocks = rigid;
-      const io::Trace t = run(scene);
+      const io::Trace t = runWritten(doc, rigid, dt);
       const std::string what = std::string(rigid ? "rigid" : "deformable") + ", dt " + std::to_string(dt);
       EXPECT_NEAR(at(t, "m", "displacement", 1.5), a * 1.5 * 1.5 / 2, 0.005 * a * 1.5 * 1.5 / 2) << what;
       EXPECT_NEAR(at(t, "m", "speed", 1.5), a * 1.5, 0.005 * a * 1.5) << what;
@@ -144,7 +152,7 @@ TEST(BenchmarkA2, ABlockSlidesOverASeamOfTheBase) {
       for (const Vec2& p : {Vec2(30.64177772475912, -5), Vec2(30.64177772475912, 0), top}) lower.push_back(point(p));
       if (normal) lower.push_back(point(knee));
       const nlohmann::json doc = {
-          {"materials", {{"rock", {{"density", 2500}, {"young_modulus", 5e9}, {"poisson_ratio", 0.25}}}}},
+          {"materials", kRock},
           {"joints", {{"j0", {{"friction_angle", 20}, {"cohesion", 0}}}, {"j1", {{"friction_angle", 20}, {"cohesion", 0}}}}},
           {"default_joint", "j0"},
           {"blocks",
@@ -158,10 +166,7 @@ TEST(BenchmarkA2, ABlockSlidesOverASeamOfTheBase) {
           {"analysis", {{"duration", 2.0}}}};
       for (const bool rigid : {false, true})
         for (const double dt : {1e-3, 5e-3, 1e-2}) {
-          model::Scene scene = io::parseCase(doc.dump(), "seam.json");
-          scene.settings.timeStep = dt;
-          scene.settings.rigidBlocks = rigid;
-          const io::Trace t = run(scene);
+          const io::Trace t = runWritten(doc, rigid, dt);
           EXPECT_NEAR(at(t, "m", "displacement", 2.0), a * 2, 0.005 * a * 2)
               << "seam at " << seam << " m, " << (normal ? "normal" : "vertical") << (rigid ? ", rigid" : "") << ", dt " << dt;
         }

@@ -43,44 +43,43 @@ std::vector<std::vector<char>> seamVertices(const model::Scene& scene) {
   std::vector<std::vector<char>> flat;
   if (fixed.size() < 2) return flat;
   const double tol = scene.touchingGap();
+  std::vector<geometry::Aabb> box(scene.blocks.size());
+  for (const size_t b : fixed) box[b] = geometry::boundingBox(scene.blocks[b].vertices);
+  const auto apart = [&](size_t a, size_t b) {
+    return (box[a].lo.array() > box[b].hi.array() + tol).any() || (box[b].lo.array() > box[a].hi.array() + tol).any();
+  };
+  const auto onBoundary = [&](const Vec2& x, const std::vector<Vec2>& v) {
+    for (size_t m = 0; m < v.size(); ++m)
+      if (geometry::distanceToSegment(x, v[m], v[(m + 1) % v.size()], nullptr) <= tol) return true;
+    return false;
+  };
   flat.resize(scene.blocks.size());
   for (const size_t i : fixed) {
     const std::vector<Vec2>& vi = scene.blocks[i].vertices;
     flat[i].assign(vi.size(), 0);
+    std::vector<size_t> near;  // the fixed blocks that can touch this one
+    for (const size_t j : fixed)
+      if (j != i && !apart(i, j)) near.push_back(j);
     for (size_t k = 0; k < vi.size(); ++k) {
+      // The angle the fixed blocks fill around the vertex: its own, and each neighbour's there
+      // (its vertex's, or π on the middle of its edge).
       double around = interiorAngle(vi, k);
-      for (const size_t j : fixed) {
-        if (j == i) continue;
+      for (const size_t j : near) {
         const std::vector<Vec2>& vj = scene.blocks[j].vertices;
-        for (size_t m = 0; m < vj.size(); ++m) {
-          if ((vj[m] - vi[k]).norm() <= tol) {
-            around += interiorAngle(vj, m);
-            break;
-          }
-          double t = 0;
-          const Vec2 a = vj[m], e = vj[(m + 1) % vj.size()];
-          if (geometry::distanceToSegment(vi[k], a, e, &t) <= tol && (vi[k] - a).norm() > tol && (vi[k] - e).norm() > tol) {
-            around += M_PI;  // on the middle of the other's edge
-            break;
-          }
-        }
+        size_t m = 0;
+        while (m < vj.size() && (vj[m] - vi[k]).norm() > tol) ++m;
+        if (m < vj.size()) around += interiorAngle(vj, m);
+        else if (onBoundary(vi[k], vj)) around += M_PI;
       }
       if (around >= M_PI * (1 - 1e-9)) flat[i][k] |= contact::kFlatCorner;
       // The edge from k lies against another fixed block's boundary: its ends and middle on it.
       const Vec2 a = vi[k], e = vi[(k + 1) % vi.size()];
-      for (const size_t j : fixed) {
-        if (j == i) continue;
-        const std::vector<Vec2>& vj = scene.blocks[j].vertices;
-        const auto onBoundary = [&](const Vec2& x) {
-          for (size_t m = 0; m < vj.size(); ++m)
-            if (geometry::distanceToSegment(x, vj[m], vj[(m + 1) % vj.size()], nullptr) <= tol) return true;
-          return false;
-        };
-        if (onBoundary(a) && onBoundary(e) && onBoundary(0.5 * (a + e))) {
+      for (const size_t j : near)
+        if (onBoundary(a, scene.blocks[j].vertices) && onBoundary(e, scene.blocks[j].vertices) &&
+            onBoundary(0.5 * (a + e), scene.blocks[j].vertices)) {
           flat[i][k] |= contact::kInternalEdge;
           break;
         }
-      }
     }
   }
   return flat;
