@@ -113,4 +113,13 @@ TEST(ContactLaw, VertexRule) {
   EXPECT_EQ(contact::judgeVertexContact(ContactState::Sliding, 1, false, {1000, 0, 1e-6}, s).state, ContactState::Sliding);
   // Open closes (locked) on penetration.
   EXPECT_EQ(contact::judgeVertexContact(ContactState::Open, 0, false, {1, 0, 0}, s).state, ContactState::Locked);
+  // ... sliding if a lock could not hold the step's relative motion: the shear a lock would take
+  // (lockedShear of an open contact) beyond N tanφ = 577.35.
+  EXPECT_EQ(contact::judgeVertexContact(ContactState::Open, 0, false, {1000, 577, 0}, s).state, ContactState::Locked);
+  const auto landed = contact::judgeVertexContact(ContactState::Open, 0, false, {1000, -578, 0}, s);
+  EXPECT_EQ(landed.state, ContactState::Sliding);
+  EXPECT_EQ(landed.direction, -1);
+  // Bonded, it holds up to c·L + N tanφ = 677.35, and a brittle bond is lost once sliding.
+  EXPECT_EQ(contact::judgeVertexContact(ContactState::Open, 0, true, {1000, 677, 0}, s).state, ContactState::Locked);
+  EXPECT_FALSE(contact::judgeVertexContact(ContactState::Open, 0, true, {1000, 678, 0}, s).bonded);
 }

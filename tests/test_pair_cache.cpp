@@ -277,6 +277,32 @@ TEST(ContactSet, SameContactsRefreshTheirGeometryOnly) {
   EXPECT_EQ(set.contacts().size(), 2u);
 }
 
+// A vertex that slid from one edge of a block onto the next (vertex 2 of block 1 from edge 3 of
+// block 0 onto its edge 2) keeps the joint's history: its slip, bond and softening. It goes on
+// closed if it touches the next edge (a concave bend: gap ≤ 0), open if it stands clear of it
+// (past a convex bend: gap > 0), so that no spring pulls it down across the gap.
+TEST(ContactSet, AVertexPassingOntoTheNextEdgeIsClosedOnlyIfItTouchesIt) {
+  for (const double gap : {-1e-6, 0.0, 1e-6}) {
+    contact::ContactSet set;
+    contact::ContactCandidate c;
+    c.key = {1, 2, 0, 3};
+    set.update({c}, {0}, {1});
+    contact::Contact& old = set.contacts()[0];
+    old.state = contact::ContactState::Sliding, old.slideDirection = 1, old.slipDistance = 0.25, old.intact = 0.5;
+    old.bonded = false, old.normalForce = 1e6;
+    c.key = {1, 2, 0, 2};
+    c.gap = gap;
+    set.update({c}, {0}, {1});
+    ASSERT_EQ(set.contacts().size(), 1u);
+    const contact::Contact& now = set.contacts()[0];
+    EXPECT_EQ(now.state, gap > 0 ? contact::ContactState::Open : contact::ContactState::Sliding) << "gap " << gap;
+    EXPECT_EQ(now.normalForce, gap > 0 ? 0.0 : 1e6) << "gap " << gap;
+    EXPECT_EQ(now.slipDistance, 0.25) << "gap " << gap;
+    EXPECT_EQ(now.intact, 0.5) << "gap " << gap;
+    EXPECT_FALSE(now.bonded) << "gap " << gap;  // new contacts of this joint start bonded
+  }
+}
+
 // The hand-over of an edge-to-edge contact whose measuring corner changes blocks. Block 0 (the
 // base, 4 vertices) has edge 2 from its vertex 2 to 3; block 1 (the slider, 4 vertices) lies with
 // its edge 0 (vertex 0 to 1) against it, antiparallel, so the slider's vertex 0 (the paired edge's

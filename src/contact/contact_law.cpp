@@ -26,8 +26,13 @@ ContactJudgement judgeVertexContact(ContactState state, int direction, bool bond
                                     const ContactResponse& r, const ContactStrength& s,
                                     const StateTolerance& tol) {
   if (state == ContactState::Open) {
-    if (r.normalForce > tol.force) return {ContactState::Locked, 0, bonded};
-    return {ContactState::Open, 0, bonded};
+    if (!(r.normalForce > tol.force)) return {ContactState::Open, 0, bonded};
+    // Closing while its sides slide past each other faster than its strength could stop them
+    // within the step (Coulomb's impact rule: the friction impulse falls short of the slip's
+    // momentum): it closes sliding (ContactResponse::lockedShear of an open contact).
+    if (std::abs(r.lockedShear) > shearStrength(bonded, r.normalForce, s) + tol.force)
+      return {ContactState::Sliding, r.lockedShear > 0 ? 1 : -1, bonded && s.bondSurvivesSlip};
+    return {ContactState::Locked, 0, bonded};
   }
   const double tensionCapacity = bonded ? s.tensileForce : 0.0;
   if (r.normalForce < -tensionCapacity - tol.force) return {ContactState::Open, 0, bonded && separatesWithBond(s)};

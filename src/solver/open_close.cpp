@@ -58,8 +58,25 @@ std::vector<ContactResponse> Simulation::contactResponses(const StepState& s) co
     const size_t q = static_cast<size_t>(k);
     const Vec12 d = s.gather(s.a.contacts[q]);
     response[q].normalForce = normalStiffness(s.a.contacts[q]) * s.kin[q].penetration(d);
-    response[q].lockedShear = shearStiffness(s.a.contacts[q]) * s.kin[q].shearFromAnchor(d);
+    const Contact& c = s.a.contacts[q];
     response[q].slip = s.kin[q].slip(d);
+    if (c.closed()) {
+      response[q].lockedShear = shearStiffness(c) * s.kin[q].shearFromAnchor(d);
+    } else if (s.regime == Regime::Analysis) {
+      // An open contact: the force that would stop its sides' relative slip within the step,
+      // their reduced mass times the slip velocity the step started with over Δt (not the
+      // iterate's slip, which an iterate with the contact open may throw anywhere). Before t = 0
+      // the velocities are a relaxation's, not motion: none (a closing contact locks there, as
+      // in original DDA).
+      const model::Block& vb = scene_.blocks[c.key().vertexBlock];
+      const model::Block& eb = scene_.blocks[c.key().edgeBlock];
+      Vec12 v;
+      v.head<6>() = vb.velocity;
+      v.tail<6>() = eb.velocity;
+      const double mv = mass_[c.key().vertexBlock], me = mass_[c.key().edgeBlock];
+      const double reduced = vb.fixed ? me : eb.fixed ? mv : mv * me / (mv + me);
+      response[q].lockedShear = reduced * s.kin[q].slip(v) / s.dt;
+    }
   });
   return response;
 }

@@ -17,7 +17,10 @@ struct StateTolerance {
 /// What the latest solve says about a contact.
 struct ContactResponse {
   double normalForce = 0;   ///< p·penetration (N/m), compression > 0
-  double lockedShear = 0;   ///< shear spring force about the lock anchor (N/m)
+  /// Shear spring force about the lock anchor (N/m). Of an open contact: the shear force that
+  /// would stop its sides' relative slip within the step (reduced mass × slip velocity / Δt; 0
+  /// before t = 0).
+  double lockedShear = 0;
   double slip = 0;          ///< tangential displacement this step, vertex relative to edge (m)
 };
 
@@ -42,6 +45,11 @@ bool separatesWithBond(const ContactStrength& s);
 /// bond for good, and so does sliding, unless the joint softens with slip (`bondSurvivesSlip`):
 /// then a sliding contact resists with c·L + N tanφ of its current (softened) strength, and, if
 /// the joint has no tensile strength, an opened one keeps its bond (separatesWithBond).
+/// One departure: a contact that closes while its sides run past each other faster than its
+/// friction could stop them within the step (a corner landing on a face it moves along) closes
+/// sliding. Locked, it would take the whole step's slip on its shear spring, a force hundreds of
+/// times the block's weight, and the iteration would cycle and freeze states until a block
+/// tipping over a bend of its base lost 40 % of its speed at Δt 10 ms.
 ContactJudgement judgeVertexContact(ContactState state, int direction, bool bonded,
                                     const ContactResponse& r, const ContactStrength& s,
                                     const StateTolerance& tol = {});
