@@ -296,6 +296,7 @@ TEST(ContactSet, AVertexPassingOntoTheNextEdgeIsClosedOnlyIfItTouchesIt) {
     ASSERT_EQ(set.contacts().size(), 1u);
     const contact::Contact& now = set.contacts()[0];
     EXPECT_EQ(now.state, gap > 0 ? contact::ContactState::Open : contact::ContactState::Sliding) << "gap " << gap;
+    EXPECT_EQ(now.slideDirection, gap > 0 ? 0 : 1) << "gap " << gap;
     EXPECT_EQ(now.normalForce, gap > 0 ? 0.0 : 1e6) << "gap " << gap;
     EXPECT_EQ(now.slipDistance, 0.25) << "gap " << gap;
     EXPECT_EQ(now.intact, 0.5) << "gap " << gap;

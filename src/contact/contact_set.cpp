@@ -111,9 +111,8 @@ void ContactSet::update(std::vector<ContactCandidate> candidates, const std::vec
         // Past a convex bend the vertex stands clear of the next face: it keeps the joint's
         // history but is open until it touches. Closed, its spring would pull it down across the
         // gap, and the iteration would pass that pull round the block's other contacts until
-        // the states cycled and froze: a block sliding over a 0.05° bend lost half its speed at
-        // Δt 10 ms.
-        if (cand.gap > 0) c.state = ContactState::Open, c.normalForce = 0;
+        // the states cycled and froze a lock (docs/contact-model.md).
+        if (cand.gap > 0) c.state = ContactState::Open, c.slideDirection = 0, c.normalForce = 0;
         inherited = true;
         break;
       }

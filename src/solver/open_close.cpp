@@ -62,12 +62,14 @@ std::vector<ContactResponse> Simulation::contactResponses(const StepState& s) co
     response[q].slip = s.kin[q].slip(d);
     if (c.closed()) {
       response[q].lockedShear = shearStiffness(c) * s.kin[q].shearFromAnchor(d);
-    } else if (s.regime == Regime::Analysis) {
+    } else if (s.regime == Regime::Analysis && scene_.settings.mode == model::AnalysisMode::Dynamic) {
       // An open contact: the force that would stop its sides' relative slip within the step,
       // their reduced mass times the slip velocity the step started with over Δt (not the
-      // iterate's slip, which an iterate with the contact open may throw anywhere). Before t = 0
-      // the velocities are a relaxation's, not motion: none (a closing contact locks there, as
-      // in original DDA).
+      // iterate's slip, which an iterate with the contact open may throw anywhere). The blocks'
+      // whole masses: a bound that leans towards sliding, which the next iterate's slip reversal
+      // corrects (rotational inertia and the share of an edge's two ends are left out). Before
+      // t = 0, and in static mode (every step from rest), the velocities are not motion: none
+      // (a closing contact locks there, as in original DDA).
       const model::Block& vb = scene_.blocks[c.key().vertexBlock];
       const model::Block& eb = scene_.blocks[c.key().edgeBlock];
       Vec12 v;

@@ -48,8 +48,8 @@ bool separatesWithBond(const ContactStrength& s);
 /// One departure: a contact that closes while its sides run past each other faster than its
 /// friction could stop them within the step (a corner landing on a face it moves along) closes
 /// sliding. Locked, it would take the whole step's slip on its shear spring, a force hundreds of
-/// times the block's weight, and the iteration would cycle and freeze states until a block
-/// tipping over a bend of its base lost 40 % of its speed at Δt 10 ms.
+/// times the block's weight, and the iteration would cycle and freeze states into a lock that
+/// stops a block tipping over a bend of its base (docs/contact-model.md).
 ContactJudgement judgeVertexContact(ContactState state, int direction, bool bonded,
                                     const ContactResponse& r, const ContactStrength& s,
                                     const StateTolerance& tol = {});
