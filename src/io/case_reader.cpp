@@ -483,7 +483,8 @@ void readAnalysis(const Reader& r, const json& doc, model::Scene& s) {
                     "settle_dynamically", "early_rest",
                     "equilibrium_max_steps", "edge_parallel_tolerance", "initial_contact_tolerance",
                     "contact_state_tolerance", "contact_treatment", "failure_displacement", "resting_speed", "preset",
-                    "blocks", "strain_damping", "joint_end_offset", "system_path", "factor_updates"});
+                    "blocks", "strain_damping", "joint_end_offset", "system_path", "factor_updates",
+                    "time_step_growth"});
   model::AnalysisSettings& st = s.settings;
   st.duration = r.numberIn(r.required(a, p, "duration"), p + ".duration", 0, limits::kMaxDuration, true, false,
                            "a duration in (0, 1e6] s");
@@ -524,6 +525,8 @@ void readAnalysis(const Reader& r, const json& doc, model::Scene& s) {
   st.openCloseMaxIterations = r.integerIn(a, p, "open_close_max_iterations", st.openCloseMaxIterations, 1, 1000);
   st.frictionTolerance = r.optionalIn(a, p, "friction_tolerance", st.frictionTolerance, 0, 1, true, false, "a tolerance in (0, 1]");
   st.maxStepCuts = r.integerIn(a, p, "max_step_cuts", st.maxStepCuts, 0, 100);
+  st.timeStepGrowth = r.optionalIn(a, p, "time_step_growth", st.timeStepGrowth, 1, 100, false, false,
+                                   "a factor in [1, 100] (1: Δt never grows past time_step)");
   st.maxSteps = r.integerIn(a, p, "max_steps", st.maxSteps, 0, 1000000000);
   st.wallClockLimit = r.optionalIn(a, p, "wall_clock_limit", st.wallClockLimit, 0, 1e7, false, false,
                                    "a wall time ≥ 0 s (0: none)");

@@ -102,6 +102,15 @@ Simulation::Simulation(model::Scene scene)
   }
   for (const model::Block& b : scene_.blocks) mass_.push_back(scene_.materials[b.material].density * b.moments.area);
   stepLimit_ = scene_.stepLimit();
+  {
+    // A record, a reservoir history or a load that changes in time must be followed at the
+    // case's Δt, however quiet the blocks.
+    bool changesInTime = scene_.seismic.ground.active() || !scene_.water.seriesTimes.empty();
+    for (const model::PointLoad& l : scene_.pointLoads) changesInTime = changesInTime || l.rate != Vec2::Zero();
+    const model::AnalysisSettings& st = scene_.settings;
+    if (st.timeStepGrowth > 1 && st.mode == model::AnalysisMode::Dynamic && !changesInTime)
+      quietStepCap_ = st.timeStepGrowth * st.timeStep;
+  }
   searchDistance_ = 2.5 * stepLimit_;
   flatCorners_ = seamVertices(scene_);
   penalty_ = scene_.normalPenalty();
@@ -262,7 +271,13 @@ StepRecord Simulation::advance() {
       // A step accepted only by freezing cycling contacts was not cured by its cuts: the next
       // starts from the Δt before them, or a cycle met at rest would shrink Δt step after step
       // without end.
-      stepSize_.accepted(dt, cuts > 0 && !a.frozeContacts);
+      // Quiet: no state changed after the first solve, no cut, and the blocks crept (Δt grows
+      // only where nothing happens within a step).
+      if (quietStepCap_ > 0 && cuts == 0 && !a.frozeContacts && a.iterations <= 2 &&
+          largestVertexDisplacement(a) < 0.02 * stepLimit_)
+        stepSize_.acceptedQuiet(dt, quietStepCap_);
+      else
+        stepSize_.accepted(dt, cuts > 0 && !a.frozeContacts);
       ++stats_.steps;
       stats_.cuts += cuts;
       stats_.iterations += a.iterations;

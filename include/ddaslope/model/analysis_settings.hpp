@@ -87,6 +87,14 @@ struct AnalysisSettings {
   /// whose Δt has collapsed reaches) or this many seconds of wall time (0: none).
   int maxSteps = 0;
   double wallClockLimit = 0;
+  /// Largest Δt of a quiet step, as a multiple of timeStep (1: never above it). A step that
+  /// changed no contact state after its first solve (at most two open-close iterations), needed
+  /// no cut and moved no vertex by 2 % of the step limit lets the next grow by 1.5×, up to this:
+  /// a slope creeping at a steady acceleration, which Newmark's β = ½, γ = 1 integrates exactly
+  /// at any Δt, is crossed in fewer steps. Events inside a grown step (a block stopping, a bolt
+  /// yielding, a corner landing) are resolved only to that step's Δt; runs with a ground-motion
+  /// record, a reservoir history or loads that change in time keep timeStep (docs/accuracy.md).
+  double timeStepGrowth = 1;
   /// Successive Δt cuts allowed for one step before the analysis reports non-convergence.
   int maxStepCuts = 12;
   /// Factor applied to Δt when a step is cut (0 < f < 1).

@@ -384,6 +384,9 @@ class Simulation {
   std::vector<double> strainRetardation_;  ///< per block: β = 2ξ/ω₁ of its strain damping (s), 0 if none
   std::vector<contact::JointStrength> jointStrength_;  ///< per joint, resolved at the start
   double stepLimit_ = 0;       ///< largest vertex displacement in one step (m)
+  /// Largest Δt a quiet step may grow to (AnalysisSettings::timeStepGrowth × timeStep), or 0:
+  /// never past timeStep (growth off, or loads that change in time).
+  double quietStepCap_ = 0;
   double searchDistance_ = 0;  ///< 2.5 × stepLimit_
   /// Fixed blocks' vertices where another fixed block continues the face flush (a seam in the
   /// base): no corner for the free blocks (contact::NarrowPhaseSettings::flatCorners).
