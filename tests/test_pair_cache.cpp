@@ -302,6 +302,21 @@ TEST(ContactSet, AVertexPassingOntoTheNextEdgeIsClosedOnlyIfItTouchesIt) {
     EXPECT_EQ(now.intact, 0.5) << "gap " << gap;
     EXPECT_FALSE(now.bonded) << "gap " << gap;  // new contacts of this joint start bonded
   }
+  // Opened so, a bonded contact keeps its bond as one the iteration pulls open would: only if its
+  // joint has no tensile strength to crack.
+  for (const bool survives : {false, true}) {
+    contact::ContactSet set;
+    contact::ContactCandidate c;
+    c.key = {1, 2, 0, 3};
+    set.update({c}, {0}, {1});
+    set.contacts()[0].state = contact::ContactState::Locked;
+    set.contacts()[0].bonded = true;
+    c.key = {1, 2, 0, 2};
+    c.gap = 1e-6;
+    set.update({c}, {0}, {0}, {}, {}, [&](int joint) { return joint == 0 && survives; });
+    EXPECT_EQ(set.contacts()[0].state, contact::ContactState::Open);
+    EXPECT_EQ(set.contacts()[0].bonded, survives);
+  }
 }
 
 // The hand-over of an edge-to-edge contact whose measuring corner changes blocks. Block 0 (the

@@ -48,7 +48,8 @@ bool ContactSet::refreshGeometry(const std::vector<ContactCandidate>& candidates
 
 void ContactSet::update(std::vector<ContactCandidate> candidates, const std::vector<int>& jointOfCandidate,
                         const std::vector<char>& bondedIfNew, const std::function<int(int)>& vertexCount,
-                        const std::function<bool(int)>& fixedBlock) {
+                        const std::function<bool(int)>& fixedBlock,
+                        const std::function<bool(int)>& bondSurvivesOpening) {
   // A scene at rest finds the same contacts step after step: the merge below would give each its
   // candidate's geometry and nothing else (the keys of this set are last update's, unchanged).
   if (refreshGeometry(candidates)) return;
@@ -112,7 +113,11 @@ void ContactSet::update(std::vector<ContactCandidate> candidates, const std::vec
         // history but is open until it touches. Closed, its spring would pull it down across the
         // gap, and the iteration would pass that pull round the block's other contacts until
         // the states cycled and froze a lock (docs/contact-model.md).
-        if (cand.gap > 0) c.state = ContactState::Open, c.slideDirection = 0, c.normalForce = 0;
+        // Opened so, it keeps its bond as a contact pulled open by the iteration would.
+        if (cand.gap > 0) {
+          c.state = ContactState::Open, c.slideDirection = 0, c.normalForce = 0;
+          if (bondSurvivesOpening && !bondSurvivesOpening(c.joint)) c.bonded = false;
+        }
         inherited = true;
         break;
       }

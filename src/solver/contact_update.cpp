@@ -7,6 +7,8 @@
 #include <vector>
 
 #include "ddaslope/contact/broad_phase.hpp"
+#include "ddaslope/contact/contact_law.hpp"
+#include "ddaslope/contact/joint_strength.hpp"
 #include "ddaslope/contact/narrow_phase.hpp"
 #include "ddaslope/core/block_order.hpp"
 #include "ddaslope/core/parallel.hpp"
@@ -73,7 +75,8 @@ void Simulation::detectContacts(bool initial) {
   contacts_.update(
       std::move(candidates), joints, bondedIfNew,
       [&](int b) { return static_cast<int>(scene_.blocks[static_cast<size_t>(b)].vertices.size()); },
-      [&](int b) { return scene_.blocks[static_cast<size_t>(b)].fixed; });
+      [&](int b) { return scene_.blocks[static_cast<size_t>(b)].fixed; },
+      [&](int j) { return contact::separatesWithBond(contact::contactStrength(jointStrength_[static_cast<size_t>(j)], 1, 0)); });
   if (pairCacheOn_) pairCache_.finish(contacts_.keyVersion());
 
   if (initial) {

@@ -17,10 +17,13 @@ class ContactSet {
   /// corner changed blocks (the other block's corner at an end of this edge sat on the paired
   /// edge, and is gone) inherits that contact's state and bond with a fresh anchor. With
   /// `fixedBlock`, a vertex that slid from one fixed block's face onto another's (a seam of the
-  /// base) inherits its gone contact's state likewise.
+  /// base) inherits its gone contact's state likewise. A vertex that moved onto another edge
+  /// of its block and stands clear of it is open; it keeps its bond only if
+  /// `bondSurvivesOpening(joint)` (a joint without tensile strength to crack; default: keeps it).
   void update(std::vector<ContactCandidate> candidates, const std::vector<int>& jointOfCandidate,
               const std::vector<char>& bondedIfNew, const std::function<int(int)>& vertexCount = {},
-              const std::function<bool(int)>& fixedBlock = {});
+              const std::function<bool(int)>& fixedBlock = {},
+              const std::function<bool(int)>& bondSurvivesOpening = {});
   bool contains(const ContactKey& key) const;
   /// Identify the set's keys, and its keys with each contact's paired edge (the edge-to-edge
   /// pairing): an update() that changes them gives a number no set has had before. A copy keeps
