@@ -1,6 +1,7 @@
 // Verification against the closed forms of ../shared/reference/benchmarks.md §A.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 
 #include <nlohmann/json.hpp>
@@ -28,6 +29,27 @@ io::Trace runWritten(const nlohmann::json& doc, bool rigid, double dt) {
 
 /// The rock of the written cases: 2500 kg/m³, 5 GPa.
 const nlohmann::json kRock = {{"rock", {{"density", 2500}, {"young_modulus", 5e9}, {"poisson_ratio", 0.25}}}};
+
+nlohmann::json point(const Vec2& p) { return nlohmann::json::array({p.x(), p.y()}); }
+
+/// A written case of one block on a bent face: a fixed base whose face runs down from `top` to
+/// `bend` and on to `end`, its underside at `bottom`, a free block with corners `block`
+/// (counter-clockwise), one joint (φ = 20°, c = 0), the monitors given, `duration` s.
+nlohmann::json blockOnABentFace(const Vec2& top, const Vec2& bend, const Vec2& end, double bottom,
+                                const std::array<Vec2, 4>& block, const nlohmann::json& monitors, double duration) {
+  return {{"materials", kRock},
+          {"joints", {{"j", {{"friction_angle", 20}, {"cohesion", 0}}}}},
+          {"blocks",
+           {{{"id", "base"},
+             {"material", "rock"},
+             {"fixed", true},
+             {"vertices", {point(Vec2(0, bottom)), point(Vec2(end.x(), bottom)), point(end), point(bend), point(top)}}},
+            {{"id", "block"},
+             {"material", "rock"},
+             {"vertices", {point(block[0]), point(block[1]), point(block[2]), point(block[3])}}}}},
+          {"monitors", monitors},
+          {"analysis", {{"duration", duration}}}};
+}
 }  // namespace
 
 // A1: free fall, y(t) = g t²/2; Newmark β = 1/2, γ = 1 integrates a constant acceleration
@@ -134,7 +156,6 @@ TEST(BenchmarkA2, ABlockSlidesOverASeamOfTheBase) {
   const double psi = 40 * M_PI / 180, h = 30.64177772475912 * std::tan(psi);
   const Vec2 d(std::cos(psi), -std::sin(psi)), n(std::sin(psi), std::cos(psi));
   const auto onSlope = [&](double along, double out) -> Vec2 { return Vec2(0, h) + along * d + out * n; };
-  const auto point = [](const Vec2& p) { return nlohmann::json::array({p.x(), p.y()}); };
   const double a = 9.81 * (std::sin(psi) - std::cos(psi) * std::tan(20 * M_PI / 180));
   ASSERT_NEAR(a * 2 * 2 / 2, 7.1411, 1e-4);
   // The seam meets the slope `at` metres down it; the block's front corner starts at 10 m.
@@ -188,28 +209,16 @@ TEST(BenchmarkA2, ABlockSlidesOverABendOfItsBaseAtEveryTimeStep) {
   const auto accel = [&](double angle) { return 9.81 * (std::sin(angle) - std::cos(angle) * std::tan(phi)); };
   ASSERT_NEAR(accel(psi) * 2 * 2 / 2, 7.1411, 1e-4);
   const Vec2 d(std::cos(psi), -std::sin(psi)), n(std::sin(psi), std::cos(psi));
-  const auto point = [](const Vec2& p) { return nlohmann::json::array({p.x(), p.y()}); };
   for (const double delta : {0.05, 0.5, 3.0, -0.5, -3.0, -40.0}) {
     // The landing block starts 12 m up the slope, so as to meet the run-out at speed.
     const double lead = delta > -40 ? 1 : 12, bendAt = lead + 9, duration = delta > -40 ? 2 : 4;
     const Vec2 top(0, 30), bend = top + bendAt * d;
-    const auto onSlope = [&](double along, double out) { return point(top + along * d + out * n); };
+    const auto onSlope = [&](double along, double out) -> Vec2 { return top + along * d + out * n; };
     const double psi2 = psi + delta * M_PI / 180;
     const Vec2 end = bend + 30 * Vec2(std::cos(psi2), -std::sin(psi2));
-    const double bottom = std::min(end.y(), 0.0) - 5;
-    const nlohmann::json doc = {
-        {"materials", kRock},
-        {"joints", {{"j", {{"friction_angle", 20}, {"cohesion", 0}}}}},
-        {"blocks",
-         {{{"id", "base"},
-           {"material", "rock"},
-           {"fixed", true},
-           {"vertices", {point(Vec2(0, bottom)), point(Vec2(end.x(), bottom)), point(end), point(bend), point(top)}}},
-          {{"id", "block"},
-           {"material", "rock"},
-           {"vertices", {onSlope(1, 0), onSlope(9, 0), onSlope(9, 4), onSlope(1, 4)}}}}},
-        {"monitors", {{{"id", "m"}, {"block", "block"}, {"point", onSlope(5, 2)}}}},
-        {"analysis", {{"duration", duration}}}};
+    const nlohmann::json doc = blockOnABentFace(
+        top, bend, end, std::min(end.y(), 0.0) - 5, {onSlope(1, 0), onSlope(9, 0), onSlope(9, 4), onSlope(1, 4)},
+        {{{"id", "m"}, {"block", "block"}, {"point", point(onSlope(5, 2))}}}, duration);
     const double upper = accel(psi) * 2, lower = std::max(0.0, accel(psi2)) * 2;  // a t²/2 at t = 2 s
     for (const bool rigid : {false, true}) {
       std::vector<double> travel;
@@ -242,22 +251,12 @@ TEST(BenchmarkA2, ABlockSlidingOntoAFlatterFaceStopsWhereItsSpeedThereSays) {
   const Vec2 d1(std::cos(psi1), -std::sin(psi1)), d2(std::cos(psi2), -std::sin(psi2));
   const Vec2 top(0, 40), bend = top + 15 * d1, end = bend + 60 * d2;
   const Vec2 n1(std::sin(psi1), std::cos(psi1));
-  const auto point = [](const Vec2& p) { return nlohmann::json::array({p.x(), p.y()}); };
   const Vec2 rear = top + 6 * d1, front = top + 10 * d1, centre = rear + 2 * d1 + 1 * n1;
-  const double bottom = end.y() - 5;
-  const nlohmann::json doc = {
-      {"materials", kRock},
-      {"joints", {{"j", {{"friction_angle", 20}, {"cohesion", 0}}}}},
-      {"blocks",
-       {{{"id", "base"},
-         {"material", "rock"},
-         {"fixed", true},
-         {"vertices", {point(Vec2(0, bottom)), point(Vec2(end.x(), bottom)), point(end), point(bend), point(top)}}},
-        {{"id", "block"},
-         {"material", "rock"},
-         {"vertices", {point(rear), point(front), point(front + 2 * n1), point(rear + 2 * n1)}}}}},
-      {"monitors", {{{"id", "m"}, {"block", "block"}, {"point", point(centre)}}, {{"id", "rear"}, {"block", "block"}, {"point", point(rear)}}}},
-      {"analysis", {{"duration", 8.0}}}};
+  const nlohmann::json doc =
+      blockOnABentFace(top, bend, end, end.y() - 5, {rear, front, front + 2 * n1, rear + 2 * n1},
+                       {{{"id", "m"}, {"block", "block"}, {"point", point(centre)}},
+                        {{"id", "rear"}, {"block", "block"}, {"point", point(rear)}}},
+                       8.0);
   std::vector<double> stops;
   for (const bool rigid : {false, true})
     for (const double dt : {1e-3, 5e-3, 1e-2}) {

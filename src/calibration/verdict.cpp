@@ -167,16 +167,6 @@ void judgeAllWindows(const PointPaths& paths, const std::vector<std::string>& na
   }
 }
 
-/// Whether the scene can change by itself: no ground motion record, load rates or water level
-/// series. (A support's law does not depend on time: like a contact, it changes only by changing
-/// state, which rule (2) watches.)
-bool timeInvariant(const model::Scene& s) {
-  if (s.seismic.ground.active() || !s.water.seriesTimes.empty()) return false;
-  for (const model::PointLoad& l : s.pointLoads)
-    if (l.rate.squaredNorm() > 0) return false;
-  return true;
-}
-
 /// Early rest's condition (3) on one set of paths at time t of a run of `duration`, windows w:
 /// every point's net motion over the last window, grown to the end of the run by the larger of its
 /// last growth and a doubling every window, stays under half the end's floor `endFloor`; or it is
@@ -266,7 +256,7 @@ TrialResult judgeStability(const model::Scene& scene, const VerdictSettings& set
   std::vector<Vec2> start;  // monitor positions at t = 0, after the equilibrium
   PointPaths monitorPath(0), blockPath(scene.settings.duration / 64);
   // Early rest (verdict.hpp): the contact and support state changes so far at each block sample.
-  const bool earlyRest = scene.settings.earlyRest && timeInvariant(scene);
+  const bool earlyRest = scene.settings.earlyRest && scene.timeInvariant();
   std::vector<long> changesAt;
   const auto changes = [&] {
     const solver::RunStatistics& st = sim.statistics();

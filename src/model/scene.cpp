@@ -33,6 +33,13 @@ double Scene::modelHalfSize() const {
 /// from it, and leave faces that touch gaps of that size: such gaps are the file's, not the rock's.
 constexpr double kRoundedCoordinateGap = 1.5e-3;
 
+bool Scene::timeInvariant() const {
+  if (seismic.ground.active() || !water.seriesTimes.empty()) return false;
+  for (const PointLoad& l : pointLoads)
+    if (l.rate.squaredNorm() > 0) return false;
+  return true;
+}
+
 double Scene::touchingGap() const {
   const double w0 = modelHalfSize();
   if (settings.initialContactTolerance >= 0) return settings.initialContactTolerance * w0;

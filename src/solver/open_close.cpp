@@ -62,8 +62,9 @@ std::vector<ContactResponse> Simulation::contactResponses(const StepState& s) co
     response[q].slip = s.kin[q].slip(d);
     if (c.closed()) {
       response[q].lockedShear = shearStiffness(c) * s.kin[q].shearFromAnchor(d);
-    } else if (s.regime == Regime::Analysis && scene_.settings.mode == model::AnalysisMode::Dynamic) {
-      // An open contact: the force that would stop its sides' relative slip within the step,
+    } else if (response[q].normalForce > 0 && s.regime == Regime::Analysis &&
+               scene_.settings.mode == model::AnalysisMode::Dynamic) {
+      // An open contact that closes: the force that would stop its sides' relative slip within the step,
       // their reduced mass times the slip velocity the step started with over Δt (not the
       // iterate's slip, which an iterate with the contact open may throw anywhere). The blocks'
       // whole masses: a bound that leans towards sliding, which the next iterate's slip reversal

@@ -102,15 +102,11 @@ Simulation::Simulation(model::Scene scene)
   }
   for (const model::Block& b : scene_.blocks) mass_.push_back(scene_.materials[b.material].density * b.moments.area);
   stepLimit_ = scene_.stepLimit();
-  {
-    // A record, a reservoir history or a load that changes in time must be followed at the
-    // case's Δt, however quiet the blocks.
-    bool changesInTime = scene_.seismic.ground.active() || !scene_.water.seriesTimes.empty();
-    for (const model::PointLoad& l : scene_.pointLoads) changesInTime = changesInTime || l.rate != Vec2::Zero();
-    const model::AnalysisSettings& st = scene_.settings;
-    if (st.timeStepGrowth > 1 && st.mode == model::AnalysisMode::Dynamic && !changesInTime)
-      quietStepCap_ = st.timeStepGrowth * st.timeStep;
-  }
+  // A record, a reservoir history or a load that changes in time must be followed at the case's
+  // Δt, however quiet the blocks.
+  if (const model::AnalysisSettings& st = scene_.settings;
+      st.timeStepGrowth > 1 && st.mode == model::AnalysisMode::Dynamic && scene_.timeInvariant())
+    quietStepCap_ = st.timeStepGrowth * st.timeStep;
   searchDistance_ = 2.5 * stepLimit_;
   flatCorners_ = seamVertices(scene_);
   penalty_ = scene_.normalPenalty();

@@ -122,6 +122,10 @@ struct Scene {
   /// which a vertex is on it: analysis.initial_contact_tolerance × w0, or by default the
   /// millimetre's rounding (kRoundedCoordinateGap) held within [1e-6, 1e-4] × w0.
   double touchingGap() const;
+  /// Whether the loads are the same at every time: no ground motion record, load rates or water
+  /// level series. (A support's law does not depend on time: like a contact, it changes only by
+  /// changing state.)
+  bool timeInvariant() const;
   /// Shi's step limit g2·w0, held to a tenth of the thinnest free block's thickness 2S/perimeter:
   /// the largest vertex displacement a step may make (m).
   double stepLimit() const;
