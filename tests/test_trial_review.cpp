@@ -96,37 +96,50 @@ TEST(SmallMotion, ASlideItsPaceCarriesPastTheFailureDisplacementRunsOnToIt) {
 // within a window, which it passes at √20 = 4.47 s; against 30 cm it is still moving at 4 s.
 // Against 1 m it fails at 3 s on growth alone (GrowingMotionIsFailureEvenWhenSmall); run on, it is
 // judged afresh at 4 s as the re-run is, with no growth behind it: 8 cm, under 10 % of 1 m, so
-// both extend by 4 s and fail at 8 s on 32 cm.
+// both extend by 4 s and fail at 8 s on 32 cm. The block creeps, so a trial's quiet steps grow
+// (calibration::trialStepGrowth): to 10 Δt over a duration of 1000 Δt, to 9 Δt over 999 Δt, whose
+// multiples of 10 Δt would not land on the duration.
 TEST(SmallMotion, ATrendFailureRunsOnInPlaceAsItsReRunWould) {
   const struct {
     double failure;
     calibration::VerdictRule rule;
-    double time;
-  } cases[] = {{0.04, calibration::VerdictRule::PassedDisplacement, std::sqrt(2 * 0.04 / 0.01)},
-               {0.1, calibration::VerdictRule::PassedDisplacement, std::sqrt(2 * 0.1 / 0.01)},
-               {0.3, calibration::VerdictRule::StillMoving, calibration::kReRunLength},
-               {1.0, calibration::VerdictRule::StillMoving, 2 * calibration::kReRunLength}};
-  for (const auto& c : cases) {
-    calibration::VerdictSettings v;
-    v.failureDisplacement = c.failure;
-    v.runOnLength = calibration::kReRunLength;
-    const TrialResult ranOn = calibration::judgeStability(blockOnFrictionlessBase(0, 0.01, false), v);
-    v.runOnLength = 1;
-    model::Scene longer = blockOnFrictionlessBase(0, 0.01, false);
-    longer.settings.duration *= calibration::kReRunLength;
-    const TrialResult reRun = calibration::judgeStability(longer, v);
-    EXPECT_TRUE(ranOn.runOn) << c.failure;
-    EXPECT_FALSE(reRun.runOn) << c.failure;
-    EXPECT_EQ(ranOn.rule, c.rule) << c.failure << ": " << ranOn.reason;
-    EXPECT_EQ(reRun.rule, c.rule) << c.failure << ": " << reRun.reason;
-    EXPECT_NEAR(ranOn.timeReached, c.time, 0.002) << c.failure;
-    // The same path (Δt divides the duration: no step is shortened to land on it), to the
-    // round-off of summing the time steps in another order.
-    EXPECT_NEAR(ranOn.timeReached, reRun.timeReached, 1e-9 * c.time) << c.failure;
-    EXPECT_EQ(ranOn.steps, reRun.steps) << c.failure;
-    EXPECT_NEAR(ranOn.maxDisplacement, reRun.maxDisplacement, 1e-9 * c.failure) << c.failure;
-    EXPECT_NEAR(ranOn.maxDisplacement, std::min(c.failure, 0.5 * 0.01 * c.time * c.time), 0.05 * c.failure)
-        << c.failure << ": a t²/2";
+    double time;       // s, or durations with `inDurations`
+    bool inDurations;
+  } cases[] = {{0.04, calibration::VerdictRule::PassedDisplacement, std::sqrt(2 * 0.04 / 0.01), false},
+               {0.1, calibration::VerdictRule::PassedDisplacement, std::sqrt(2 * 0.1 / 0.01), false},
+               {0.3, calibration::VerdictRule::StillMoving, calibration::kReRunLength, true},
+               {1.0, calibration::VerdictRule::StillMoving, 2 * calibration::kReRunLength, true}};
+  for (const double duration : {1.0, 0.999}) {
+    const auto scene = [&](double length) {
+      model::Scene s = blockOnFrictionlessBase(0, 0.01, false);
+      s.settings.duration = duration * length;
+      return s;
+    };
+    EXPECT_EQ(calibration::trialStepGrowth(scene(1).settings, duration), duration == 1.0 ? 10 : 9);
+    for (const auto& c : cases) {
+      const double time = c.inDurations ? c.time * duration : c.time;
+      calibration::VerdictSettings v;
+      v.failureDisplacement = c.failure;
+      v.runOnLength = calibration::kReRunLength;
+      const TrialResult ranOn = calibration::judgeStability(scene(1), v);
+      v.runOnLength = 1;
+      v.length = calibration::kReRunLength;
+      const TrialResult reRun = calibration::judgeStability(scene(calibration::kReRunLength), v);
+      EXPECT_TRUE(ranOn.runOn) << c.failure;
+      EXPECT_FALSE(reRun.runOn) << c.failure;
+      EXPECT_EQ(ranOn.rule, c.rule) << c.failure << ": " << ranOn.reason;
+      EXPECT_EQ(reRun.rule, c.rule) << c.failure << ": " << reRun.reason;
+      // Rule (a)'s time is interpolated within the step that passed the failure displacement.
+      EXPECT_NEAR(ranOn.timeReached, time, 0.002) << c.failure;
+      // The same path (Δt divides the duration: no step is shortened to land on it), to the
+      // round-off of summing the time steps in another order.
+      EXPECT_NEAR(ranOn.timeReached, reRun.timeReached, 1e-9 * time) << c.failure;
+      EXPECT_EQ(ranOn.steps, reRun.steps) << c.failure;
+      EXPECT_LT(ranOn.steps, 0.25 * time / 0.001) << c.failure << ": the quiet steps grew";
+      EXPECT_NEAR(ranOn.maxDisplacement, reRun.maxDisplacement, 1e-9 * c.failure) << c.failure;
+      EXPECT_NEAR(ranOn.maxDisplacement, std::min(c.failure, 0.5 * 0.01 * time * time), 0.05 * c.failure)
+          << c.failure << ": a t²/2";
+    }
   }
 }
 

@@ -212,6 +212,7 @@ std::optional<solver::HeldEquilibrium> sharedEquilibrium(const model::Scene& sce
 VerdictSettings verdictOf(const SearchSettings& s, double length) {
   VerdictSettings v = s.verdict;
   v.runOnLength = length == 1 ? kReRunLength : 1;
+  v.length = length;
   return v;
 }
 

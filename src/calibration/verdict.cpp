@@ -235,10 +235,24 @@ WindowVerdict judgeWindows(const WindowMotion& m, bool* marginal) {
   return v;
 }
 
+double trialStepGrowth(const model::AnalysisSettings& settings, double duration) {
+  if (settings.timeStepGrowth > 0) return settings.timeStepGrowth;
+  const double steps = duration / settings.timeStep;
+  const long n = std::lround(steps);
+  if (n < 1 || std::abs(steps - static_cast<double>(n)) > 1e-6 * steps) return kTrialStepGrowth;
+  int g = kTrialStepGrowth;
+  while (g > 1 && n % g != 0) --g;
+  return g;
+}
+
 TrialResult judgeStability(const model::Scene& scene, const VerdictSettings& settings,
                            const solver::HeldEquilibrium* shared, const TrialEndObserver& atEnd,
                            std::optional<solver::HeldEquilibrium>* settled) {
-  solver::Simulation sim(scene);
+  solver::Simulation sim([&] {
+    model::Scene trial = scene;
+    trial.settings.timeStepGrowth = trialStepGrowth(scene.settings, scene.settings.duration / settings.length);
+    return trial;
+  }());
   // The call's settings first, then the case's (analysis.failure_displacement, resting_speed).
   const double threshold = settings.failureDisplacement > 0      ? settings.failureDisplacement
                            : scene.settings.failureDisplacement > 0 ? scene.settings.failureDisplacement
@@ -290,6 +304,7 @@ TrialResult judgeStability(const model::Scene& scene, const VerdictSettings& set
   points.largest.assign(monitors + watch.blocks.size(), 0.0);
   std::vector<double> blockMoves;
   const auto passedThreshold = [&] {
+    const double before = r.maxDisplacement, since = r.timeReached;  // as the last step left them
     const auto& mons = sim.scene().monitors;
     for (size_t k = 0; k < monitors; ++k) {
       const double d = (mons[k].point.current - start[k]).norm();
@@ -302,7 +317,11 @@ TrialResult judgeStability(const model::Scene& scene, const VerdictSettings& set
       if (blockMoves[k] > r.maxDisplacement) r.maxDisplacement = blockMoves[k], r.movedMost = blockNames[k];
     }
     r.timeReached = sim.time();
-    return r.maxDisplacement > threshold;
+    if (r.maxDisplacement <= threshold) return false;
+    // Passed within this step: when, interpolated along it (a grown step may be 10 Δt long).
+    if (before < threshold && since < r.timeReached)
+      r.timeReached = since + (threshold - before) / (r.maxDisplacement - before) * (r.timeReached - since);
+    return true;
   };
   const auto finish = [&](VerdictRule rule) {
     r.rule = rule;

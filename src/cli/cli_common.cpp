@@ -15,6 +15,7 @@
 #include <memory>
 #include <sstream>
 
+#include "ddaslope/calibration/verdict.hpp"
 #include "ddaslope/core/errors.hpp"
 #include "ddaslope/core/task_farm.hpp"
 #include "ddaslope/io/scene_picture.hpp"
@@ -237,6 +238,11 @@ std::string settingsLine(const ddaslope::model::Scene& scene) {
                 s.systemPath == ddaslope::model::SystemPath::Auto ? "auto: " : "analysis.system_path; ", unknowns);
   line += buf;
   if (!s.factorUpdates) line += ", factor refactorised at every state change (analysis.factor_updates)";
+  if (const double g = ddaslope::calibration::trialStepGrowth(s, s.duration);
+      g > 1 && s.mode == ddaslope::model::AnalysisMode::Dynamic && scene.timeInvariant()) {
+    std::snprintf(buf, sizeof buf, ", a trial's quiet steps grow to %g Δt (analysis.time_step_growth)", g);
+    line += buf;
+  }
   // The seismic loading a result was found under: F and critical strengths under a record or a
   // coefficient are not the static ones.
   const ddaslope::model::SeismicLoad& q = scene.seismic;

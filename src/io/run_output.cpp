@@ -245,7 +245,7 @@ void writeSummary(const fs::path& dir, const model::Scene& scene, const RunOptio
                    {"open_close_max_iterations", s.openCloseMaxIterations},
                    {"friction_tolerance", s.frictionTolerance},
                    {"max_step_cuts", s.maxStepCuts},
-                   {"time_step_growth", s.timeStepGrowth},
+                   {"time_step_growth", s.timeStepGrowth > 0 ? s.timeStepGrowth : 1.0},  // automatic: 1 in a run
                    {"step_cut_factor", s.stepCutFactor},
                    {"initial_equilibrium", s.initialEquilibrium},
                    {"settle_dynamically", s.settleDynamically},

@@ -244,6 +244,19 @@ StepRecord Simulation::advance() {
   detectContacts(false);
   const double remaining = scene_.settings.duration - time_;
   double dt = stepSize_.proposal(remaining);
+  // Where the step ends if it is not cut: the duration, or the next multiple of the quiet-step
+  // cap when steps may grow. Landing on that grid rather than crossing it makes a run extended
+  // past a duration on the grid take the same steps as a run that long from t = 0.
+  double landsOn = dt == remaining ? scene_.settings.duration : -1;
+  if (quietStepCap_ > 0) {
+    const double nearest = std::round(time_ / quietStepCap_) * quietStepCap_;
+    const double slack = 1e-9 * scene_.settings.timeStep;
+    const double next = nearest > time_ + slack ? nearest : nearest + quietStepCap_;
+    if (time_ + dt > next + slack || (landsOn < 0 && time_ + dt > next - slack)) {
+      dt = next - time_;
+      landsOn = std::abs(next - scene_.settings.duration) <= slack ? scene_.settings.duration : next;
+    }
+  }
   const double first = dt;
   std::string failure;
   for (int cuts = 0; cuts <= scene_.settings.maxStepCuts; ++cuts) {
@@ -263,7 +276,7 @@ StepRecord Simulation::advance() {
               << "\" no longer has a finite position and velocity (look at the loads, gravity and initial velocities)";
           throw NonConvergenceError(msg.str());
         }
-      time_ = (dt == remaining) ? scene_.settings.duration : time_ + dt;
+      time_ = (cuts == 0 && landsOn >= 0) ? landsOn : time_ + dt;
       // A step accepted only by freezing cycling contacts was not cured by its cuts: the next
       // starts from the Δt before them, or a cycle met at rest would shrink Δt step after step
       // without end.

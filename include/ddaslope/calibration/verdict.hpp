@@ -67,6 +67,9 @@ struct VerdictSettings {
   /// (TrialResult::runOn). A search sets its review's re-run length (kReRunLength) so that no
   /// trend failure is run twice; 1: judged at the duration.
   double runOnLength = 1;
+  /// The trial's length in the case's durations (a review's re-run: kReRunLength): quiet steps
+  /// grow on a grid that divides the case's duration (trialStepGrowth).
+  double length = 1;
 };
 
 /// Which rule decided a verdict.
@@ -101,7 +104,9 @@ struct TrialResult {
   double lastWindowMotion = 0;     ///< net displacement over the last window, deciding point (m)
   double previousWindowMotion = 0; ///< over the window before (m)
   double noiseFloor = 0;           ///< that point's floor (m)
-  double timeReached = 0;          ///< simulated time when the trial stopped (s)
+  /// Simulated time when the trial stopped, or (rule a) when it passed the failure displacement,
+  /// interpolated within the step that passed it (s).
+  double timeReached = 0;
   int steps = 0;                   ///< accepted steps after t = 0
   int equilibriumSteps = 0;        ///< steps before t = 0: the equilibrium's static and settling steps
   bool extended = false;           ///< run longer than its duration (a marginal verdict, a small motion, or a slide run on)
@@ -122,6 +127,16 @@ struct TrialResult {
   double startAcceleration = 0;
   const char* reason = "";         ///< describe(rule)
 };
+
+/// analysis.time_step_growth left automatic in a stability trial: the verdict judges where the
+/// blocks end up, not when a contact changed state within a step, so quiet steps grow up to this.
+inline constexpr int kTrialStepGrowth = 10;
+
+/// The Δt growth a stability trial takes: the case's analysis.time_step_growth, or when it is
+/// automatic the largest factor up to kTrialStepGrowth whose multiple of Δt divides the case's
+/// `duration` (so that a trend failure run on past it takes the steps its re-run from t = 0
+/// would: Simulation lands grown steps on multiples of the cap).
+double trialStepGrowth(const model::AnalysisSettings& settings, double duration);
 
 /// Sees a trial's simulation as it ended, with its verdict (to write its final state out).
 using TrialEndObserver = std::function<void(const solver::Simulation&, const TrialResult&)>;

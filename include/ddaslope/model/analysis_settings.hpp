@@ -94,7 +94,9 @@ struct AnalysisSettings {
   /// at any Δt, is crossed in fewer steps. Events inside a grown step (a block stopping, a bolt
   /// yielding, a corner landing) are resolved only to that step's Δt; runs with a ground-motion
   /// record, a reservoir history or loads that change in time keep timeStep (docs/accuracy.md).
-  double timeStepGrowth = 1;
+  /// 0: automatic, 1 in a run and calibration::kTrialStepGrowth in a stability trial
+  /// (calibration::trialStepGrowth), whose verdict watches only where the blocks end up.
+  double timeStepGrowth = 0;
   /// Successive Δt cuts allowed for one step before the analysis reports non-convergence.
   int maxStepCuts = 12;
   /// Factor applied to Δt when a step is cut (0 < f < 1).
