@@ -172,6 +172,17 @@ TEST(CaseReader, OutOfRangeValues) {
   d = minimal();
   d["materials"]["rock"]["density"] = "heavy";
   expectError(d, "materials.rock.density", "expected a number, found a string");
+  // A growth factor is whole (grown steps land on its multiples of Δt) or "auto".
+  for (const json& g : {json(0), json(1.5), json(101), json("fast")}) {
+    d = minimal();
+    d["analysis"]["time_step_growth"] = g;
+    expectError(d, "analysis.time_step_growth", "expected \"auto\" or a whole factor in [1, 100]");
+  }
+  d = minimal();
+  d["analysis"]["time_step_growth"] = "auto";
+  EXPECT_EQ(io::parseCase(d.dump(), "case.json").settings.timeStepGrowth, 0) << "automatic";
+  d["analysis"]["time_step_growth"] = 10;
+  EXPECT_EQ(io::parseCase(d.dump(), "case.json").settings.timeStepGrowth, 10);
 }
 
 TEST(CaseReader, MonitorOutsideItsBlock) {

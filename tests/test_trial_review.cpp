@@ -96,9 +96,9 @@ TEST(SmallMotion, ASlideItsPaceCarriesPastTheFailureDisplacementRunsOnToIt) {
 // within a window, which it passes at √20 = 4.47 s; against 30 cm it is still moving at 4 s.
 // Against 1 m it fails at 3 s on growth alone (GrowingMotionIsFailureEvenWhenSmall); run on, it is
 // judged afresh at 4 s as the re-run is, with no growth behind it: 8 cm, under 10 % of 1 m, so
-// both extend by 4 s and fail at 8 s on 32 cm. The block creeps, so a trial's quiet steps grow
-// (calibration::trialStepGrowth): to 10 Δt over a duration of 1000 Δt, to 9 Δt over 999 Δt, whose
-// multiples of 10 Δt would not land on the duration.
+// both extend by 4 s and fail at 8 s on 32 cm. The block creeps, so a trial's quiet steps grow to
+// 10 Δt (calibration::trialStepGrowth), over durations of 1000 Δt, of 999 Δt (no multiple of
+// 10 Δt) and of 999.5 Δt (whose last step is shortened to end on it).
 TEST(SmallMotion, ATrendFailureRunsOnInPlaceAsItsReRunWould) {
   const struct {
     double failure;
@@ -109,13 +109,13 @@ TEST(SmallMotion, ATrendFailureRunsOnInPlaceAsItsReRunWould) {
                {0.1, calibration::VerdictRule::PassedDisplacement, std::sqrt(2 * 0.1 / 0.01), false},
                {0.3, calibration::VerdictRule::StillMoving, calibration::kReRunLength, true},
                {1.0, calibration::VerdictRule::StillMoving, 2 * calibration::kReRunLength, true}};
-  for (const double duration : {1.0, 0.999}) {
+  for (const double duration : {1.0, 0.999, 0.9995}) {
     const auto scene = [&](double length) {
       model::Scene s = blockOnFrictionlessBase(0, 0.01, false);
       s.settings.duration = duration * length;
       return s;
     };
-    EXPECT_EQ(calibration::trialStepGrowth(scene(1).settings, duration), duration == 1.0 ? 10 : 9);
+    EXPECT_EQ(calibration::trialStepGrowth(scene(1).settings), 10);
     for (const auto& c : cases) {
       const double time = c.inDurations ? c.time * duration : c.time;
       calibration::VerdictSettings v;
@@ -131,7 +131,7 @@ TEST(SmallMotion, ATrendFailureRunsOnInPlaceAsItsReRunWould) {
       EXPECT_EQ(reRun.rule, c.rule) << c.failure << ": " << reRun.reason;
       // Rule (a)'s time is interpolated within the step that passed the failure displacement.
       EXPECT_NEAR(ranOn.timeReached, time, 0.002) << c.failure;
-      // The same path (Δt divides the duration: no step is shortened to land on it), to the
+      // The same path (both land their steps on the multiples of the case's duration), to the
       // round-off of summing the time steps in another order.
       EXPECT_NEAR(ranOn.timeReached, reRun.timeReached, 1e-9 * time) << c.failure;
       EXPECT_EQ(ranOn.steps, reRun.steps) << c.failure;

@@ -235,14 +235,8 @@ WindowVerdict judgeWindows(const WindowMotion& m, bool* marginal) {
   return v;
 }
 
-double trialStepGrowth(const model::AnalysisSettings& settings, double duration) {
-  if (settings.timeStepGrowth > 0) return settings.timeStepGrowth;
-  const double steps = duration / settings.timeStep;
-  const long n = std::lround(steps);
-  if (n < 1 || std::abs(steps - static_cast<double>(n)) > 1e-6 * steps) return kTrialStepGrowth;
-  int g = kTrialStepGrowth;
-  while (g > 1 && n % g != 0) --g;
-  return g;
+double trialStepGrowth(const model::AnalysisSettings& settings) {
+  return settings.timeStepGrowth > 0 ? settings.timeStepGrowth : kTrialStepGrowth;
 }
 
 TrialResult judgeStability(const model::Scene& scene, const VerdictSettings& settings,
@@ -250,9 +244,11 @@ TrialResult judgeStability(const model::Scene& scene, const VerdictSettings& set
                            std::optional<solver::HeldEquilibrium>* settled) {
   solver::Simulation sim([&] {
     model::Scene trial = scene;
-    trial.settings.timeStepGrowth = trialStepGrowth(scene.settings, scene.settings.duration / settings.length);
+    trial.settings.timeStepGrowth = trialStepGrowth(scene.settings);
     return trial;
   }());
+  // A trend failure run on past the case's duration takes the steps of its re-run from t = 0.
+  sim.landStepsOn(scene.settings.duration / settings.length);
   // The call's settings first, then the case's (analysis.failure_displacement, resting_speed).
   const double threshold = settings.failureDisplacement > 0      ? settings.failureDisplacement
                            : scene.settings.failureDisplacement > 0 ? scene.settings.failureDisplacement
@@ -304,24 +300,24 @@ TrialResult judgeStability(const model::Scene& scene, const VerdictSettings& set
   points.largest.assign(monitors + watch.blocks.size(), 0.0);
   std::vector<double> blockMoves;
   const auto passedThreshold = [&] {
-    const double before = r.maxDisplacement, since = r.timeReached;  // as the last step left them
+    // A point that passes the threshold within this step passed it at a time interpolated along
+    // the step (a grown step may be 10 Δt long); the first such point decides.
+    const double since = r.timeReached, now = sim.time();
+    double crossed = now;
+    const auto track = [&](size_t k, double d, const std::string& name) {
+      const double before = points.largest[k];
+      if (d > threshold && before <= threshold && since < now)
+        crossed = std::min(crossed, since + (threshold - before) / (d - before) * (now - since));
+      points.largest[k] = std::max(before, d);
+      if (d > r.maxDisplacement) r.maxDisplacement = d, r.movedMost = name;
+    };
     const auto& mons = sim.scene().monitors;
-    for (size_t k = 0; k < monitors; ++k) {
-      const double d = (mons[k].point.current - start[k]).norm();
-      points.largest[k] = std::max(points.largest[k], d);
-      if (d > r.maxDisplacement) r.maxDisplacement = d, r.movedMost = monitorNames[k];
-    }
+    for (size_t k = 0; k < monitors; ++k) track(k, (mons[k].point.current - start[k]).norm(), monitorNames[k]);
     BlockWatch::moves(sim.scene(), watch.blocks, watch.start, blockMoves);
-    for (size_t k = 0; k < blockMoves.size(); ++k) {
-      points.largest[monitors + k] = std::max(points.largest[monitors + k], blockMoves[k]);
-      if (blockMoves[k] > r.maxDisplacement) r.maxDisplacement = blockMoves[k], r.movedMost = blockNames[k];
-    }
-    r.timeReached = sim.time();
-    if (r.maxDisplacement <= threshold) return false;
-    // Passed within this step: when, interpolated along it (a grown step may be 10 Δt long).
-    if (before < threshold && since < r.timeReached)
-      r.timeReached = since + (threshold - before) / (r.maxDisplacement - before) * (r.timeReached - since);
-    return true;
+    for (size_t k = 0; k < blockMoves.size(); ++k) track(monitors + k, blockMoves[k], blockNames[k]);
+    const bool passed = r.maxDisplacement > threshold;
+    r.timeReached = passed ? crossed : now;
+    return passed;
   };
   const auto finish = [&](VerdictRule rule) {
     r.rule = rule;

@@ -95,7 +95,9 @@ int backanalyseCommand(const std::string& jobPath, const std::string& outDir, bo
   if (job.precision.enabled) j.set("precision_started_early", r.precisionStartedEarly);
   j.set("global_search", r.globalStatus).set("local_search", r.localStatus).set("wall_time_s", r.wallTime);
   const ddaslope::model::Scene atEstimate = ddaslope::calibration::sceneAt(job, r.estimate);
-  const std::string settings = settingsLine(atEstimate);
+  bool searches = false;  // factor-of-safety observations run trials; series are plain runs
+  for (const auto& o : job.observations) searches |= o.kind == ddaslope::io::ObservationSpec::Kind::FactorOfSafety;
+  const std::string settings = settingsLine(atEstimate, searches);
   warnAboutTrials(job.casePath, fixedCrackNote(atEstimate, fittedPaths(job)));
   j.set("settings", settings);
   if (!r.map.empty()) j.set("constrains_only_a_line", r.lineOnly).set("statement", r.statement);

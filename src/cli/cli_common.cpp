@@ -222,7 +222,7 @@ std::string trialStartNote(const std::string& subject, calibration::TrialStart u
 }
 
 /// The settings every forward run of a command uses, and where Δt came from.
-std::string settingsLine(const ddaslope::model::Scene& scene) {
+std::string settingsLine(const ddaslope::model::Scene& scene, bool trials) {
   const ddaslope::model::AnalysisSettings& s = scene.settings;
   char buf[320];
   std::snprintf(buf, sizeof buf, "Δt %g s (%s), g2 %g, penalty %g N/m, %s blocks, %s contacts, %s joints", s.timeStep,
@@ -238,9 +238,12 @@ std::string settingsLine(const ddaslope::model::Scene& scene) {
                 s.systemPath == ddaslope::model::SystemPath::Auto ? "auto: " : "analysis.system_path; ", unknowns);
   line += buf;
   if (!s.factorUpdates) line += ", factor refactorised at every state change (analysis.factor_updates)";
-  if (const double g = ddaslope::calibration::trialStepGrowth(s, s.duration);
+  // Quiet steps that grow (docs/accuracy.md): automatic only in a stability trial.
+  if (const double g = trials ? ddaslope::calibration::trialStepGrowth(s) : std::max(s.timeStepGrowth, 1.0);
       g > 1 && s.mode == ddaslope::model::AnalysisMode::Dynamic && scene.timeInvariant()) {
-    std::snprintf(buf, sizeof buf, ", a trial's quiet steps grow to %g Δt (analysis.time_step_growth)", g);
+    std::snprintf(buf, sizeof buf, ", %s up to %g Δt (analysis.time_step_growth%s)",
+                  s.timeStepGrowth > 0 ? "quiet steps" : "a trial's quiet steps", g,
+                  s.timeStepGrowth > 0 ? "" : ": automatic");
     line += buf;
   }
   // The seismic loading a result was found under: F and critical strengths under a record or a

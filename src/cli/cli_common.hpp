@@ -58,8 +58,9 @@ ddaslope::model::Scene loadCaseText(const std::string& text, const std::string& 
 ddaslope::model::Scene loadParsedCase(const ddaslope::io::ParsedCase& parsed, const std::string& casePath,
                                       const Overrides& o, std::vector<ddaslope::io::CaseOverride> extra = {});
 
-/// The settings every forward run of a command uses, and where Δt came from.
-std::string settingsLine(const ddaslope::model::Scene& scene);
+/// The settings every forward run of a command uses, and where Δt came from. `trials`: the
+/// command's runs are stability trials (their quiet steps grow unless the case says otherwise).
+std::string settingsLine(const ddaslope::model::Scene& scene, bool trials = true);
 
 /// --trial-start of fos and run --at-fos: "settled" or "held" (CLI checks the word).
 calibration::TrialStart trialStartOf(const std::string& word);

@@ -92,6 +92,8 @@ int runCommand(const std::string& casePath, const Overrides& o, const RunCommand
   }
   if (c.atFactor > 0) {
     reduced = reduceStrengths(scene, casePath, c);
+    // The trial of the search, step for step: its quiet steps grow as a trial's do.
+    scene.settings.timeStepGrowth = calibration::trialStepGrowth(scene.settings);
     if (scene.settings.initialEquilibrium)
       std::printf("  %s\n", trialStartNote("the run", settled ? calibration::TrialStart::Settled : calibration::TrialStart::Held,
                                              c.trialStart).c_str());

@@ -525,8 +525,20 @@ void readAnalysis(const Reader& r, const json& doc, model::Scene& s) {
   st.openCloseMaxIterations = r.integerIn(a, p, "open_close_max_iterations", st.openCloseMaxIterations, 1, 1000);
   st.frictionTolerance = r.optionalIn(a, p, "friction_tolerance", st.frictionTolerance, 0, 1, true, false, "a tolerance in (0, 1]");
   st.maxStepCuts = r.integerIn(a, p, "max_step_cuts", st.maxStepCuts, 0, 100);
-  st.timeStepGrowth = r.optionalIn(a, p, "time_step_growth", st.timeStepGrowth, 1, 100, false, false,
-                                   "a factor in [1, 100] (1: Δt never grows past time_step)");
+  if (a.contains("time_step_growth")) {
+    // "auto" (as absent): grown in a stability trial, not in a run. A whole factor, so that the
+    // multiples of the cap a grown step lands on are steps of time_step.
+    const json& g = a.at("time_step_growth");
+    const std::string what = "\"auto\" or a whole factor in [1, 100] (1: Δt never grows past time_step)";
+    if (g.is_string() && g.get<std::string>() == "auto")
+      st.timeStepGrowth = 0;
+    else if (g.is_string())
+      r.fail(p + ".time_step_growth", "expected " + what + ", found \"" + g.get<std::string>() + "\"");
+    else if (const double v = r.numberIn(g, p + ".time_step_growth", 1, 100, false, false, what); v != std::floor(v))
+      r.fail(p + ".time_step_growth", "expected " + what + ", found " + g.dump());
+    else
+      st.timeStepGrowth = v;
+  }
   st.maxSteps = r.integerIn(a, p, "max_steps", st.maxSteps, 0, 1000000000);
   st.wallClockLimit = r.optionalIn(a, p, "wall_clock_limit", st.wallClockLimit, 0, 1e7, false, false,
                                    "a wall time ≥ 0 s (0: none)");

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 #include "ddaslope/assembly/block_terms.hpp"
@@ -106,7 +107,7 @@ Simulation::Simulation(model::Scene scene)
   // Δt, however quiet the blocks.
   if (const model::AnalysisSettings& st = scene_.settings;
       st.timeStepGrowth > 1 && st.mode == model::AnalysisMode::Dynamic && scene_.timeInvariant())
-    quietStepCap_ = st.timeStepGrowth * st.timeStep;
+    quietStepCap_ = quietStepCeiling_ = st.timeStepGrowth * st.timeStep;
   searchDistance_ = 2.5 * stepLimit_;
   flatCorners_ = seamVertices(scene_);
   penalty_ = scene_.normalPenalty();
@@ -239,23 +240,33 @@ void Simulation::checkDeadline() const {
   throw BudgetExceededError(why.str());
 }
 
+double Simulation::nextLanding() const {
+  // The first multiple after time_ of the quiet-step cap (grown steps land on it rather than
+  // cross it) and of the landing period; the duration instead of a point within round-off of
+  // it, and the later of two points that close to each other (no step of a few ulps).
+  const double dt = scene_.settings.timeStep, close = 1e-6 * dt;
+  const auto nextMultiple = [&](double period) {
+    if (period <= 0) return std::numeric_limits<double>::infinity();
+    const double nearest = std::round(time_ / period) * period;
+    return nearest > time_ + 1e-9 * dt ? nearest : nearest + period;
+  };
+  const double a = nextMultiple(quietStepCap_), b = nextMultiple(landingPeriod_);
+  double next = std::abs(a - b) <= close ? std::max(a, b) : std::min(a, b);
+  if (std::abs(next - scene_.settings.duration) <= close) next = scene_.settings.duration;
+  return next;
+}
+
 StepRecord Simulation::advance() {
   checkDeadline();
   detectContacts(false);
   const double remaining = scene_.settings.duration - time_;
   double dt = stepSize_.proposal(remaining);
-  // Where the step ends if it is not cut: the duration, or the next multiple of the quiet-step
-  // cap when steps may grow. Landing on that grid rather than crossing it makes a run extended
-  // past a duration on the grid take the same steps as a run that long from t = 0.
+  // Where the step ends if it is not cut: the duration, or the first landing after time_ that
+  // it would reach (nextLanding).
   double landsOn = dt == remaining ? scene_.settings.duration : -1;
-  if (quietStepCap_ > 0) {
-    const double nearest = std::round(time_ / quietStepCap_) * quietStepCap_;
-    const double slack = 1e-9 * scene_.settings.timeStep;
-    const double next = nearest > time_ + slack ? nearest : nearest + quietStepCap_;
-    if (time_ + dt > next + slack || (landsOn < 0 && time_ + dt > next - slack)) {
-      dt = next - time_;
-      landsOn = std::abs(next - scene_.settings.duration) <= slack ? scene_.settings.duration : next;
-    }
+  if (const double next = nextLanding(); time_ + dt > next - 1e-9 * scene_.settings.timeStep) {
+    dt = next - time_;
+    landsOn = next;
   }
   const double first = dt;
   std::string failure;
@@ -284,7 +295,7 @@ StepRecord Simulation::advance() {
       // only where nothing happens within a step).
       if (quietStepCap_ > 0 && cuts == 0 && !a.frozeContacts && a.iterations <= 2 &&
           largestVertexDisplacement(a) < 0.02 * stepLimit_)
-        stepSize_.acceptedQuiet(dt, quietStepCap_);
+        stepSize_.acceptedQuiet(dt, quietStepCeiling_);
       else
         stepSize_.accepted(dt, cuts > 0 && !a.frozeContacts);
       ++stats_.steps;
@@ -295,6 +306,7 @@ StepRecord Simulation::advance() {
     }
     failure = a.failure;
     if (log_) log_("t = " + std::to_string(time_) + " s: Δt " + std::to_string(dt) + " s cut: " + a.failure);
+    if (dt > scene_.settings.timeStep) quietStepCeiling_ = std::max(scene_.settings.timeStep, dt / 1.5);
     dt = stepSize_.cut(dt);
   }
   std::ostringstream msg;

@@ -67,8 +67,8 @@ struct VerdictSettings {
   /// (TrialResult::runOn). A search sets its review's re-run length (kReRunLength) so that no
   /// trend failure is run twice; 1: judged at the duration.
   double runOnLength = 1;
-  /// The trial's length in the case's durations (a review's re-run: kReRunLength): quiet steps
-  /// grow on a grid that divides the case's duration (trialStepGrowth).
+  /// The trial's length in the case's durations (a review's re-run: kReRunLength): its steps
+  /// land on the multiples of the case's duration (trialStepGrowth).
   double length = 1;
 };
 
@@ -104,8 +104,8 @@ struct TrialResult {
   double lastWindowMotion = 0;     ///< net displacement over the last window, deciding point (m)
   double previousWindowMotion = 0; ///< over the window before (m)
   double noiseFloor = 0;           ///< that point's floor (m)
-  /// Simulated time when the trial stopped, or (rule a) when it passed the failure displacement,
-  /// interpolated within the step that passed it (s).
+  /// Simulated time when the trial stopped, or (rule a) when the first point passed the failure
+  /// displacement, interpolated within the step that passed it (s).
   double timeReached = 0;
   int steps = 0;                   ///< accepted steps after t = 0
   int equilibriumSteps = 0;        ///< steps before t = 0: the equilibrium's static and settling steps
@@ -132,11 +132,11 @@ struct TrialResult {
 /// blocks end up, not when a contact changed state within a step, so quiet steps grow up to this.
 inline constexpr int kTrialStepGrowth = 10;
 
-/// The Δt growth a stability trial takes: the case's analysis.time_step_growth, or when it is
-/// automatic the largest factor up to kTrialStepGrowth whose multiple of Δt divides the case's
-/// `duration` (so that a trend failure run on past it takes the steps its re-run from t = 0
-/// would: Simulation lands grown steps on multiples of the cap).
-double trialStepGrowth(const model::AnalysisSettings& settings, double duration);
+/// The Δt growth a stability trial takes: the case's analysis.time_step_growth, or
+/// kTrialStepGrowth when it is automatic. Its steps also land on the multiples of the case's
+/// duration (Simulation::landStepsOn), so that a trend failure run on past it takes the steps its
+/// re-run from t = 0 would.
+double trialStepGrowth(const model::AnalysisSettings& settings);
 
 /// Sees a trial's simulation as it ended, with its verdict (to write its final state out).
 using TrialEndObserver = std::function<void(const solver::Simulation&, const TrialResult&)>;

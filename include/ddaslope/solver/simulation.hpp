@@ -151,6 +151,9 @@ class Simulation {
   bool finished() const;
   /// Lengthens the run by `extra` seconds (a verdict that needs more time to decide).
   void extendDuration(double extra) { scene_.settings.duration += extra; }
+  /// Steps also end on the multiples of `period` rather than cross them: a run extended past a
+  /// duration of `period` then takes the steps of a run that long from t = 0 (0: none).
+  void landStepsOn(double period) { landingPeriod_ = period; }
 
   const model::Scene& scene() const { return scene_; }
   double time() const { return time_; }
@@ -387,6 +390,13 @@ class Simulation {
   /// Largest Δt a quiet step may grow to (AnalysisSettings::timeStepGrowth × timeStep), or 0:
   /// never past timeStep (growth off, or loads that change in time).
   double quietStepCap_ = 0;
+  /// Where the next step must end rather than cross (advance): the first multiple after time_ of
+  /// quietStepCap_ or of landingPeriod_ (infinity if neither).
+  double nextLanding() const;
+  /// Below quietStepCap_ once a grown step needed a cut: the largest Δt known to have passed
+  /// since (a scene whose contacts cycle at a grown Δt does not grow back into the cycle).
+  double quietStepCeiling_ = 0;
+  double landingPeriod_ = 0;  ///< landStepsOn()
   double searchDistance_ = 0;  ///< 2.5 × stepLimit_
   /// Fixed blocks' vertices where another fixed block continues the face flush (a seam in the
   /// base): no corner for the free blocks (contact::NarrowPhaseSettings::flatCorners).
