@@ -369,17 +369,20 @@ TEST(Invariance, CoordinatesRoundedToTheMillimetreGiveTheDrawnSlopesAnswer) {
 
 namespace {
 
-/// F of four small shipped slopes with an analysis setting at each of two values: (case, F at
-/// `first`, F at `second`).
-std::vector<std::tuple<std::string, double, double>> smallSlopesUnder(const std::string& setting, const std::string& first,
-                                                                     const std::string& second) {
+/// F of four small shipped slopes under each of two overrides: (case, F with `first`, F with
+/// `second`).
+std::vector<std::tuple<std::string, double, double>> smallSlopesUnder(const io::CaseOverride& first,
+                                                                     const io::CaseOverride& second) {
   std::vector<std::tuple<std::string, double, double>> out;
   for (const char* name : {"planar_failure.json", "toppling_slope.json", "stepped_toppling.json", "bilinear_slab.json"}) {
     const std::string path = kCases + name;
-    out.emplace_back(name, fos(io::readCase(path, {io::CaseOverride::name(setting, first)})),
-                     fos(io::readCase(path, {io::CaseOverride::name(setting, second)})));
+    out.emplace_back(name, fos(io::readCase(path, {first})), fos(io::readCase(path, {second})));
   }
   return out;
+}
+std::vector<std::tuple<std::string, double, double>> smallSlopesUnder(const std::string& setting, const std::string& first,
+                                                                     const std::string& second) {
+  return smallSlopesUnder(io::CaseOverride::name(setting, first), io::CaseOverride::name(setting, second));
 }
 
 /// A block sliding on 40° with φ = 20°, its settings changed by `set`, moves a t²/2 in 1 s with
@@ -416,6 +419,19 @@ TEST(Invariance, FactorUpdatesLeaveTheFactorOfSafety) {
       clitest::captureCli("fos " + kCases + "planar_failure.json --quiet --set analysis.factor_updates=off", &err);
   EXPECT_NE(out.find("small-system path (auto: 6 unknowns), factor refactorised at every state change "
                      "(analysis.factor_updates)"), std::string::npos) << out;
+}
+
+// Quiet steps that grow (analysis.time_step_growth, automatic in a stability trial: 10 Δt) change
+// how far a step reaches while nothing happens in it, not the contact law or the verdict's rules:
+// on the small shipped slopes F is the same grid point of the search with and without (measured:
+// equal on all eight shipped slopes, docs/accuracy.md); allowed one bracket width (0.005), the
+// most a verdict tipped by a step's length could move it. Grown to 10 Δt, the sliding block keeps
+// its closed form a = g(sin α − cos α tan φ) within 0.5 % (benchmarks.md A2).
+TEST(Invariance, QuietStepsThatGrowLeaveTheFactorOfSafety) {
+  for (const auto& [name, fixed, grown] : smallSlopesUnder(io::CaseOverride("analysis.time_step_growth", 1),
+                                                           io::CaseOverride::name("analysis.time_step_growth", "auto")))
+    EXPECT_NEAR(grown, fixed, 0.005) << name;
+  slidesAsTheClosedForm([](model::AnalysisSettings& a) { a.timeStepGrowth = 10; });
 }
 
 // The solver path is a numerical choice (analysis.system_path; auto takes the large-system path
