@@ -295,7 +295,13 @@ StepRecord Simulation::advance() {
       // only where nothing happens within a step).
       if (quietStepCap_ > 0 && cuts == 0 && !a.frozeContacts && a.iterations <= 2 &&
           largestVertexDisplacement(a) < 0.02 * stepLimit_)
+      {
         stepSize_.acceptedQuiet(dt, quietStepCeiling_);
+        if (dt >= quietStepCeiling_ * (1 - 1e-9) && ++quietAtCeiling_ >= 20) {
+          quietStepCeiling_ = std::min(quietStepCap_, 1.5 * quietStepCeiling_);
+          quietAtCeiling_ = 0;
+        }
+      }
       else
         stepSize_.accepted(dt, cuts > 0 && !a.frozeContacts);
       ++stats_.steps;
@@ -306,7 +312,7 @@ StepRecord Simulation::advance() {
     }
     failure = a.failure;
     if (log_) log_("t = " + std::to_string(time_) + " s: Δt " + std::to_string(dt) + " s cut: " + a.failure);
-    if (dt > scene_.settings.timeStep) quietStepCeiling_ = std::max(scene_.settings.timeStep, dt / 1.5);
+    if (dt > scene_.settings.timeStep) quietStepCeiling_ = std::max(scene_.settings.timeStep, dt / 1.5), quietAtCeiling_ = 0;
     dt = stepSize_.cut(dt);
   }
   std::ostringstream msg;

@@ -396,6 +396,7 @@ class Simulation {
   /// Below quietStepCap_ once a grown step needed a cut: the largest Δt known to have passed
   /// since (a scene whose contacts cycle at a grown Δt does not grow back into the cycle).
   double quietStepCeiling_ = 0;
+  int quietAtCeiling_ = 0;  ///< quiet steps in a row at the ceiling since it was last lowered or raised
   double landingPeriod_ = 0;  ///< landStepsOn()
   double searchDistance_ = 0;  ///< 2.5 × stepLimit_
   /// Fixed blocks' vertices where another fixed block continues the face flush (a seam in the
