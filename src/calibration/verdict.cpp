@@ -301,7 +301,7 @@ TrialResult judgeStability(const model::Scene& scene, const VerdictSettings& set
   std::vector<double> blockMoves;
   const auto passedThreshold = [&] {
     // A point that passes the threshold within this step passed it at a time interpolated along
-    // the step (a grown step may be 10 Δt long); the first such point decides.
+    // the step (a grown step may be several Δt long); the first such point decides.
     const double since = r.timeReached, now = sim.time();
     double crossed = now;
     const auto track = [&](size_t k, double d, const std::string& name) {

@@ -107,7 +107,7 @@ Simulation::Simulation(model::Scene scene)
   // Δt, however quiet the blocks.
   if (const model::AnalysisSettings& st = scene_.settings;
       st.timeStepGrowth > 1 && st.mode == model::AnalysisMode::Dynamic && scene_.timeInvariant())
-    quietStepCap_ = quietStepCeiling_ = st.timeStepGrowth * st.timeStep;
+    stepSize_.allowGrowthTo(st.timeStepGrowth * st.timeStep);
   searchDistance_ = 2.5 * stepLimit_;
   flatCorners_ = seamVertices(scene_);
   penalty_ = scene_.normalPenalty();
@@ -250,7 +250,7 @@ double Simulation::nextLanding() const {
     const double nearest = std::round(time_ / period) * period;
     return nearest > time_ + 1e-9 * dt ? nearest : nearest + period;
   };
-  const double a = nextMultiple(quietStepCap_), b = nextMultiple(landingPeriod_);
+  const double a = nextMultiple(stepSize_.growthCap()), b = nextMultiple(landingPeriod_);
   double next = std::abs(a - b) <= close ? std::max(a, b) : std::min(a, b);
   if (std::abs(next - scene_.settings.duration) <= close) next = scene_.settings.duration;
   return next;
@@ -293,15 +293,9 @@ StepRecord Simulation::advance() {
       // without end.
       // Quiet: no state changed after the first solve, no cut, and the blocks crept (Δt grows
       // only where nothing happens within a step).
-      if (quietStepCap_ > 0 && cuts == 0 && !a.frozeContacts && a.iterations <= 2 &&
+      if (stepSize_.growthCap() > 0 && cuts == 0 && !a.frozeContacts && a.iterations <= 2 &&
           largestVertexDisplacement(a) < 0.02 * stepLimit_)
-      {
-        stepSize_.acceptedQuiet(dt, quietStepCeiling_);
-        if (dt >= quietStepCeiling_ * (1 - 1e-9) && ++quietAtCeiling_ >= 20) {
-          quietStepCeiling_ = std::min(quietStepCap_, 1.5 * quietStepCeiling_);
-          quietAtCeiling_ = 0;
-        }
-      }
+        stepSize_.acceptedQuiet(dt);
       else
         stepSize_.accepted(dt, cuts > 0 && !a.frozeContacts);
       ++stats_.steps;
@@ -312,7 +306,6 @@ StepRecord Simulation::advance() {
     }
     failure = a.failure;
     if (log_) log_("t = " + std::to_string(time_) + " s: Δt " + std::to_string(dt) + " s cut: " + a.failure);
-    if (dt > scene_.settings.timeStep) quietStepCeiling_ = std::max(scene_.settings.timeStep, dt / 1.5), quietAtCeiling_ = 0;
     dt = stepSize_.cut(dt);
   }
   std::ostringstream msg;

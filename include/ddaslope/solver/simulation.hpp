@@ -387,16 +387,10 @@ class Simulation {
   std::vector<double> strainRetardation_;  ///< per block: β = 2ξ/ω₁ of its strain damping (s), 0 if none
   std::vector<contact::JointStrength> jointStrength_;  ///< per joint, resolved at the start
   double stepLimit_ = 0;       ///< largest vertex displacement in one step (m)
-  /// Largest Δt a quiet step may grow to (AnalysisSettings::timeStepGrowth × timeStep), or 0:
-  /// never past timeStep (growth off, or loads that change in time).
-  double quietStepCap_ = 0;
   /// Where the next step must end rather than cross (advance): the first multiple after time_ of
-  /// quietStepCap_ or of landingPeriod_ (infinity if neither).
+  /// the quiet steps' growth cap (StepSizeController::growthCap) or of landingPeriod_ (infinity if
+  /// neither).
   double nextLanding() const;
-  /// Below quietStepCap_ once a grown step needed a cut: the largest Δt known to have passed
-  /// since (a scene whose contacts cycle at a grown Δt does not grow back into the cycle).
-  double quietStepCeiling_ = 0;
-  int quietAtCeiling_ = 0;  ///< quiet steps in a row at the ceiling since it was last lowered or raised
   double landingPeriod_ = 0;  ///< landStepsOn()
   double searchDistance_ = 0;  ///< 2.5 × stepLimit_
   /// Fixed blocks' vertices where another fixed block continues the face flush (a seam in the
