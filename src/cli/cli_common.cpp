@@ -239,10 +239,14 @@ std::string settingsLine(const ddaslope::model::Scene& scene, bool trials) {
   line += buf;
   if (!s.factorUpdates) line += ", factor refactorised at every state change (analysis.factor_updates)";
   // Quiet steps that grow (docs/accuracy.md): automatic only in a stability trial.
+  // A record or a water-level history is followed at Δt: steps grow only once it has ended.
+  const double settledFrom = scene.lastLoadChange();
   if (const double g = trials ? ddaslope::calibration::trialStepGrowth(s) : std::max(s.timeStepGrowth, 1.0);
-      g > 1 && s.mode == ddaslope::model::AnalysisMode::Dynamic && scene.timeInvariant()) {
-    std::snprintf(buf, sizeof buf, ", %s up to %g Δt (analysis.time_step_growth%s)",
-                  s.timeStepGrowth > 0 ? "quiet steps" : "a trial's quiet steps", g,
+      g > 1 && s.mode == ddaslope::model::AnalysisMode::Dynamic && std::isfinite(settledFrom)) {
+    char after[64] = "";
+    if (settledFrom > 0) std::snprintf(after, sizeof after, " after t = %g s, when the loads stop changing", settledFrom);
+    std::snprintf(buf, sizeof buf, ", %s up to %g Δt%s (analysis.time_step_growth%s)",
+                  s.timeStepGrowth > 0 ? "quiet steps" : "a trial's quiet steps", g, after,
                   s.timeStepGrowth > 0 ? "" : ": automatic");
     line += buf;
   }

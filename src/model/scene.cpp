@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "ddaslope/geometry/polygon.hpp"
 #include "ddaslope/model/input_limits.hpp"
@@ -32,6 +33,15 @@ double Scene::modelHalfSize() const {
 /// Coordinates typed or exported to the millimetre put a vertex split off an edge up to 0.7 mm
 /// from it, and leave faces that touch gaps of that size: such gaps are the file's, not the rock's.
 constexpr double kRoundedCoordinateGap = 1.5e-3;
+
+double Scene::lastLoadChange() const {
+  for (const PointLoad& l : pointLoads)
+    if (l.rate.squaredNorm() > 0) return std::numeric_limits<double>::infinity();
+  double t = 0;
+  if (seismic.ground.active()) t = std::max(t, seismic.ground.times.back());
+  if (!water.seriesTimes.empty()) t = std::max(t, water.seriesTimes.back());
+  return t;
+}
 
 bool Scene::timeInvariant() const {
   if (seismic.ground.active() || !water.seriesTimes.empty()) return false;

@@ -104,9 +104,11 @@ Simulation::Simulation(model::Scene scene)
   for (const model::Block& b : scene_.blocks) mass_.push_back(scene_.materials[b.material].density * b.moments.area);
   stepLimit_ = scene_.stepLimit();
   // A record, a reservoir history or a load that changes in time must be followed at the case's
-  // Δt, however quiet the blocks.
+  // Δt, however quiet the blocks: quiet steps grow only from the loads' last change on (the end
+  // of a record or history; never under a load rate).
+  lastLoadChange_ = scene_.lastLoadChange();
   if (const model::AnalysisSettings& st = scene_.settings;
-      st.timeStepGrowth > 1 && st.mode == model::AnalysisMode::Dynamic && scene_.timeInvariant())
+      st.timeStepGrowth > 1 && st.mode == model::AnalysisMode::Dynamic && std::isfinite(lastLoadChange_))
     stepSize_.allowGrowthTo(st.timeStepGrowth * st.timeStep);
   searchDistance_ = 2.5 * stepLimit_;
   flatCorners_ = seamVertices(scene_);
@@ -250,7 +252,8 @@ double Simulation::nextLanding() const {
     const double nearest = std::round(time_ / period) * period;
     return nearest > time_ + 1e-9 * dt ? nearest : nearest + period;
   };
-  const double a = nextMultiple(stepSize_.growthCap()), b = nextMultiple(landingPeriod_);
+  const double a = growing() ? nextMultiple(stepSize_.growthCap()) : std::numeric_limits<double>::infinity();
+  const double b = nextMultiple(landingPeriod_);
   double next = std::abs(a - b) <= close ? std::max(a, b) : std::min(a, b);
   if (std::abs(next - scene_.settings.duration) <= close) next = scene_.settings.duration;
   return next;
@@ -269,6 +272,7 @@ StepRecord Simulation::advance() {
     landsOn = next;
   }
   const double first = dt;
+  const bool grows = growing();
   std::string failure;
   for (int cuts = 0; cuts <= scene_.settings.maxStepCuts; ++cuts) {
     Attempt a = tryStep(dt, Regime::Analysis, cuts >= 2, true);
@@ -293,7 +297,7 @@ StepRecord Simulation::advance() {
       // without end.
       // Quiet: no state changed after the first solve, no cut, and the blocks crept (Δt grows
       // only where nothing happens within a step).
-      if (stepSize_.growthCap() > 0 && cuts == 0 && !a.frozeContacts && a.iterations <= 2 &&
+      if (grows && cuts == 0 && !a.frozeContacts && a.iterations <= 2 &&
           largestVertexDisplacement(a) < 0.02 * stepLimit_)
         stepSize_.acceptedQuiet(dt);
       else

@@ -92,8 +92,9 @@ struct AnalysisSettings {
   /// no cut and moved no vertex by 2 % of the step limit lets the next grow by 1.5×, up to this:
   /// a slope creeping at a steady acceleration, which Newmark's β = ½, γ = 1 integrates exactly
   /// at any Δt, is crossed in fewer steps. Events inside a grown step (a block stopping, a bolt
-  /// yielding, a corner landing) are resolved only to that step's Δt; runs with a ground-motion
-  /// record, a reservoir history or loads that change in time keep timeStep (docs/accuracy.md).
+  /// yielding, a corner landing) are resolved only to that step's Δt; a ground-motion record or a
+  /// reservoir history is followed at timeStep until it ends (Scene::lastLoadChange), and loads
+  /// that grow at a rate keep it throughout (docs/accuracy.md).
   /// 0: automatic, 1 in a run and calibration::kTrialStepGrowth in a stability trial
   /// (calibration::trialStepGrowth), whose verdict watches only where the blocks end up.
   double timeStepGrowth = 0;

@@ -126,6 +126,10 @@ struct Scene {
   /// level series. (A support's law does not depend on time: like a contact, it changes only by
   /// changing state.)
   bool timeInvariant() const;
+  /// The time (s) from which the loads stay the same: 0 in a time-invariant scene, the last
+  /// sample of a ground-motion record (zero after it) or water-level series (held after it),
+  /// infinity with a load rate.
+  double lastLoadChange() const;
   /// Shi's step limit g2·w0, held to a tenth of the thinnest free block's thickness 2S/perimeter:
   /// the largest vertex displacement a step may make (m).
   double stepLimit() const;

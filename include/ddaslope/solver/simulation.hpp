@@ -392,6 +392,9 @@ class Simulation {
   /// neither).
   double nextLanding() const;
   double landingPeriod_ = 0;  ///< landStepsOn()
+  double lastLoadChange_ = 0;  ///< model::Scene::lastLoadChange()
+  /// Whether a quiet step from time_ may grow: growth is allowed and the loads no longer change.
+  bool growing() const { return stepSize_.growthCap() > 0 && time_ >= lastLoadChange_; }
   double searchDistance_ = 0;  ///< 2.5 × stepLimit_
   /// Fixed blocks' vertices where another fixed block continues the face flush (a seam in the
   /// base): no corner for the free blocks (contact::NarrowPhaseSettings::flatCorners).
