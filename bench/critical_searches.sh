@@ -41,4 +41,5 @@ goodman_bray_toe_anchor|$here/cases/goodman_bray_toppling_anchor.json --solve su
 planar_anchor_fos_1.5|$here/cases/planar_failure_anchor.json --solve support --support anchor --target-fos 1.5
 vajont_anchor_fos_1.3|$here/cases/vajont_anchor.json --solve support --support anchor --target-fos 1.3
 planar_crack_seismic|$here/cases/planar_failure_crack.json --solve seismic-coefficient --direction +x
+jiufengershan_cohesion_record|$here/cases/jiufengershan.json --joint bedding --solve cohesion
 LIST
