@@ -190,6 +190,18 @@ TEST(Seismic, QuietStepsGrowOnlyOnceTheRecordHasEnded) {
   watered.water.seriesTimes = {0, 3};
   watered.water.seriesLevels = {10, 12};
   EXPECT_EQ(watered.lastLoadChange(), 3);
+  // A level that stops changing before its series ends, and a record padded with zeros: the last
+  // change counts, not the last sample. A record scaled to 0 never acts.
+  watered.water.seriesTimes = {0, 3, 5};
+  watered.water.seriesLevels = {10, 12, 12};
+  EXPECT_EQ(watered.lastLoadChange(), 3);
+  model::Scene padded = scene;
+  padded.seismic.ground.times = {0, 0.5, 0.6, 2};
+  padded.seismic.ground.horizontal = {1, 1, 0, 0};
+  EXPECT_EQ(padded.lastLoadChange(), 0.6);
+  padded.seismic.ground.horizontal = {0, 0, 0, 0};
+  EXPECT_EQ(padded.lastLoadChange(), 0);
+  EXPECT_TRUE(padded.timeInvariant());
 }
 
 // Summed over the 60 000 Δt steps of a 60 s record, the time drifts from the multiples of Δt (here

@@ -239,15 +239,22 @@ std::string settingsLine(const ddaslope::model::Scene& scene, bool trials) {
   line += buf;
   if (!s.factorUpdates) line += ", factor refactorised at every state change (analysis.factor_updates)";
   // Quiet steps that grow (docs/accuracy.md): automatic only in a stability trial.
-  // A record or a water-level history is followed at Δt: steps grow only once it has ended.
+  // A record or a water-level history is followed at Δt: steps grow only once it has ended
+  // (within the run: a trial run on past its duration may grow later), never under a load rate.
   const double settledFrom = scene.lastLoadChange();
   if (const double g = trials ? ddaslope::calibration::trialStepGrowth(s) : std::max(s.timeStepGrowth, 1.0);
-      g > 1 && s.mode == ddaslope::model::AnalysisMode::Dynamic && std::isfinite(settledFrom)) {
+      g > 1 && s.mode == ddaslope::model::AnalysisMode::Dynamic) {
     char after[64] = "";
     if (settledFrom > 0) std::snprintf(after, sizeof after, " after t = %g s, when the loads stop changing", settledFrom);
-    std::snprintf(buf, sizeof buf, ", %s up to %g Δt%s (analysis.time_step_growth%s)",
-                  s.timeStepGrowth > 0 ? "quiet steps" : "a trial's quiet steps", g, after,
-                  s.timeStepGrowth > 0 ? "" : ": automatic");
+    if (settledFrom < s.duration)
+      std::snprintf(buf, sizeof buf, ", %s up to %g Δt%s (analysis.time_step_growth%s)",
+                    s.timeStepGrowth > 0 ? "quiet steps" : "a trial's quiet steps", g, after,
+                    s.timeStepGrowth > 0 ? "" : ": automatic");
+    else if (s.timeStepGrowth > 1)  // asked for, and not given: say why
+      std::snprintf(buf, sizeof buf, ", steps kept at Δt: the loads change %s (analysis.time_step_growth %g unused)",
+                    std::isfinite(settledFrom) ? "to the run's end" : "at a rate", g);
+    else
+      buf[0] = 0;
     line += buf;
   }
   // The seismic loading a result was found under: F and critical strengths under a record or a

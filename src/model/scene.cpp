@@ -38,17 +38,30 @@ double Scene::lastLoadChange() const {
   for (const PointLoad& l : pointLoads)
     if (l.rate.squaredNorm() > 0) return std::numeric_limits<double>::infinity();
   double t = 0;
-  if (seismic.ground.active()) t = std::max(t, seismic.ground.times.back());
-  if (!water.seriesTimes.empty()) t = std::max(t, water.seriesTimes.back());
+  // A record is linear between its samples and zero outside them: it stops changing at the
+  // sample after its last non-zero one (at its end if that is its last). All zeros (a record
+  // scaled to 0): it never acts.
+  const GroundMotion& g = seismic.ground;
+  for (size_t k = g.times.size(); k-- > 0;) {
+    const bool acts = (k < g.horizontal.size() && g.horizontal[k] != 0) || (k < g.vertical.size() && g.vertical[k] != 0);
+    if (acts) {
+      t = std::max(t, g.times[std::min(k + 1, g.times.size() - 1)]);
+      break;
+    }
+  }
+  // A water level is held before its first sample and after its last: it stops changing at the
+  // last sample that differs from the one before it.
+  const std::vector<double>& wt = water.seriesTimes;
+  const std::vector<double>& wl = water.seriesLevels;
+  for (size_t k = std::min(wt.size(), wl.size()); k-- > 1;)
+    if (wl[k] != wl[k - 1]) {
+      t = std::max(t, wt[k]);
+      break;
+    }
   return t;
 }
 
-bool Scene::timeInvariant() const {
-  if (seismic.ground.active() || !water.seriesTimes.empty()) return false;
-  for (const PointLoad& l : pointLoads)
-    if (l.rate.squaredNorm() > 0) return false;
-  return true;
-}
+bool Scene::timeInvariant() const { return lastLoadChange() == 0; }
 
 double Scene::touchingGap() const {
   const double w0 = modelHalfSize();
