@@ -252,6 +252,39 @@ TEST(EarlyRest, AGrowingLoadKeepsTheRunGoing) {
   EXPECT_NEAR(r.timeReached, spec.duration, 1e-9);
 }
 
+// Under a ground-motion record early rest counts from the record's end, the time since the loads
+// stopped changing standing for the time so far, if the record ends by the middle of the run (the
+// end-of-run verdict's windows then lie after it too). A block on 30° with φ = 35° (k_y = tan 5°)
+// shaken for 1 s by a 2 Hz sine of 0.15 g slides a little in each cycle and stands after: the trial
+// stops after the record and before its 4 s, with the whole run's verdict and largest
+// displacement. Ending at 3 s of a 4 s run, the same record keeps early rest off.
+TEST(EarlyRest, AfterARecordItCountsFromTheRecordsEnd) {
+  model::InclineSpec spec;
+  spec.alphaDeg = 30, spec.phiDeg = 35, spec.duration = 4;
+  const auto shaken = [&](double start) {
+    model::Scene s = model::makeInclineScene(spec);
+    s.settings.failureDisplacement = 0.5;
+    for (int k = 0; k <= 1000; ++k) {
+      s.seismic.ground.times.push_back(start + 1e-3 * k);
+      s.seismic.ground.horizontal.push_back(0.15 * 9.81 * std::sin(2 * M_PI * 2.0 * 1e-3 * k));
+    }
+    return s;
+  };
+  const calibration::TrialResult early = judged(shaken(0), true);
+  const calibration::TrialResult whole = judged(shaken(0), false);
+  EXPECT_TRUE(whole.stable) << whole.reason;
+  EXPECT_GT(whole.maxDisplacement, 1e-3) << "the record must make the block slide";
+  EXPECT_TRUE(early.stable) << early.reason;
+  EXPECT_TRUE(early.earlyRest);
+  EXPECT_GT(early.timeReached, 1.0);
+  EXPECT_LT(early.timeReached, spec.duration);
+  EXPECT_EQ(early.rule, whole.rule);
+  EXPECT_NEAR(early.maxDisplacement, whole.maxDisplacement, 1e-9 * whole.maxDisplacement);
+  const calibration::TrialResult late = judged(shaken(2), true);
+  EXPECT_FALSE(late.earlyRest);
+  EXPECT_NEAR(late.timeReached, spec.duration, 1e-9);
+}
+
 // The property that matters: the factor of safety is the same with and without early rest, on a
 // rigid wedge, a toppling slope and a two-joint slab (the searches' own trials, bit for bit the
 // same verdicts; the shipped Vajont and toppling cases likewise in docs/performance.md).

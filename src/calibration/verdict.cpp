@@ -266,7 +266,10 @@ TrialResult judgeStability(const model::Scene& scene, const VerdictSettings& set
   std::vector<Vec2> start;  // monitor positions at t = 0, after the equilibrium
   PointPaths monitorPath(0), blockPath(scene.settings.duration / 64);
   // Early rest (verdict.hpp): the contact and support state changes so far at each block sample.
-  const bool earlyRest = scene.settings.earlyRest && scene.timeInvariant();
+  // Under a record or a level history it is judged on the time since the loads stopped changing,
+  // if they stop by the middle of the run: the end-of-run windows then lie after it too.
+  const double quietFrom = scene.lastLoadChange();
+  const bool earlyRest = scene.settings.earlyRest && quietFrom <= 0.5 * scene.settings.duration;
   std::vector<long> changesAt;
   const auto changes = [&] {
     const solver::RunStatistics& st = sim.statistics();
@@ -282,8 +285,12 @@ TrialResult judgeStability(const model::Scene& scene, const VerdictSettings& set
     }
   };
   const auto atRestForGood = [&] {
-    const double t = sim.time(), w = 0.25 * t, duration = sim.scene().settings.duration;
-    if (t < duration / 8 || blockPath.time.size() < 9) return false;
+    // The time since the loads stopped changing (t itself in a time-invariant scene) stands for
+    // the time so far: the scene has evolved by itself since then.
+    const double t = sim.time(), duration = sim.scene().settings.duration, w = 0.25 * (t - quietFrom);
+    if (t - quietFrom < (duration - quietFrom) / 8) return false;
+    if (std::count_if(blockPath.time.begin(), blockPath.time.end(), [&](double s) { return s >= quietFrom; }) < 9)
+      return false;
     // (2) No change since the last two windows began (the sample at or before t − 2w).
     const size_t k0 = static_cast<size_t>(std::upper_bound(blockPath.time.begin(), blockPath.time.end(), t - 2 * w) -
                                           blockPath.time.begin());

@@ -47,7 +47,9 @@ namespace ddaslope::calibration {
 /// **Early rest** (analysis.early_rest, on by default): a run stops as stable before its duration
 /// once it cannot change by itself. Checked from an eighth of the duration on, at each of the 64
 /// samples of the blocks' paths, with windows the quarters of the time so far: (1) nothing in the
-/// scene changes with time (no ground motion record, load rates or water level series); (2) no
+/// scene changes with time (no ground motion record, load rates or water level series; a record or
+/// level history that stops changing by the middle of the run counts from then on, the time since
+/// it stopped being the time so far, so that the end-of-run windows lie after it too); (2) no
 /// contact or support changed state, and no step was cut or held contacts frozen, over the last
 /// two windows; (3) every monitor and free block is still: its net motion over each window is
 /// round-off noise (within 5× its scatter about a smooth path, the scatter under 1e-3 of the
