@@ -246,16 +246,16 @@ std::string settingsLine(const ddaslope::model::Scene& scene, bool trials) {
       g > 1 && s.mode == ddaslope::model::AnalysisMode::Dynamic) {
     char after[64] = "";
     if (settledFrom > 0) std::snprintf(after, sizeof after, " after t = %g s, when the loads stop changing", settledFrom);
-    if (settledFrom < s.duration)
+    if (settledFrom < s.duration) {
       std::snprintf(buf, sizeof buf, ", %s up to %g Δt%s (analysis.time_step_growth%s)",
                     s.timeStepGrowth > 0 ? "quiet steps" : "a trial's quiet steps", g, after,
                     s.timeStepGrowth > 0 ? "" : ": automatic");
-    else if (s.timeStepGrowth > 1)  // asked for, and not given: say why
+      line += buf;
+    } else if (s.timeStepGrowth > 1) {  // asked for, and not given: say why
       std::snprintf(buf, sizeof buf, ", steps kept at Δt: the loads change %s (analysis.time_step_growth %g unused)",
                     std::isfinite(settledFrom) ? "to the run's end" : "at a rate", g);
-    else
-      buf[0] = 0;
-    line += buf;
+      line += buf;
+    }
   }
   // The seismic loading a result was found under: F and critical strengths under a record or a
   // coefficient are not the static ones.

@@ -61,8 +61,6 @@ double Scene::lastLoadChange() const {
   return t;
 }
 
-bool Scene::timeInvariant() const { return lastLoadChange() == 0; }
-
 double Scene::touchingGap() const {
   const double w0 = modelHalfSize();
   if (settings.initialContactTolerance >= 0) return settings.initialContactTolerance * w0;

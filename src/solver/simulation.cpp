@@ -246,9 +246,9 @@ double Simulation::nextLanding() const {
   // The first multiple after time_ of the quiet-step cap (grown steps land on it rather than
   // cross it) and of the landing period; the duration instead of a point within round-off of
   // it, and the later of two points that close to each other (no step of a few ulps). A multiple
-  // less than a thousandth of Δt ahead counts as reached: time_ summed over the Δt steps of a
-  // record, before steps may grow, drifts from the multiples of Δt (by 1e-6 Δt over 2e5 steps),
-  // and a sliver of a step to land on one would only cost a refactorisation.
+  // less than a thousandth of Δt ahead counts as reached: time_ summed over the many Δt steps of a
+  // record, before steps may grow, drifts from the multiples of Δt by round-off, and a sliver of
+  // a step to land on one would only cost a refactorisation.
   const double dt = scene_.settings.timeStep, close = 1e-6 * dt;
   const auto nextMultiple = [&](double period) {
     if (period <= 0) return std::numeric_limits<double>::infinity();

@@ -122,13 +122,12 @@ struct Scene {
   /// which a vertex is on it: analysis.initial_contact_tolerance × w0, or by default the
   /// millimetre's rounding (kRoundedCoordinateGap) held within [1e-6, 1e-4] × w0.
   double touchingGap() const;
-  /// Whether the loads are the same at every time: no ground motion record that acts (one scaled
-  /// to 0 does not), no load rate, no water level series that changes the level. (A support's law
-  /// does not depend on time: like a contact, it changes only by changing state.)
-  bool timeInvariant() const;
-  /// The time (s) from which the loads stay the same: 0 in a time-invariant scene; the end of a
-  /// ground-motion record's last non-zero stretch (it is zero after its samples) or the last
-  /// change of a water-level series (held after it); infinity with a load rate.
+  /// The time (s) from which the loads stay the same: 0 in a scene whose loads never change (no
+  /// record that acts, one scaled to 0 does not; no level series that changes the level; no load
+  /// rate); the end of a ground-motion record's last non-zero stretch (it is zero after its
+  /// samples) or the last change of a water-level series (held after it); infinity with a load
+  /// rate. (A support's law does not depend on time: like a contact, it changes only by changing
+  /// state.)
   double lastLoadChange() const;
   /// Shi's step limit g2·w0, held to a tenth of the thinnest free block's thickness 2S/perimeter:
   /// the largest vertex displacement a step may make (m).
